@@ -1,0 +1,11 @@
+# Every dependency is a Debian package (tools/setup installs them); nothing is downloaded or vendored.
+find_package(PkgConfig REQUIRED)
+find_package(glm REQUIRED)
+find_package(nlohmann_json 3.10 REQUIRED)
+find_package(OpenEXR 3 REQUIRED)
+find_package(glfw3 3.3 REQUIRED)
+pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET epoxy)
+find_path(STB_INCLUDE_DIR stb_image_write.h PATH_SUFFIXES stb REQUIRED)
+if(WELKIN_BUILD_BENCHMARKS)
+  find_package(benchmark REQUIRED)
+endif()

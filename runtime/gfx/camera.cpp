@@ -1,0 +1,71 @@
+#include "welkin/gfx/camera.h"
+
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace welkin {
+
+void describe(TypeBuilder<Camera>& t) {
+  t.tooltip("Perspective camera; position in the scene's east-north-up frame");
+  t.field("position_m", &Camera::position_m).unit("m").range(-1e9, 1e9).tooltip("Position (east, north, up) from the scene origin");
+  t.field("heading_deg", &Camera::heading_deg).unit("deg").range(-720, 720).tooltip("Heading, clockwise from north");
+  t.field("pitch_deg", &Camera::pitch_deg).unit("deg").range(-90, 90).tooltip("Pitch above the horizontal");
+  t.field("roll_deg", &Camera::roll_deg).unit("deg").range(-180, 180);
+  t.field("vertical_fov_deg", &Camera::vertical_fov_deg).unit("deg").range(1, 170).tooltip("Vertical field of view");
+  t.field("near_m", &Camera::near_m).unit("m").range(1e-3, 1e5).tooltip("Near plane; the far plane is at infinity (reversed Z)");
+  t.field("exposure_mode", &Camera::exposure_mode).values({{"ev100", 0}, {"manual", 1}});
+  t.field("ev100", &Camera::ev100).unit("EV").range(-12, 24).tooltip("Exposure value at ISO 100 (daylight ~15, sunset ~12, moonlight ~-2)");
+  t.field("exposure", &Camera::exposure).range(0, 1e6).tooltip("Linear exposure multiplier (manual mode)");
+  t.field("tonemapper", &Camera::tonemapper).values({{"aces", 0}, {"agx", 1}, {"linear", 2}}).tooltip("Tone-mapping curve");
+}
+
+float exposure_from_ev100(float ev100) { return 1.0f / (1.2f * std::exp2(ev100)); }
+
+FrameView make_frame_view(const Camera& c, int width, int height) {
+  FrameView v;
+  v.width = width;
+  v.height = height;
+  v.camera_position_m = c.position_m;
+  double h = glm::radians(double(c.heading_deg)), p = glm::radians(double(c.pitch_deg)),
+         r = glm::radians(double(c.roll_deg));
+  glm::dvec3 fwd(std::sin(h) * std::cos(p), std::cos(h) * std::cos(p), std::sin(p));
+  glm::dvec3 right0(std::cos(h), -std::sin(h), 0.0);
+  glm::dvec3 up0 = glm::cross(right0, fwd);
+  glm::dvec3 right = std::cos(r) * right0 + std::sin(r) * up0;
+  glm::dvec3 up = glm::cross(right, fwd);
+  v.forward = glm::vec3(fwd);
+  v.right = glm::vec3(right);
+  v.up = glm::vec3(up);
+  glm::mat4 view(1.0f);
+  view[0] = glm::vec4(v.right.x, v.up.x, -v.forward.x, 0);
+  view[1] = glm::vec4(v.right.y, v.up.y, -v.forward.y, 0);
+  view[2] = glm::vec4(v.right.z, v.up.z, -v.forward.z, 0);
+  v.view = view;
+  v.vertical_fov_rad = glm::radians(c.vertical_fov_deg);
+  v.near_m = c.near_m;
+  // Reversed-Z infinite projection with [0,1] clip depth (glClipControl ZERO_TO_ONE): z_ndc = near / -z_view.
+  float f = 1.0f / std::tan(v.vertical_fov_rad * 0.5f);
+  float aspect = float(width) / float(height);
+  glm::mat4 proj(0.0f);
+  proj[0][0] = f / aspect;
+  proj[1][1] = f;
+  proj[2][3] = -1.0f;
+  proj[3][2] = c.near_m;
+  v.projection = proj;
+  v.view_projection = proj * view;
+  v.inverse_view_projection = glm::inverse(v.view_projection);
+  v.exposure = c.exposure_mode == ExposureMode::ev100 ? exposure_from_ev100(c.ev100) : c.exposure;
+  v.tonemapper = c.tonemapper;
+  return v;
+}
+
+glm::vec3 pixel_direction(const FrameView& v, double x, double y) {
+  double ndc_x = (x / v.width) * 2.0 - 1.0;
+  double ndc_y = 1.0 - (y / v.height) * 2.0;
+  double t = std::tan(v.vertical_fov_rad * 0.5);
+  double aspect = double(v.width) / v.height;
+  glm::dvec3 d = glm::dvec3(v.forward) + ndc_x * t * aspect * glm::dvec3(v.right) + ndc_y * t * glm::dvec3(v.up);
+  return glm::vec3(glm::normalize(d));
+}
+
+}  // namespace welkin

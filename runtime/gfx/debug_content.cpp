@@ -1,0 +1,117 @@
+#include "welkin/gfx/debug_content.h"
+
+#include <cmath>
+#include <glm/gtc/constants.hpp>
+
+#include "welkin/core/module.h"
+#include "welkin/core/world.h"
+#include "welkin/gfx/renderer.h"
+
+namespace welkin {
+
+void describe(TypeBuilder<Backdrop>& t) {
+  t.tooltip("Gradient sky stand-in and orientation grid (test pattern)");
+  t.field("zenith_color", &Backdrop::zenith_color).color().range(0, 1);
+  t.field("horizon_color", &Backdrop::horizon_color).color().range(0, 1);
+  t.field("ground_color", &Backdrop::ground_color).color().range(0, 1);
+  t.field("luminance", &Backdrop::luminance).unit("cd/m^2").range(0, 1e9);
+  t.field("grid", &Backdrop::grid).tooltip("Draw a 10-degree azimuth/elevation grid");
+}
+
+void describe(TypeBuilder<DirectionalLight>& t) {
+  t.field("azimuth_deg", &DirectionalLight::azimuth_deg).unit("deg").range(-360, 360).tooltip("Clockwise from north");
+  t.field("elevation_deg", &DirectionalLight::elevation_deg).unit("deg").range(-90, 90);
+  t.field("color", &DirectionalLight::color).color().range(0, 1);
+  t.field("illuminance_lux", &DirectionalLight::illuminance_lux).unit("lx").range(0, 2e5);
+  t.field("ambient_fraction", &DirectionalLight::ambient_fraction).range(0, 1);
+}
+
+void describe(TypeBuilder<DebugShape>& t) {
+  t.field("shape", &DebugShape::shape).values({{"sphere", 0}, {"box", 1}});
+  t.field("position_m", &DebugShape::position_m).unit("m").range(-1e9, 1e9);
+  t.field("size_m", &DebugShape::size_m).unit("m").range(1e-3, 1e7).tooltip("Sphere: radius in x; box: half extents");
+  t.field("albedo", &DebugShape::albedo).color().range(0, 1);
+}
+
+glm::dvec3 direction_from_azimuth_elevation(double az, double el) {
+  double a = glm::radians(az), e = glm::radians(el);
+  return {std::sin(a) * std::cos(e), std::cos(a) * std::cos(e), std::sin(e)};
+}
+
+namespace {
+
+void backdrop_system(SystemContext& sc) {
+  Registry& reg = sc.world.registry();
+  Entity e = reg.first<Backdrop>();
+  Backdrop b = *reg.get<Backdrop>(e);
+  auto& rc = sc.world.resource<RenderContext>();
+  const FrameTargets t = *sc.targets;
+  sc.graph->add_pass("backdrop", [&](PassBuilder& pb) { pb.read(t.color); pb.write(t.color); pb.read(t.depth); },
+                     [&rc, b, t](PassContext& pc) {
+    Framebuffer fb(&pc.texture(t.color), &pc.texture(t.depth));
+    fb.bind();
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GEQUAL);  // only where nothing nearer was drawn (depth still 0 = infinity)
+    glDepthMask(GL_FALSE);
+    const Program& p = rc.shaders.graphics("fullscreen.vert", "backdrop.frag");
+    p.use();
+    p.set("u_inverse_view_projection", rc.view.inverse_view_projection);
+    p.set("u_zenith", b.zenith_color * b.luminance);
+    p.set("u_horizon", b.horizon_color * b.luminance);
+    p.set("u_ground", b.ground_color * b.luminance);
+    p.set("u_grid", b.grid ? 1 : 0);
+    rc.draw_fullscreen_triangle();
+    glDepthFunc(GL_GREATER);
+    glDepthMask(GL_TRUE);
+  });
+}
+
+void debug_shape_system(SystemContext& sc) {
+  Registry& reg = sc.world.registry();
+  auto& rc = sc.world.resource<RenderContext>();
+  DirectionalLight light;
+  if (Entity l = reg.first<DirectionalLight>(); !l.is_null()) light = *reg.get<DirectionalLight>(l);
+  std::vector<DebugShape> shapes;
+  reg.each<DebugShape>([&](Entity, DebugShape& s) { shapes.push_back(s); });
+  const FrameTargets t = *sc.targets;
+  sc.graph->add_pass("debug_shapes", [&](PassBuilder& pb) { pb.read(t.color); pb.write(t.color); pb.read(t.depth); pb.write(t.depth); },
+                     [&rc, shapes, light, t](PassContext& pc) {
+    Framebuffer fb(&pc.texture(t.color), &pc.texture(t.depth));
+    fb.bind();
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);
+    glEnable(GL_CULL_FACE);
+    const Program& p = rc.shaders.graphics("debug_shape.vert", "debug_shape.frag");
+    p.use();
+    p.set("u_view_projection", rc.view.view_projection);
+    glm::vec3 sun = glm::vec3(direction_from_azimuth_elevation(light.azimuth_deg, light.elevation_deg));
+    p.set("u_sun_direction", sun);
+    p.set("u_sun_illuminance", light.color * light.illuminance_lux);
+    p.set("u_ambient_fraction", light.ambient_fraction);
+    for (const DebugShape& s : shapes) {
+      // Camera-relative in double, then to float: precision independent of distance from the origin.
+      glm::vec3 rel = glm::vec3(s.position_m - rc.view.camera_position_m);
+      p.set("u_center", rel);
+      p.set("u_size", s.size_m);
+      p.set("u_albedo", s.albedo);
+      p.set("u_shape", int(s.shape));
+      glBindVertexArray(rc.empty_vao.id());
+      // Spheres: a 64x32 latitude-longitude grid; boxes: 36 vertices. Both generated in the shader.
+      glDrawArrays(GL_TRIANGLES, 0, s.shape == ShapeKind::sphere ? 64 * 32 * 6 : 36);
+    }
+    glDisable(GL_CULL_FACE);
+  });
+}
+
+}  // namespace
+
+void register_debug_content(ModuleContext& ctx) {
+  ctx.component<Backdrop>();
+  ctx.component<DirectionalLight>();
+  ctx.component<DebugShape>();
+  ctx.system({.name = "core.backdrop", .phase = Phase::render, .reads = {type_id<Backdrop>()}, .run = backdrop_system});
+  ctx.system({.name = "core.debug_shapes", .phase = Phase::render, .reads = {type_id<DebugShape>()},
+              .optional_reads = {type_id<DirectionalLight>()}, .run = debug_shape_system});
+}
+
+}  // namespace welkin

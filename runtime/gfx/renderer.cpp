@@ -1,0 +1,121 @@
+#include "welkin/gfx/renderer.h"
+
+#include <dlfcn.h>
+
+#include <filesystem>
+
+#include "welkin/core/error.h"
+#include "welkin/gfx/gl_objects.h"
+
+#ifndef WELKIN_SOURCE_SHADER_DIR
+#error "WELKIN_SOURCE_SHADER_DIR must be defined by the build"
+#endif
+
+namespace welkin {
+
+std::string runtime_shader_dir() {
+  // Installed layout: <prefix>/lib/libwelkin_runtime.so and <prefix>/share/welkin/shaders.
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&runtime_shader_dir), &info) && info.dli_fname) {
+    auto installed = std::filesystem::path(info.dli_fname).parent_path().parent_path() / "share/welkin/shaders";
+    std::error_code ec;
+    if (std::filesystem::is_directory(installed, ec)) return installed.string();
+  }
+  return WELKIN_SOURCE_SHADER_DIR;
+}
+
+void RenderContext::draw_fullscreen_triangle() const {
+  glBindVertexArray(empty_vao.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+Renderer::Renderer(World& world) : world_(world), ctx_(world.resource<RenderContext>()) {
+  if (!ctx_.empty_vao) {
+    GLuint vao = 0;
+    glCreateVertexArrays(1, &vao);
+    ctx_.empty_vao = GlVertexArrayName(vao);
+    ctx_.shaders.add_search_dir(runtime_shader_dir());
+    for (const auto& name : world.modules().loaded()) {
+      const ModuleManifest* m = world.modules().manifest(name);
+      if (m && !m->data_dir.empty()) ctx_.shaders.add_search_dir(m->data_dir / "shaders");
+    }
+  }
+  // Reversed Z: depth 1 at the near plane, 0 at infinity, compared with GREATER.
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+}
+
+FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height) {
+  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+    throw Error(ErrorInfo{.expected = "a frame size between 1x1 and 16384x16384",
+                          .found = std::to_string(width) + "x" + std::to_string(height)});
+  // Modules loaded after construction (a scene loaded later) contribute shader folders too.
+  for (const auto& name : world_.modules().loaded()) {
+    const ModuleManifest* m = world_.modules().manifest(name);
+    if (m && !m->data_dir.empty()) ctx_.shaders.add_search_dir(m->data_dir / "shaders");
+  }
+  FrameResult result;
+  result.systems_run = world_.update(frame);
+
+  Registry& reg = world_.registry();
+  Entity cam = reg.first<Camera>();
+  if (cam.is_null()) throw Error(ErrorInfo{.expected = "an entity with a core.Camera component", .found = "none", .message = "the scene has no camera"});
+  ctx_.view = make_frame_view(*reg.get<Camera>(cam), width, height);
+
+  if (!hdr_ || hdr_->desc().width != width || hdr_->desc().height != height) {
+    hdr_ = std::make_unique<Texture>(TextureDesc{.width = width, .height = height, .format = TextureFormat::rgba16f});
+    ldr_ = std::make_unique<Texture>(TextureDesc{.width = width, .height = height, .format = TextureFormat::rgba8, .linear_filter = false});
+  }
+
+  RenderGraph graph;
+  FrameTargets targets;
+  targets.color = graph.import("scene_color", *hdr_);
+  ResourceHandle output = graph.import("output", *ldr_);
+  graph.add_pass("clear", [&](PassBuilder& b) {
+    b.write(targets.color);
+    targets.depth = b.create("scene_depth", TextureDesc{.width = width, .height = height, .format = TextureFormat::depth32f, .linear_filter = false});
+  }, [&, targets_copy = &targets](PassContext& pc) {
+    Framebuffer fb(&pc.texture(targets_copy->color), &pc.texture(targets_copy->depth));
+    fb.bind();
+    glDepthMask(GL_TRUE);
+    glClearColor(0, 0, 0, 1);
+    glClearDepth(0.0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  });
+  graph.blackboard["scene_color"] = targets.color;
+  graph.blackboard["scene_depth"] = targets.depth;
+
+  SystemContext sctx{.world = world_, .frame = frame, .graph = &graph, .targets = &targets};
+  auto rendered = world_.scheduler().run(Phase::render, sctx);
+  result.systems_run.insert(result.systems_run.end(), rendered.begin(), rendered.end());
+
+  const FrameView& view = ctx_.view;
+  graph.add_pass("tonemap", [&](PassBuilder& b) {
+    b.read(targets.color);
+    b.write(output);
+  }, [&, this](PassContext& pc) {
+    Framebuffer fb(&pc.texture(output), nullptr);
+    fb.bind();
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    const Program& p = ctx_.shaders.graphics("fullscreen.vert", "tonemap.frag");
+    p.use();
+    glBindTextureUnit(0, pc.texture(targets.color).id());
+    p.set("u_hdr", 0);
+    p.set("u_exposure", view.exposure);
+    p.set("u_tonemapper", int(view.tonemapper));
+    ctx_.draw_fullscreen_triangle();
+  });
+  graph.present(output);
+  graph.compile();
+  graph.execute(ctx_.backend);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  check_gl("frame");
+  result.timings = graph.timings();
+  result.culled_passes = graph.culled_passes();
+  return result;
+}
+
+ImageU8 Renderer::read_output() const { return read_texture_rgba8(*ldr_); }
+ImageF Renderer::read_hdr() const { return read_texture_float(*hdr_); }
+
+}  // namespace welkin

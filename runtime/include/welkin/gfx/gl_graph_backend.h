@@ -1,0 +1,32 @@
+#pragma once
+// Render-graph backend on OpenGL: a texture pool that persists across frames (transients are
+// reused, not reallocated) and GL_TIME_ELAPSED queries around every pass.
+#include <memory>
+#include <vector>
+
+#include "welkin/gfx/render_graph.h"
+
+namespace welkin {
+
+class GlGraphBackend : public GraphBackend {
+ public:
+  Texture* acquire(const TextureDesc& desc) override;
+  void release(Texture* texture) override;
+  void begin_pass(const std::string& name) override;
+  void end_pass() override;
+  std::vector<double> resolve_gpu_times() override;
+  void begin_frame() override;
+  size_t pooled_textures() const { return pool_.size(); }
+
+ private:
+  void record_timestamp();
+  struct Slot {
+    std::unique_ptr<Texture> texture;
+    bool in_use = false;
+  };
+  std::vector<Slot> pool_;
+  std::vector<GlQueryName> queries_;
+  size_t next_query_ = 0;
+};
+
+}  // namespace welkin

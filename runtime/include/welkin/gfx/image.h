@@ -1,0 +1,41 @@
+#pragma once
+// CPU images, GPU readback and files: PNG (8-bit, sRGB-encoded) and OpenEXR (linear HDR, half or
+// float). Rows are stored top to bottom, as in files; readback flips GL's bottom-up rows.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace welkin {
+
+class Texture;
+
+struct ImageU8 {
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgba;  // 4 bytes per pixel
+  const uint8_t* pixel(int x, int y) const { return &rgba[(size_t(y) * width + x) * 4]; }
+};
+
+struct ImageF {
+  int width = 0, height = 0;
+  std::vector<float> rgba;  // 4 floats per pixel
+  const float* pixel(int x, int y) const { return &rgba[(size_t(y) * width + x) * 4]; }
+  float* pixel(int x, int y) { return &rgba[(size_t(y) * width + x) * 4]; }
+};
+
+enum class ExrPrecision { half, full };
+
+ImageU8 read_texture_rgba8(const Texture& texture);
+// Layer `layer` of a 3D texture, or the 2D texture itself.
+ImageF read_texture_float(const Texture& texture, int layer = 0);
+
+// Files are written atomically (temporary name, then rename). Throw Error on failure.
+void write_png(const std::string& path, const ImageU8& image);
+void write_exr(const std::string& path, const ImageF& image, ExrPrecision precision = ExrPrecision::half);
+ImageU8 read_png(const std::string& path);
+ImageF read_exr(const std::string& path);
+
+// Linear [0,1] to sRGB-encoded 8-bit, with the exact sRGB transfer function.
+uint8_t linear_to_srgb8(float linear);
+float srgb8_to_linear(uint8_t encoded);
+
+}  // namespace welkin

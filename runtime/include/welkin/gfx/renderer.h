@@ -1,0 +1,61 @@
+#pragma once
+// Renders a world's frame: finds the camera, builds the frame graph (clear, the passes render
+// systems add, tone mapping to an sRGB 8-bit target), runs it and keeps the per-pass timings.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "welkin/core/world.h"
+#include "welkin/gfx/camera.h"
+#include "welkin/gfx/gl_graph_backend.h"
+#include "welkin/gfx/image.h"
+#include "welkin/gfx/render_graph.h"
+#include "welkin/gfx/shader.h"
+
+namespace welkin {
+
+struct FrameTargets {
+  ResourceHandle color;  // RGBA16F linear radiance (scene-referred)
+  ResourceHandle depth;  // depth32f, reversed Z (1 = near, 0 = infinity)
+};
+
+// GL state shared by every render system of a world (a world resource).
+struct RenderContext {
+  static constexpr std::string_view kTypeName = "core.RenderContext";
+  ShaderLibrary shaders;
+  GlGraphBackend backend;
+  FrameView view;
+  GlVertexArrayName empty_vao;  // full-screen triangles generate their vertices
+  void draw_fullscreen_triangle() const;
+};
+
+// The folder holding the runtime's shaders (installed tree, else the source tree).
+std::string runtime_shader_dir();
+
+struct FrameResult {
+  std::vector<PassTiming> timings;
+  std::vector<std::string> systems_run;
+  std::vector<std::string> culled_passes;
+};
+
+class Renderer {
+ public:
+  // Requires a current GL 4.5 context.
+  explicit Renderer(World& world);
+  // Runs the world's update, pre-render and render systems and the frame graph.
+  FrameResult render_frame(const FrameInfo& frame, int width, int height);
+  // The last frame's tone-mapped output and linear HDR colour.
+  ImageU8 read_output() const;
+  ImageF read_hdr() const;
+  const Texture& output_texture() const { return *ldr_; }
+  const Texture& hdr_texture() const { return *hdr_; }
+  RenderContext& context() { return ctx_; }
+
+ private:
+  World& world_;
+  RenderContext& ctx_;
+  std::unique_ptr<Texture> hdr_, ldr_;
+};
+
+}  // namespace welkin

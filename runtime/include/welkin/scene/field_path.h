@@ -1,0 +1,29 @@
+#pragma once
+// Field paths address one reflected value inside a component: "layers/0/coverage" or
+// "rayleigh_scattering/2". Sequences, presets, `--set` and the editor all go through here.
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+#include <string_view>
+
+#include "welkin/core/reflection.h"
+
+namespace welkin {
+
+struct FieldRef {
+  const FieldDesc* field = nullptr;  // the field reached
+  void* value = nullptr;             // points at the field's storage
+  int component = -1;                // >= 0 when the path selected one element of a vector
+  std::string path;                  // the path as resolved (for messages)
+
+  bool is_scalar() const;  // bool, integer, float, double, enum or one vector element
+  double get_scalar() const;
+  // Range-checked; throws Error naming the path.
+  void set_scalar(double v) const;
+  void set_json(const nlohmann::json& j) const;
+  nlohmann::json get_json() const;
+};
+
+// Resolves `path` inside `object` of `type`; throws Error naming the first bad segment.
+FieldRef resolve_field(const TypeDesc& type, void* object, std::string_view path);
+
+}  // namespace welkin

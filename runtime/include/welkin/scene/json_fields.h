@@ -1,0 +1,26 @@
+#pragma once
+// Reflected values to and from JSON. Reading validates everything (type, arity, range, finiteness,
+// enum names, unknown keys) and throws welkin::Error with the JSON path of the bad value.
+#include <nlohmann/json_fwd.hpp>
+#include <string_view>
+
+#include "welkin/core/reflection.h"
+
+namespace welkin {
+
+nlohmann::json object_to_json(const TypeDesc& type, const void* object);
+nlohmann::json field_to_json(const FieldDesc& field, const void* value);
+
+// Reads `j` into `object`; fields missing from `j` keep their current (default) values.
+void object_from_json(const TypeDesc& type, void* object, const nlohmann::json& j);
+// Reads one field value (value points at the field itself, not at the owning object).
+void field_from_json(const FieldDesc& field, void* value, const nlohmann::json& j);
+
+// A short description of a JSON value for error messages: `"abc"`, `12.5`, `an object`.
+std::string describe_json(const nlohmann::json& j);
+// Parses text, turning syntax errors into an Error with line and column.
+nlohmann::json parse_json_text(const std::string& text, const std::string& file);
+// Reads a file and parses it (clear errors for missing, unreadable, empty, truncated files).
+nlohmann::json read_json_file(const std::string& file);
+
+}  // namespace welkin

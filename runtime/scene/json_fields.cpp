@@ -1,0 +1,208 @@
+#include "welkin/scene/json_fields.h"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "welkin/core/error.h"
+
+namespace welkin {
+
+using nlohmann::json;
+
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& expected, const std::string& found,
+                       const std::string& message = {}) {
+  throw Error(ErrorInfo{.path = path, .expected = expected, .found = found, .message = message});
+}
+
+// Floats are written with their shortest round-trip text (0.1f -> 0.1), so a save/load cycle is
+// exact and files stay readable.
+json float_json(float v) {
+  char buf[32];
+  auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return json(std::strtod(std::string(buf, r.ptr).c_str(), nullptr));
+}
+
+double read_number(const json& j, const FieldDesc& f, const std::string& path) {
+  if (!j.is_number()) fail(path, "number", describe_json(j));
+  double v = j.get<double>();
+  if (!std::isfinite(v)) fail(path, "finite number", describe_json(j));
+  if ((f.min && v < *f.min) || (f.max && v > *f.max)) {
+    std::ostringstream range;
+    range << "number in [" << (f.min ? std::to_string(*f.min) : "-inf") << ", "
+          << (f.max ? std::to_string(*f.max) : "inf") << "]" << (f.unit.empty() ? "" : " " + f.unit);
+    std::ostringstream found;
+    found << v;
+    fail(path, range.str(), found.str(), "value out of range");
+  }
+  return v;
+}
+
+template <class V> void read_vector(const json& j, const FieldDesc& f, V& out, const std::string& path) {
+  int n = field_kind_arity(f.kind);
+  if (!j.is_array() || int(j.size()) != n) fail(path, field_kind_name(f.kind), describe_json(j));
+  for (int i = 0; i < n; ++i) out[i] = typename V::value_type(read_number(j[i], f, path + "/" + std::to_string(i)));
+}
+
+void read_field(const FieldDesc& f, void* p, const json& j, const std::string& path) {
+  switch (f.kind) {
+    case FieldKind::boolean:
+      if (!j.is_boolean()) fail(path, "true or false", describe_json(j));
+      *static_cast<bool*>(p) = j.get<bool>();
+      return;
+    case FieldKind::integer: {
+      double v = read_number(j, f, path);
+      if (!j.is_number_integer() || v < INT32_MIN || v > INT32_MAX) fail(path, "integer", describe_json(j));
+      *static_cast<int*>(p) = int(v);
+      return;
+    }
+    case FieldKind::f32: {
+      double v = read_number(j, f, path);
+      if (std::abs(v) > 3.0e38) fail(path, "number representable as a 32-bit float", describe_json(j));
+      *static_cast<float*>(p) = float(v);
+      return;
+    }
+    case FieldKind::f64: *static_cast<double*>(p) = read_number(j, f, path); return;
+    case FieldKind::vec2: read_vector(j, f, *static_cast<glm::vec2*>(p), path); return;
+    case FieldKind::vec3:
+    case FieldKind::color: read_vector(j, f, *static_cast<glm::vec3*>(p), path); return;
+    case FieldKind::vec4: read_vector(j, f, *static_cast<glm::vec4*>(p), path); return;
+    case FieldKind::dvec3: read_vector(j, f, *static_cast<glm::dvec3*>(p), path); return;
+    case FieldKind::enumeration: {
+      std::string names;
+      for (const auto& e : f.enum_values) names += (names.empty() ? "" : ", ") + ("\"" + e.name + "\"");
+      if (!j.is_string()) fail(path, "one of " + names, describe_json(j));
+      const EnumValue* e = f.enum_by_name(j.get<std::string>());
+      if (!e) fail(path, "one of " + names, describe_json(j));
+      *static_cast<int*>(p) = e->value;
+      return;
+    }
+    case FieldKind::string:
+      if (!j.is_string()) fail(path, "string", describe_json(j));
+      *static_cast<std::string*>(p) = j.get<std::string>();
+      return;
+    case FieldKind::array: {
+      if (!j.is_array()) fail(path, "array of " + f.element->name + " objects", describe_json(j));
+      if (j.size() > f.max_count)
+        fail(path, "at most " + std::to_string(f.max_count) + " elements", std::to_string(j.size()) + " elements");
+      f.array.resize(p, j.size());
+      for (size_t i = 0; i < j.size(); ++i) {
+        std::string ep = path + "/" + std::to_string(i);
+        try {
+          object_from_json(*f.element, f.array.at(p, i), j[i]);
+        } catch (const Error& e) {
+          throw e.with_path_prefix(ep);
+        }
+      }
+      return;
+    }
+    case FieldKind::object:
+      try {
+        object_from_json(*f.element, p, j);
+      } catch (const Error& e) {
+        throw e.with_path_prefix(path);
+      }
+      return;
+  }
+}
+
+}  // namespace
+
+std::string describe_json(const json& j) {
+  switch (j.type()) {
+    case json::value_t::object: return "an object";
+    case json::value_t::array: return "an array of " + std::to_string(j.size());
+    case json::value_t::null: return "null";
+    default: {
+      std::string s = j.dump();
+      return s.size() > 60 ? s.substr(0, 57) + "..." : s;
+    }
+  }
+}
+
+json field_to_json(const FieldDesc& f, const void* p) {
+  switch (f.kind) {
+    case FieldKind::boolean: return *static_cast<const bool*>(p);
+    case FieldKind::integer: return *static_cast<const int*>(p);
+    case FieldKind::f32: return float_json(*static_cast<const float*>(p));
+    case FieldKind::f64: return *static_cast<const double*>(p);
+    case FieldKind::vec2:
+    case FieldKind::vec3:
+    case FieldKind::color:
+    case FieldKind::vec4: {
+      json a = json::array();
+      for (int i = 0; i < field_kind_arity(f.kind); ++i) a.push_back(float_json(static_cast<const float*>(p)[i]));
+      return a;
+    }
+    case FieldKind::dvec3: {
+      auto& v = *static_cast<const glm::dvec3*>(p);
+      return json::array({v.x, v.y, v.z});
+    }
+    case FieldKind::enumeration: {
+      const EnumValue* e = f.enum_by_value(*static_cast<const int*>(p));
+      return e ? json(e->name) : json(*static_cast<const int*>(p));
+    }
+    case FieldKind::string: return *static_cast<const std::string*>(p);
+    case FieldKind::array: {
+      json a = json::array();
+      void* vec = const_cast<void*>(p);
+      for (size_t i = 0; i < f.array.size(p); ++i) a.push_back(object_to_json(*f.element, f.array.at(vec, i)));
+      return a;
+    }
+    case FieldKind::object: return object_to_json(*f.element, p);
+  }
+  return nullptr;
+}
+
+json object_to_json(const TypeDesc& type, const void* object) {
+  json j = json::object();
+  for (const auto& f : type.fields) j[f.name] = field_to_json(f, f.ptr(object));
+  return j;
+}
+
+void field_from_json(const FieldDesc& f, void* value, const json& j) { read_field(f, value, j, ""); }
+
+void object_from_json(const TypeDesc& type, void* object, const json& j) {
+  if (!j.is_object()) fail("", type.name + " object", describe_json(j));
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const FieldDesc* f = type.field(it.key());
+    if (!f) {
+      std::string names;
+      for (const auto& fd : type.fields) names += (names.empty() ? "" : ", ") + fd.name;
+      fail("/" + it.key(), "a field of " + type.name + " (" + names + ")", "'" + it.key() + "'", "unknown field");
+    }
+    read_field(*f, f->ptr(object), it.value(), "/" + it.key());
+  }
+}
+
+json parse_json_text(const std::string& text, const std::string& file) {
+  try {
+    return json::parse(text);
+  } catch (const json::parse_error& e) {
+    size_t line = 1, col = 1;
+    for (size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
+      if (text[i] == '\n') ++line, col = 1;
+      else ++col;
+    }
+    std::string what = e.what();
+    if (auto pos = what.find("syntax error"); pos != std::string::npos) what = what.substr(pos);
+    bool truncated = e.byte >= text.size();
+    throw Error(ErrorInfo{.file = file + ":" + std::to_string(line) + ":" + std::to_string(col),
+                          .message = std::string(truncated ? "truncated or malformed JSON: " : "malformed JSON: ") + what});
+  }
+}
+
+json read_json_file(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw Error(ErrorInfo{.file = file, .message = "cannot open file"});
+  std::stringstream ss;
+  ss << in.rdbuf();
+  if (ss.str().empty()) throw Error(ErrorInfo{.file = file, .message = "file is empty"});
+  return parse_json_text(ss.str(), file);
+}
+
+}  // namespace welkin

@@ -1,0 +1,42 @@
+// Debug spheres and boxes without vertex buffers: positions generated from gl_VertexID.
+uniform mat4 u_view_projection;
+uniform vec3 u_center;  // camera-relative
+uniform vec3 u_size;
+uniform int u_shape;    // 0 sphere (64x32 grid), 1 box
+out vec3 v_normal;
+out vec3 v_position;
+
+vec3 sphere_vertex(int id, out vec3 n) {
+  const int slices = 64, stacks = 32;
+  int quad = id / 6, corner = id % 6;
+  int i = quad % slices, j = quad / slices;
+  // Two counter-clockwise triangles per quad (seen from outside).
+  const ivec2 offs[6] = ivec2[](ivec2(0, 0), ivec2(1, 0), ivec2(1, 1), ivec2(0, 0), ivec2(1, 1), ivec2(0, 1));
+  vec2 uv = vec2(i + offs[corner].x, j + offs[corner].y) / vec2(slices, stacks);
+  float phi = uv.x * 6.28318531, theta = uv.y * 3.14159265;
+  n = vec3(sin(theta) * cos(phi), sin(theta) * sin(phi), -cos(theta));
+  return n * u_size.x;
+}
+
+vec3 box_vertex(int id, out vec3 n) {
+  int face = id / 6, corner = id % 6;
+  const vec2 q[6] = vec2[](vec2(-1, -1), vec2(1, -1), vec2(1, 1), vec2(-1, -1), vec2(1, 1), vec2(-1, 1));
+  int axis = face % 3;
+  float s = face < 3 ? 1.0 : -1.0;
+  vec3 p;
+  vec2 c = q[corner] * vec2(s, 1.0);  // flip winding on the negative faces
+  if (axis == 0) p = vec3(s, c.x, c.y);
+  else if (axis == 1) p = vec3(c.y, s, c.x);
+  else p = vec3(c.x, c.y, s);
+  n = vec3(0.0);
+  n[axis] = s;
+  return p * u_size;
+}
+
+void main() {
+  vec3 n;
+  vec3 p = u_shape == 0 ? sphere_vertex(gl_VertexID, n) : box_vertex(gl_VertexID, n);
+  v_normal = n;
+  v_position = u_center + p;
+  gl_Position = u_view_projection * vec4(v_position, 1.0);
+}

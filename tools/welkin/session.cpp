@@ -1,0 +1,69 @@
+#include "session.h"
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "welkin/core/error.h"
+#include "welkin/scene/field_path.h"
+#include "welkin/scene/json_fields.h"
+
+namespace welkin::cli {
+
+std::vector<std::string> module_search_dirs() {
+  std::vector<std::string> dirs;
+  if (const char* env = std::getenv("WELKIN_MODULE_PATH")) {
+    std::string s = env;
+    for (size_t start = 0; start <= s.size();) {
+      size_t end = s.find(':', start);
+      if (end == std::string::npos) end = s.size();
+      if (end > start) dirs.push_back(s.substr(start, end - start));
+      start = end + 1;
+    }
+  }
+  std::error_code ec;
+  auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) dirs.push_back((exe.parent_path() / WELKIN_MODULE_DIR_FROM_BIN).lexically_normal().string());
+  dirs.push_back(WELKIN_BUILD_MODULE_DIR);
+  return dirs;
+}
+
+std::unique_ptr<World> make_world() {
+  auto world = std::make_unique<World>();
+  for (const auto& d : module_search_dirs()) world->modules().add_search_dir(d);
+  return world;
+}
+
+void apply_assignment(World& world, const std::string& assignment) {
+  auto eq = assignment.find('=');
+  auto slash = assignment.find('/');
+  if (eq == std::string::npos || slash == std::string::npos || slash > eq)
+    throw Error(ErrorInfo{.path = "--set " + assignment, .expected = "component/field=value, e.g. core.Camera/vertical_fov_deg=45",
+                          .found = "'" + assignment + "'"});
+  std::string component = assignment.substr(0, slash);
+  std::string path = assignment.substr(slash + 1, eq - slash - 1);
+  std::string text = assignment.substr(eq + 1);
+  const ComponentInfo& info = world.modules().require_component(component);
+  Registry& reg = world.registry();
+  Entity target;
+  if (const ComponentPool* pool = reg.pool(info.type->id); pool && !pool->empty()) target = pool->entities()[0];
+  if (target.is_null()) {
+    target = reg.create();
+    reg.emplace(target, *info.type);
+  }
+  nlohmann::json value;
+  try {
+    value = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error&) {
+    value = text;  // bare words are strings (enum names)
+  }
+  try {
+    resolve_field(*info.type, reg.get(target, info.type->id), path).set_json(value);
+  } catch (const Error& e) {
+    throw e.with_path_prefix("--set " + component);
+  }
+}
+
+}  // namespace welkin::cli
