@@ -1,12 +1,15 @@
-# welkin_add_module(NAME name SOURCES ... [LIBS ...])
+# welkin_add_module(NAME name SOURCES ... [LIBS ...] [OUTPUT_DIR dir] [NO_INSTALL])
 # Builds a module twice from the same sources and registration code:
 #   welkin_<name>_static  a static library for all-in-one builds and tests (welkin::modules::<name>_module())
 #   welkin_<name>         the plugin (MODULE library) with the exported entry point, plus
 #                         <name>.module.json beside it: the manifest the runtime reads before loading.
 # module.json in the module folder is the single source of the manifest.
 function(welkin_add_module)
-  cmake_parse_arguments(M "" "NAME" "SOURCES;LIBS" ${ARGN})
+  cmake_parse_arguments(M "NO_INSTALL" "NAME;OUTPUT_DIR" "SOURCES;LIBS" ${ARGN})
   set(dir ${CMAKE_CURRENT_SOURCE_DIR})
+  if(NOT M_OUTPUT_DIR)
+    set(M_OUTPUT_DIR ${WELKIN_MODULE_OUTPUT_DIR})
+  endif()
   file(READ ${dir}/module.json manifest)
   string(JSON manifest_name GET "${manifest}" name)
   if(NOT manifest_name STREQUAL M_NAME)
@@ -43,7 +46,7 @@ extern "C" __attribute__((visibility("default"))) const welkin::ModuleDefinition
 
   add_library(welkin_${M_NAME} MODULE ${gen}/plugin_entry.cpp)
   target_link_libraries(welkin_${M_NAME} PRIVATE welkin_${M_NAME}_static)
-  set_target_properties(welkin_${M_NAME} PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${WELKIN_MODULE_OUTPUT_DIR}
+  set_target_properties(welkin_${M_NAME} PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${M_OUTPUT_DIR}
     CXX_VISIBILITY_PRESET hidden)
   add_library(Welkin::${M_NAME} ALIAS welkin_${M_NAME}_static)
 
@@ -51,10 +54,13 @@ extern "C" __attribute__((visibility("default"))) const welkin::ModuleDefinition
   # one at share/welkin/modules/<name>, relative to itself so the install tree can move.
   string(JSON build_manifest SET "${manifest}" library "\"libwelkin_${M_NAME}.so\"")
   string(JSON build_manifest SET "${build_manifest}" data_dir "\"${dir}\"")
-  file(WRITE ${WELKIN_MODULE_OUTPUT_DIR}/${M_NAME}.module.json "${build_manifest}\n")
+  file(WRITE ${M_OUTPUT_DIR}/${M_NAME}.module.json "${build_manifest}\n")
   string(JSON install_manifest SET "${manifest}" library "\"libwelkin_${M_NAME}.so\"")
   string(JSON install_manifest SET "${install_manifest}" data_dir "\"../../../share/welkin/modules/${M_NAME}\"")
   file(WRITE ${gen}/${M_NAME}.module.json "${install_manifest}\n")
+  if(M_NO_INSTALL)
+    return()
+  endif()
 
   install(TARGETS welkin_${M_NAME} LIBRARY DESTINATION ${WELKIN_INSTALL_MODULE_DIR})
   install(FILES ${gen}/${M_NAME}.module.json DESTINATION ${WELKIN_INSTALL_MODULE_DIR})

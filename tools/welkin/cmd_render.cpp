@@ -138,7 +138,7 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("-t,--timings", opts->timings, "Print GPU and CPU time per render pass");
   cmd->add_flag("--json", opts->json, "Print a machine-readable summary");
   cmd->add_flag("-w,--window", opts->window, "Show the frames in a window when a display is available");
-  cmd->add_option("--set", opts->sets, "Override a field: component/path=value (repeatable)");
+  cmd->add_option("--set", opts->sets, "Override a field: component/path=value (repeatable)")->expected(1)->allow_extra_args(false);
   cmd->callback([opts, &exit_code] { exit_code = run_render(*opts); });
 }
 

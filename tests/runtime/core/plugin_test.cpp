@@ -1,0 +1,97 @@
+// Plugin loading with real shared libraries built from tests/runtime/plugins.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "welkin/core/error.h"
+#include "welkin/core/world.h"
+#include "welkin/scene/scene_file.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+const fs::path kModules = WELKIN_BINARY_DIR "/test-modules";
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const welkin::Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+json scene_with(const json& components) {
+  return json{{"welkin_scene", 1}, {"entities", json::array({json{{"components", components}}})}};
+}
+
+TEST(Plugins, ManifestsAreReadWithoutLoadingLibraries) {
+  welkin::World w;
+  w.modules().add_search_dir(kModules);
+  ASSERT_NE(w.modules().manifest("testsky"), nullptr);
+  EXPECT_EQ(w.modules().manifest("testsky")->depends, std::vector<std::string>{"testbase"});
+  EXPECT_EQ(w.modules().provider_of("testbase.Counter")->name, "testbase");
+  EXPECT_EQ(w.modules().loaded(), std::vector<std::string>{"core"});
+}
+
+TEST(Plugins, SceneWithoutAModulesComponentsDoesNotLoadIt) {
+  welkin::World w;
+  w.modules().add_search_dir(kModules);
+  welkin::load_scene(w, scene_with({{"core.Camera", json::object()}}), "plain.json");
+  EXPECT_EQ(w.modules().loaded(), std::vector<std::string>{"core"});
+  EXPECT_FALSE(w.modules().is_loaded("testsky"));
+  EXPECT_FALSE(w.modules().is_loaded("testbase"));
+}
+
+TEST(Plugins, LoadsOnDemandWithDependenciesFirstAndRunsTheirSystems) {
+  welkin::World w;
+  w.modules().add_search_dir(kModules);
+  welkin::load_scene(w, scene_with({{"testsky.Glow", {{"mode", "hard"}, {"layers", json::array({{{"coverage", 0.1}}})}}},
+                                    {"testbase.Counter", {{"ticks", 5}}}}),
+                     "plugin.json");
+  EXPECT_EQ(w.modules().loaded(), (std::vector<std::string>{"core", "testbase", "testsky"}));
+  auto ran = w.update({});
+  EXPECT_EQ(ran, std::vector<std::string>{"testbase.tick"});
+  json saved = welkin::save_scene(w);
+  auto comps = saved["entities"][0]["components"];
+  EXPECT_EQ(comps["testbase.Counter"]["ticks"], 6) << "the plugin's system ran once on the plugin's component";
+  EXPECT_EQ(comps["testsky.Glow"]["mode"], "hard");
+  EXPECT_EQ(comps["testsky.Glow"]["layers"][0]["coverage"], 0.1);
+}
+
+TEST(Plugins, MissingDependencyIsAClearError) {
+  welkin::World w;
+  w.modules().add_search_dir(kModules);
+  std::string e = error_of([&] { welkin::load_scene(w, scene_with({{"testorphan.Thing", json::object()}}), "orphan.json"); });
+  EXPECT_NE(e.find("module 'nosuchmodule' is not installed (needed by 'testorphan')"), std::string::npos) << e;
+  EXPECT_NE(e.find("orphan.json"), std::string::npos) << e;
+  EXPECT_NE(e.find("/entities/0/components/testorphan.Thing"), std::string::npos) << e;
+}
+
+TEST(Plugins, ManifestThatDoesNotMatchItsLibraryIsIncompatible) {
+  fs::path dir = fs::temp_directory_path() / ("welkin-plugin-test-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  fs::copy_file(kModules / "libwelkin_testbase.so", dir / "libwelkin_testbase.so", fs::copy_options::overwrite_existing);
+  json m = json::parse(std::ifstream(kModules / "testbase.module.json"));
+  m["version"] = "9.9.9";
+  std::ofstream(dir / "testbase.module.json") << m.dump();
+  welkin::World w;
+  w.modules().add_search_dir(dir);
+  std::string e = error_of([&] { w.modules().load("testbase"); });
+  EXPECT_NE(e.find("incompatible module"), std::string::npos) << e;
+  EXPECT_NE(e.find("found testbase 9.9.9"), std::string::npos) << e;
+}
+
+TEST(Plugins, MalformedManifestNamesTheFile) {
+  fs::path dir = fs::temp_directory_path() / ("welkin-plugin-bad-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "broken.module.json") << R"({"name": "broken", "version": 3})";
+  welkin::World w;
+  std::string e = error_of([&] { w.modules().add_search_dir(dir); });
+  EXPECT_NE(e.find("broken.module.json: at /version: expected string, found number"), std::string::npos) << e;
+}
+
+}  // namespace

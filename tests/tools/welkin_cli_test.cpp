@@ -1,0 +1,108 @@
+// The `welkin` program as a user runs it: exit codes, one-line errors, outputs.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "welkin/gfx/image.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int code = -1;
+  std::string out;  // stdout and stderr together
+  bool signaled = false;
+};
+
+CliRun run(const std::string& args) {
+  std::string cmd = std::string(WELKIN_EXE) + " " + args + " 2>&1";
+  CliRun r;
+  FILE* p = popen(cmd.c_str(), "r");
+  std::array<char, 4096> buf;
+  while (size_t n = fread(buf.data(), 1, buf.size(), p)) r.out.append(buf.data(), n);
+  int status = pclose(p);
+  r.signaled = WIFSIGNALED(status);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+fs::path tmp(const std::string& name) {
+  fs::path d = fs::temp_directory_path() / ("welkin-cli-" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  return d / name;
+}
+
+TEST(WelkinCli, RenderWritesARealImage) {
+  fs::path out = tmp("debug.png");
+  CliRun r = run("render " WELKIN_SOURCE_DIR "/assets/scenes/debug.json --size 96x54 --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("wrote " + out.string()), std::string::npos);
+  welkin::ImageU8 img = welkin::read_png(out.string());
+  EXPECT_EQ(img.width, 96);
+  // Not blank: sky above, ground below.
+  const uint8_t* sky = img.pixel(48, 2);
+  const uint8_t* ground = img.pixel(48, 52);
+  EXPECT_GT(sky[2], sky[0]) << "the sky is blue";
+  EXPECT_LT(ground[2], sky[2]);
+}
+
+TEST(WelkinCli, RenderJsonReportsPassesAndExrIsHdr) {
+  fs::path out = tmp("debug.exr");
+  CliRun r = run("render " WELKIN_SOURCE_DIR "/assets/scenes/debug.json --size 32x18 --json --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["passes"].size(), 4u);
+  EXPECT_EQ(j["modules"], nlohmann::json::array({"core"}));
+  welkin::ImageF hdr = welkin::read_exr(out.string());
+  EXPECT_GT(hdr.pixel(16, 1)[2], 1000.0f) << "linear radiance, not display values";
+}
+
+TEST(WelkinCli, MalformedSceneExitsNonZeroWithOneClearLine) {
+  fs::path bad = tmp("typo.json");
+  std::ofstream(bad) << R"({"welkin_scene": 1, "entities": [{"components": {"core.Camera": {"vertical_fov_dg": 50}}}]})";
+  CliRun r = run("render " + bad.string() + " --out " + tmp("never.png").string());
+  EXPECT_FALSE(r.signaled) << "no crash";
+  EXPECT_EQ(r.code, 3);
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  EXPECT_NE(r.out.find(bad.string() + ": at /entities/0/components/core.Camera/vertical_fov_dg: unknown field"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(tmp("never.png")));
+}
+
+TEST(WelkinCli, TruncatedSceneAndBadOptions) {
+  fs::path bad = tmp("truncated.json");
+  std::ofstream(bad) << R"({"welkin_scene": 1, "entities": [)";
+  CliRun r = run("render " + bad.string());
+  EXPECT_EQ(r.code, 3);
+  EXPECT_NE(r.out.find("truncated"), std::string::npos) << r.out;
+  r = run("render " WELKIN_SOURCE_DIR "/assets/scenes/debug.json --size 0x10");
+  EXPECT_EQ(r.code, 3);
+  EXPECT_NE(r.out.find("--size"), std::string::npos) << r.out;
+  r = run("render " WELKIN_SOURCE_DIR "/assets/scenes/debug.json --out x.jpg");
+  EXPECT_EQ(r.code, 3);
+  r = run("render --set core.Camera/vertical_fov_deg=nan " WELKIN_SOURCE_DIR "/assets/scenes/debug.json --out " + tmp("nan.png").string());
+  EXPECT_EQ(r.code, 3);
+  EXPECT_NE(r.out.find("core.Camera/vertical_fov_deg"), std::string::npos) << r.out;
+  r = run("frobnicate");
+  EXPECT_EQ(r.code, 2);
+  r = run("render --help");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("--timings"), std::string::npos);
+}
+
+TEST(WelkinCli, InfoListsModulesAndWhatASceneLoads) {
+  CliRun r = run("info --modules --json " WELKIN_SOURCE_DIR "/assets/scenes/debug.json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["scene_modules"], nlohmann::json::array({"core"}));
+  bool has_core = false;
+  for (const auto& m : j["available_modules"]) has_core = has_core || m["name"] == "core";
+  EXPECT_TRUE(has_core);
+}
+
+}  // namespace
