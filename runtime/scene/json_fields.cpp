@@ -193,6 +193,11 @@ json parse_json_text(const std::string& text, const std::string& file) {
     bool truncated = e.byte >= text.size();
     throw Error(ErrorInfo{.file = file + ":" + std::to_string(line) + ":" + std::to_string(col),
                           .message = std::string(truncated ? "truncated or malformed JSON: " : "malformed JSON: ") + what});
+  } catch (const json::exception& e) {
+    // e.g. a number too large for a double ("1e999"): nlohmann reports no position for these.
+    std::string what = e.what();
+    if (auto pos = what.find("] "); pos != std::string::npos) what = what.substr(pos + 2);
+    throw Error(ErrorInfo{.file = file, .message = "malformed JSON: " + what});
   }
 }
 
