@@ -33,8 +33,11 @@ double read_number(const json& j, const FieldDesc& f, const std::string& path) {
   if (!std::isfinite(v)) fail(path, "finite number", describe_json(j));
   if ((f.min && v < *f.min) || (f.max && v > *f.max)) {
     std::ostringstream range;
-    range << "number in [" << (f.min ? std::to_string(*f.min) : "-inf") << ", "
-          << (f.max ? std::to_string(*f.max) : "inf") << "]" << (f.unit.empty() ? "" : " " + f.unit);
+    range << "number in [";
+    if (f.min) range << *f.min; else range << "-inf";
+    range << ", ";
+    if (f.max) range << *f.max; else range << "inf";
+    range << "]" << (f.unit.empty() ? "" : " " + f.unit);
     std::ostringstream found;
     found << v;
     fail(path, range.str(), found.str(), "value out of range");
