@@ -78,6 +78,8 @@ FieldRef resolve_field(const TypeDesc& type, void* object, std::string_view path
   }
   if (!ref.field) throw Error(ErrorInfo{.path = "/", .expected = "a field path", .found = "an empty path"});
   ref.path = resolved;
+  ref.root_type = &type;
+  ref.root = object;
   return ref;
 }
 
@@ -134,6 +136,7 @@ void FieldRef::set_scalar(double v) const {
 }
 
 void FieldRef::set_json(const json& j) const {
+  json old = field_to_json(*field, value);
   try {
     if (component >= 0 && !j.is_array()) {
       json whole = field_to_json(*field, value);
@@ -143,7 +146,16 @@ void FieldRef::set_json(const json& j) const {
       field_from_json(*field, value, j);
     }
   } catch (const Error& e) {
+    field_from_json(*field, value, old);  // a vector may have been half written
     throw e.with_path_prefix(path);
+  }
+  if (root_type && root_type->validate) {
+    try {
+      root_type->validate(root);
+    } catch (const Error&) {
+      field_from_json(*field, value, old);
+      throw;
+    }
   }
 }
 

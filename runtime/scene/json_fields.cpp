@@ -180,6 +180,7 @@ void object_from_json(const TypeDesc& type, void* object, const json& j) {
     }
     read_field(*f, f->ptr(object), it.value(), "/" + it.key());
   }
+  if (type.validate) type.validate(object);
 }
 
 json parse_json_text(const std::string& text, const std::string& file) {

@@ -31,6 +31,8 @@ struct RenderOptions {
   std::vector<std::string> sets;
 };
 
+}  // namespace
+
 void parse_size(const std::string& s, int& w, int& h) {
   static const std::regex re(R"((\d{1,5})x(\d{1,5}))");
   std::smatch m;
@@ -40,6 +42,8 @@ void parse_size(const std::string& s, int& w, int& h) {
   if (w < 1 || h < 1 || w > 16384 || h > 16384)
     throw Error(ErrorInfo{.path = "--size", .expected = "1..16384 per side", .found = "'" + s + "'"});
 }
+
+namespace {
 
 void print_timings(const std::vector<PassTiming>& avg, int frames) {
   std::fprintf(stdout, "%-28s %10s %10s   (mean of %d frame%s)\n", "pass", "gpu ms", "cpu ms", frames, frames == 1 ? "" : "s");

@@ -5,4 +5,8 @@ namespace welkin::cli {
 // Each adds its subcommand to the app; the callback stores the exit code in `exit_code`.
 void add_render_command(CLI::App& app, int& exit_code);
 void add_info_command(CLI::App& app, int& exit_code);
+void add_sun_command(CLI::App& app, int& exit_code);
+void add_sequence_command(CLI::App& app, int& exit_code);
+// Parses WIDTHxHEIGHT (1..16384 per side); throws Error naming --size.
+void parse_size(const std::string& text, int& width, int& height);
 }  // namespace welkin::cli

@@ -14,6 +14,8 @@ int main(int argc, char** argv) {
   int exit_code = welkin::cli::kOk;
   welkin::cli::add_render_command(app, exit_code);
   welkin::cli::add_info_command(app, exit_code);
+  welkin::cli::add_sun_command(app, exit_code);
+  welkin::cli::add_sequence_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -75,6 +75,8 @@ struct TypeDesc {
   std::vector<FieldDesc> fields;
   TypeOps ops;
   std::shared_ptr<void> defaults;  // a default-constructed instance: the declared defaults
+  // Cross-field checks (e.g. top radius above bottom radius); throws Error with a field path.
+  void (*validate)(const void* object) = nullptr;
 
   const FieldDesc* field(std::string_view n) const;
 };
@@ -135,6 +137,11 @@ template <class T> class TypeBuilder {
  public:
   explicit TypeBuilder(TypeDesc& d) : d_(d) {}
   void tooltip(std::string t) { d_.tooltip = std::move(t); }
+  // A check run after every load or edit of the whole object; throw welkin::Error naming the field.
+  void validate(void (*fn)(const T&)) {
+    validate_fn_slot() = fn;
+    d_.validate = [](const void* o) { validate_fn_slot()(*static_cast<const T*>(o)); };
+  }
 
   template <class F> FieldBuilder field(std::string name, F T::*member) {
     const T& probe = *static_cast<const T*>(d_.defaults.get());
@@ -159,6 +166,10 @@ template <class T> class TypeBuilder {
   }
 
  private:
+  static void (*&validate_fn_slot())(const T&) {
+    static void (*fn)(const T&) = nullptr;
+    return fn;
+  }
   TypeDesc& d_;
 };
 

@@ -14,10 +14,13 @@ struct FieldRef {
   void* value = nullptr;             // points at the field's storage
   int component = -1;                // >= 0 when the path selected one element of a vector
   std::string path;                  // the path as resolved (for messages)
+  const TypeDesc* root_type = nullptr;  // the component, whose cross-field checks run after an edit
+  void* root = nullptr;
 
   bool is_scalar() const;  // bool, integer, float, double, enum or one vector element
   double get_scalar() const;
-  // Range-checked; throws Error naming the path.
+  // Range-checked, then the component's cross-field checks; a rejected edit changes nothing.
+  // Throws Error naming the path.
   void set_scalar(double v) const;
   void set_json(const nlohmann::json& j) const;
   nlohmann::json get_json() const;
