@@ -1,6 +1,7 @@
 #pragma once
 // Render-graph backend on OpenGL: a texture pool that persists across frames (transients are
-// reused, not reallocated) and GL_TIME_ELAPSED queries around every pass.
+// reused, not reallocated) and a GPU timing of every pass.
+#include <chrono>
 #include <memory>
 #include <vector>
 
@@ -17,6 +18,8 @@ class GlGraphBackend : public GraphBackend {
   std::vector<double> resolve_gpu_times() override;
   void begin_frame() override;
   size_t pooled_textures() const { return pool_.size(); }
+  // True when passes are timed by finishing each one (software rasterisers), not by GPU timestamps.
+  bool serial_timing() const { return serial_; }
 
  private:
   void record_timestamp();
@@ -27,6 +30,9 @@ class GlGraphBackend : public GraphBackend {
   std::vector<Slot> pool_;
   std::vector<GlQueryName> queries_;
   size_t next_query_ = 0;
+  bool serial_ = false, mode_decided_ = false;
+  std::chrono::steady_clock::time_point pass_start_;
+  std::vector<double> serial_ms_;
 };
 
 }  // namespace welkin
