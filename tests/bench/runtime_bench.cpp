@@ -2,7 +2,9 @@
 // frame's fixed passes against a full-screen copy of the same size (the floor), all in one run.
 #include <benchmark/benchmark.h>
 
-#include "gl_bench.h"
+#include "welkin/gfx/gl_context.h"
+#include "welkin/gfx/gpu_measure.h"
+#include "welkin/gfx/shader.h"
 #include "welkin/core/registry.h"
 #include "welkin/gfx/camera.h"
 #include "welkin/gfx/debug_content.h"
@@ -75,18 +77,21 @@ BENCHMARK(BM_RenderGraph_Compile100Passes);
 // GPU: 640x360, forced to completion every iteration.
 constexpr int kW = 640, kH = 360;
 
+GlContext& gl() {
+  static std::unique_ptr<GlContext> ctx = create_headless_context();
+  return *ctx;
+}
+
 void BM_Gpu_FullscreenCopy_Floor(benchmark::State& s) {
-  bench::context();
-  Texture src(TextureDesc{.width = kW, .height = kH}), dst(TextureDesc{.width = kW, .height = kH});
-  Framebuffer fb(&dst, nullptr);
-  bench::draw_fullscreen_copy(src, fb);  // compile outside the timing
-  glFinish();
-  for (auto _ : s) s.SetIterationTime(bench::gpu_ms([&] { bench::draw_fullscreen_copy(src, fb); }) * 1e-3);
+  gl();
+  ShaderLibrary lib;
+  lib.add_search_dir(runtime_shader_dir());
+  for (auto _ : s) s.SetIterationTime(fullscreen_copy_floor_ms(lib, kW, kH, 1) * 1e-3);
 }
 BENCHMARK(BM_Gpu_FullscreenCopy_Floor)->UseManualTime()->Unit(benchmark::kMillisecond);
 
 void BM_Gpu_DebugSceneFrame(benchmark::State& s) {
-  bench::context();
+  gl();
   World world;
   auto& reg = world.registry();
   reg.emplace<Camera>(reg.create());
@@ -97,7 +102,7 @@ void BM_Gpu_DebugSceneFrame(benchmark::State& s) {
   std::map<std::string, double> pass_ms;
   for (auto _ : s) {
     FrameResult fr;
-    double ms = bench::gpu_ms([&] { fr = r.render_frame({}, kW, kH); });
+    double ms = finished_ms([&] { fr = r.render_frame({}, kW, kH); });
     s.SetIterationTime(ms * 1e-3);
     for (const auto& t : fr.timings) pass_ms[t.name] += t.gpu_ms;
   }
