@@ -1,0 +1,94 @@
+// welkin bench SCENE [--size WxH] [--frames N] [--json]
+// Frame and per-pass cost of a scene, as ratios against a full-screen copy of the same size measured
+// in the same run (absolute times on shared machines are noise; ratios are what carry over).
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "session.h"
+#include "welkin/gfx/gl_context.h"
+#include "welkin/gfx/gpu_measure.h"
+#include "welkin/gfx/renderer.h"
+#include "welkin/scene/scene_file.h"
+
+namespace welkin::cli {
+
+namespace {
+
+struct BenchOptions {
+  std::string scene, size = "640x360";
+  int frames = 30;
+  bool json = false;
+  std::vector<std::string> sets;
+};
+
+double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+int run_bench(const BenchOptions& o) {
+  int w = 0, h = 0;
+  parse_size(o.size, w, h);
+  std::unique_ptr<GlContext> gl;
+  auto world = make_world();
+  load_scene_file(*world, o.scene);
+  for (const auto& s : o.sets) apply_assignment(*world, s);
+  gl = create_headless_context();
+  Renderer renderer(*world);
+  for (int i = 0; i < 3; ++i) renderer.render_frame({.index = uint64_t(i)}, w, h);  // compile, allocate, fill LUTs
+  std::vector<double> frame_ms;
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<double>> pass_ms;
+  for (int i = 0; i < o.frames; ++i) {
+    FrameResult fr;
+    frame_ms.push_back(finished_ms([&] { fr = renderer.render_frame({.time_s = i / 30.0, .dt_s = 1 / 30.0, .index = uint64_t(i + 3)}, w, h); }));
+    for (const auto& t : fr.timings) {
+      if (!pass_ms.count(t.name)) order.push_back(t.name);
+      pass_ms[t.name].push_back(t.gpu_ms);
+    }
+    std::fprintf(stderr, "\rbench frame %d/%d", i + 1, o.frames);
+  }
+  std::fprintf(stderr, "\n");
+  double floor = fullscreen_copy_floor_ms(renderer.context().shaders, w, h);
+  double frame = median(frame_ms);
+  GlInfo info = gl->info();
+  if (o.json) {
+    nlohmann::json passes = nlohmann::json::array();
+    for (const auto& n : order) {
+      double m = median(pass_ms[n]);
+      passes.push_back({{"name", n}, {"median_ms", m}, {"ratio_to_copy", m / floor}, {"frames", pass_ms[n].size()}});
+    }
+    nlohmann::json j{{"scene", o.scene}, {"width", w}, {"height", h}, {"frames", o.frames}, {"renderer", info.renderer},
+                     {"copy_floor_ms", floor}, {"frame_median_ms", frame}, {"frame_ratio_to_copy", frame / floor},
+                     {"serial_pass_timing", renderer.context().backend.serial_timing()}, {"passes", passes}};
+    std::printf("%s\n", j.dump(2).c_str());
+    return kOk;
+  }
+  std::printf("%s at %dx%d, %d frames, %s\n", o.scene.c_str(), w, h, o.frames, info.renderer.c_str());
+  std::printf("%-30s %10s %10s\n", "pass", "median ms", "x copy");
+  for (const auto& n : order) {
+    double m = median(pass_ms[n]);
+    std::printf("%-30s %10.3f %10.2f\n", n.c_str(), m, m / floor);
+  }
+  std::printf("%-30s %10.3f %10.2f\n", "frame (finished)", frame, frame / floor);
+  std::printf("%-30s %10.3f %10.2f\n", "full-screen copy (floor)", floor, 1.0);
+  return kOk;
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<BenchOptions>();
+  CLI::App* cmd = app.add_subcommand("bench", "Frame and per-pass cost of a scene as ratios to a full-screen copy");
+  cmd->add_option("scene", o->scene, "Scene file")->required()->check(CLI::ExistingFile);
+  cmd->add_option("-s,--size", o->size, "Frame size WxH")->capture_default_str();
+  cmd->add_option("-n,--frames", o->frames, "Measured frames (after 3 warm-up frames)")->check(CLI::Range(1, 100000))->capture_default_str();
+  cmd->add_option("--set", o->sets, "Override a field: component/path=value (repeatable)")->expected(1)->allow_extra_args(false);
+  cmd->add_flag("--json", o->json, "Machine-readable output");
+  cmd->callback([o, &exit_code] { exit_code = run_bench(*o); });
+}
+
+}  // namespace welkin::cli
