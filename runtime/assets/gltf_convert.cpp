@@ -292,13 +292,14 @@ class Converter {
     }
     std::vector<uint32_t> idx;
     const std::string ip = pp + "/indices";
+    const int indices = jp.value("indices", -1);  // tinygltf was given Draco primitives without it
     if (draco) {
       idx = dec->mesh().indices;
-      if (gp.indices >= 0 && gm_.accessors.at(size_t(gp.indices)).count != idx.size())
-        fail(src_, ip, std::to_string(gm_.accessors[size_t(gp.indices)].count) + " indices (accessor " +
-             std::to_string(gp.indices) + " count)", std::to_string(idx.size()) + " decoded by Draco");
-    } else if (gp.indices >= 0) {
-      idx = read_indices(gp.indices, ip);
+      if (indices >= 0 && gm_.accessors.at(size_t(indices)).count != idx.size())
+        fail(src_, ip, std::to_string(gm_.accessors[size_t(indices)].count) + " indices (accessor " +
+             std::to_string(indices) + " count)", std::to_string(idx.size()) + " decoded by Draco");
+    } else if (indices >= 0) {
+      idx = read_indices(indices, ip);
     } else {
       idx.resize(n);
       for (size_t k = 0; k < n; ++k) idx[k] = uint32_t(k);
@@ -309,7 +310,7 @@ class Converter {
              "index " + std::to_string(idx[k]) + " at element " + std::to_string(k));
     if (mode == 4) {
       if (idx.size() % 3 != 0)
-        fail(src_, gp.indices >= 0 ? ip : pp + "/attributes/POSITION", "a multiple of 3 indices for TRIANGLES",
+        fail(src_, indices >= 0 ? ip : pp + "/attributes/POSITION", "a multiple of 3 indices for TRIANGLES",
              std::to_string(idx.size()));
       p.indices = std::move(idx);
     } else {

@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "internal.h"
+#include "welkin/assets/glb_writer.h"
 #include "tiny_gltf.h"
 
 namespace welkin::assets {
@@ -176,6 +177,10 @@ nlohmann::json parse_json(std::string_view text, const Source& src) {
     std::string what = e.what();
     if (auto p = what.find("parse error"); p != std::string::npos) what = what.substr(p);
     fail(src, "", "valid JSON", "syntax error at byte " + std::to_string(e.byte) + " (" + what + ")");
+  } catch (const nlohmann::json::exception& e) {  // e.g. a number too large for a double
+    std::string what = e.what();
+    if (auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
+    fail(src, "", "valid JSON", what);
   }
 }
 
@@ -293,7 +298,32 @@ Model load(std::span<const uint8_t> bytes, const Source& src) {
   const nlohmann::json doc = parse_json(container.json, src);
   validate_document(doc, container, src);
   tinygltf::Model gm;
-  parse_with_tinygltf(gm, bytes, container, src);
+  // tinygltf 2.7 (without its unsafe Draco path) insists that index accessors have a bufferView, which
+  // Draco-compressed primitives lack: it gets a copy without those "indices"; convert_model takes
+  // them from `doc`.
+  nlohmann::json stripped;
+  for (size_t i = 0; doc.contains("meshes") && i < doc["meshes"].size(); ++i)
+    for (size_t j = 0; j < doc["meshes"][i]["primitives"].size(); ++j) {
+      const nlohmann::json& p = doc["meshes"][i]["primitives"][j];
+      if (p.contains("indices") && p.contains("extensions") && p["extensions"].contains("KHR_draco_mesh_compression")) {
+        if (stripped.is_null()) stripped = doc;
+        stripped["meshes"][i]["primitives"][j].erase("indices");
+      }
+    }
+  if (stripped.is_null()) {
+    parse_with_tinygltf(gm, bytes, container, src);
+  } else {
+    const std::string text = stripped.dump();
+    Container copy = container;
+    if (container.is_glb) {
+      const std::string glb = GlbWriter::assemble(stripped, std::vector<uint8_t>(container.bin.begin(), container.bin.end()));
+      const auto* b = reinterpret_cast<const uint8_t*>(glb.data());
+      parse_with_tinygltf(gm, std::span(b, glb.size()), split_container(std::span(b, glb.size()), src), src);
+    } else {
+      copy.json = text;
+      parse_with_tinygltf(gm, {}, copy, src);
+    }
+  }
   Model m = convert_model(gm, doc, src);
   m.file = src.name;
   return m;

@@ -1,4 +1,5 @@
 // The single translation unit that compiles tinygltf, with file access routed through the loader.
+#include <fstream>  // tinygltf's writer needs it and TINYGLTF_NO_FS drops the include
 #define TINYGLTF_IMPLEMENTATION
 #include "tinygltf_config.h"
 

@@ -1,33 +1,16 @@
 #include "session.h"
 
-#include <unistd.h>
-
-#include <cstdlib>
-#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "welkin/core/error.h"
+#include "welkin/core/module_paths.h"
 #include "welkin/scene/field_path.h"
 #include "welkin/scene/json_fields.h"
 
 namespace welkin::cli {
 
 std::vector<std::string> module_search_dirs() {
-  std::vector<std::string> dirs;
-  if (const char* env = std::getenv("WELKIN_MODULE_PATH")) {
-    std::string s = env;
-    for (size_t start = 0; start <= s.size();) {
-      size_t end = s.find(':', start);
-      if (end == std::string::npos) end = s.size();
-      if (end > start) dirs.push_back(s.substr(start, end - start));
-      start = end + 1;
-    }
-  }
-  std::error_code ec;
-  auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) dirs.push_back((exe.parent_path() / WELKIN_MODULE_DIR_FROM_BIN).lexically_normal().string());
-  dirs.push_back(WELKIN_BUILD_MODULE_DIR);
-  return dirs;
+  return welkin::module_search_dirs(WELKIN_MODULE_DIR_FROM_BIN, WELKIN_BUILD_MODULE_DIR);
 }
 
 std::unique_ptr<World> make_world() {

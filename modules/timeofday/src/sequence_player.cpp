@@ -3,7 +3,7 @@
 
 #include "time_of_day_system.h"
 #include "welkin/core/world.h"
-#include "welkin/timeofday/sequence.h"
+#include "welkin/scene/sequence.h"
 
 namespace welkin::timeofday {
 

@@ -1,4 +1,4 @@
-#include "welkin/timeofday/sequence.h"
+#include "welkin/scene/sequence.h"
 
 #include <gtest/gtest.h>
 
@@ -20,6 +20,7 @@ namespace {
 
 using namespace welkin;
 using namespace welkin::timeofday;
+using welkin::Track; using welkin::Keyframe; using welkin::Interpolation; using welkin::Easing;
 using nlohmann::json;
 
 Track track(Interpolation in, std::vector<std::pair<double, double>> keys, double wrap = 0) {

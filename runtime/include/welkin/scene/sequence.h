@@ -1,5 +1,5 @@
 #pragma once
-// Keyframed sequences: tracks that target any reflected field by path
+// Keyframed sequences (time-of-day scripts, camera flights, preset blends): tracks that target any reflected field by path
 // ("timeofday.TimeOfDay/local_time_h", "core.Camera/position_m", "clouds.VolumetricClouds/layers/0/coverage"),
 // with step, linear, smooth or cubic Hermite interpolation, per-key easing and wrapping for angles
 // and clock times. Evaluation is a pure function of time, so scrubbing equals playing.
@@ -12,10 +12,8 @@
 #include <vector>
 
 namespace welkin {
-class World;
-}
 
-namespace welkin::timeofday {
+class World;
 
 enum class Interpolation { step, linear, smooth, cubic };
 enum class Easing { none, ease_in, ease_out, ease_in_out };
@@ -55,4 +53,4 @@ std::vector<double> evaluate_track(const Track& track, double t);
 // target does not exist (file and track path in the message).
 void apply_sequence(const Sequence& sequence, World& world, double t);
 
-}  // namespace welkin::timeofday
+}  // namespace welkin

@@ -1,4 +1,4 @@
-#include "welkin/timeofday/sequence.h"
+#include "welkin/scene/sequence.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "welkin/scene/json_fields.h"
 #include "welkin/scene/scene_file.h"
 
-namespace welkin::timeofday {
+namespace welkin {
 
 using nlohmann::json;
 
@@ -246,4 +246,4 @@ void apply_sequence(const Sequence& seq, World& world, double t) {
   }
 }
 
-}  // namespace welkin::timeofday
+}  // namespace welkin
