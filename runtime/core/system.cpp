@@ -1,5 +1,7 @@
 #include "welkin/core/system.h"
 
+#include <algorithm>
+
 #include "welkin/core/error.h"
 #include "welkin/core/world.h"
 
@@ -17,7 +19,10 @@ const char* phase_name(Phase p) {
 void Scheduler::add(SystemDesc s) {
   for (const auto& existing : systems_)
     if (existing.name == s.name) throw Error("system '" + s.name + "' registered twice");
-  systems_.push_back(std::move(s));
+  // Keep systems sorted by order; equal orders stay in registration order.
+  auto at = std::upper_bound(systems_.begin(), systems_.end(), s.order,
+                             [](int order, const SystemDesc& other) { return order < other.order; });
+  systems_.insert(at, std::move(s));
 }
 
 std::vector<std::string> Scheduler::run(Phase phase, SystemContext& ctx) {

@@ -35,10 +35,6 @@ Renderer::Renderer(World& world) : world_(world), ctx_(world.resource<RenderCont
     glCreateVertexArrays(1, &vao);
     ctx_.empty_vao = GlVertexArrayName(vao);
     ctx_.shaders.add_search_dir(runtime_shader_dir());
-    for (const auto& name : world.modules().loaded()) {
-      const ModuleManifest* m = world.modules().manifest(name);
-      if (m && !m->data_dir.empty()) ctx_.shaders.add_search_dir(m->data_dir / "shaders");
-    }
   }
   // Reversed Z: depth 1 at the near plane, 0 at infinity, compared with GREATER.
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
@@ -48,10 +44,10 @@ FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height
   if (width < 1 || height < 1 || width > 16384 || height > 16384)
     throw Error(ErrorInfo{.expected = "a frame size between 1x1 and 16384x16384",
                           .found = std::to_string(width) + "x" + std::to_string(height)});
-  // Modules loaded after construction (a scene loaded later) contribute shader folders too.
+  // Every loaded module's shader folder, before the runtime's (also modules loaded after construction).
   for (const auto& name : world_.modules().loaded()) {
     const ModuleManifest* m = world_.modules().manifest(name);
-    if (m && !m->data_dir.empty()) ctx_.shaders.add_search_dir(m->data_dir / "shaders");
+    if (m && !m->data_dir.empty()) ctx_.shaders.add_search_dir(m->data_dir / "shaders", /*front=*/true);
   }
   FrameResult result;
   result.systems_run = world_.update(frame);

@@ -25,17 +25,19 @@ void Program::set(const std::string& u, const glm::ivec3& v) const { glProgramUn
 void Program::set(const std::string& u, const glm::mat3& v) const { glProgramUniformMatrix3fv(id(), location(u), 1, GL_FALSE, glm::value_ptr(v)); }
 void Program::set(const std::string& u, const glm::mat4& v) const { glProgramUniformMatrix4fv(id(), location(u), 1, GL_FALSE, glm::value_ptr(v)); }
 
-void ShaderLibrary::add_search_dir(const std::filesystem::path& dir) {
+void ShaderLibrary::add_search_dir(const std::filesystem::path& dir, bool front) {
   for (const auto& d : dirs_)
     if (d == dir) return;
-  dirs_.push_back(dir);
+  if (front) dirs_.insert(dirs_.begin(), dir);
+  else dirs_.push_back(dir);
+  cache_.clear();  // an earlier folder may now shadow what a cached program included
 }
 
 std::filesystem::path ShaderLibrary::find(const std::string& file, const std::filesystem::path& beside) const {
   std::error_code ec;
-  if (!beside.empty() && std::filesystem::is_regular_file(beside / file, ec)) return beside / file;
   for (const auto& d : dirs_)
     if (std::filesystem::is_regular_file(d / file, ec)) return d / file;
+  if (!beside.empty() && std::filesystem::is_regular_file(beside / file, ec)) return beside / file;
   return {};
 }
 

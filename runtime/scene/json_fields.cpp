@@ -113,7 +113,62 @@ void read_field(const FieldDesc& f, void* p, const json& j, const std::string& p
   }
 }
 
+std::string number_text(double v) {
+  std::ostringstream s;
+  s.precision(9);
+  s << v;
+  return s.str();
+}
+
+void check_fields(const TypeDesc& type, const void* object, const std::string& path) {
+  for (const FieldDesc& f : type.fields) {
+    const void* p = f.ptr(object);
+    std::string fp = path + "/" + f.name;
+    auto check = [&](double v, const std::string& at) {
+      if (!std::isfinite(v)) fail(at, "finite number", number_text(v));
+      if ((f.min && v < *f.min) || (f.max && v > *f.max))
+        fail(at, "number in [" + number_text(f.min.value_or(-INFINITY)) + ", " + number_text(f.max.value_or(INFINITY)) + "]",
+             number_text(v), "value out of range");
+    };
+    int n = field_kind_arity(f.kind);
+    switch (f.kind) {
+      case FieldKind::integer: check(*static_cast<const int*>(p), fp); break;
+      case FieldKind::f32: check(*static_cast<const float*>(p), fp); break;
+      case FieldKind::f64: check(*static_cast<const double*>(p), fp); break;
+      case FieldKind::vec2:
+      case FieldKind::vec3:
+      case FieldKind::vec4:
+      case FieldKind::color:
+        for (int i = 0; i < n; ++i) check(static_cast<const float*>(p)[i], fp + "/" + std::to_string(i));
+        break;
+      case FieldKind::dvec3:
+        for (int i = 0; i < 3; ++i) check(static_cast<const double*>(p)[i], fp + "/" + std::to_string(i));
+        break;
+      case FieldKind::enumeration:
+        if (!f.enum_by_value(*static_cast<const int*>(p))) fail(fp, "a declared enumeration value", std::to_string(*static_cast<const int*>(p)));
+        break;
+      case FieldKind::array: {
+        size_t count = f.array.size(p);
+        if (count > f.max_count) fail(fp, "at most " + std::to_string(f.max_count) + " elements", std::to_string(count));
+        for (size_t i = 0; i < count; ++i) check_fields(*f.element, f.array.at(const_cast<void*>(p), i), fp + "/" + std::to_string(i));
+        break;
+      }
+      case FieldKind::object: check_fields(*f.element, p, fp); break;
+      default: break;
+    }
+  }
+  if (type.validate) {
+    try {
+      type.validate(object);
+    } catch (const Error& e) {
+      throw e.with_path_prefix(path);
+    }
+  }
+}
+
 }  // namespace
+
+void check_object(const TypeDesc& type, const void* object) { check_fields(type, object, ""); }
 
 std::string describe_json(const json& j) {
   switch (j.type()) {

@@ -86,7 +86,7 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   cmd->add_option("scene", o->scene, "Scene file")->required()->check(CLI::ExistingFile);
   cmd->add_option("-s,--size", o->size, "Frame size WxH")->capture_default_str();
   cmd->add_option("-n,--frames", o->frames, "Measured frames (after 3 warm-up frames)")->check(CLI::Range(1, 100000))->capture_default_str();
-  cmd->add_option("--set", o->sets, "Override a field: component/path=value (repeatable)")->expected(1)->allow_extra_args(false);
+  cmd->add_option("--set", o->sets, "Override a field: component/path=value (repeatable)")->allow_extra_args(false)->take_all();
   cmd->add_flag("--json", o->json, "Machine-readable output");
   cmd->callback([o, &exit_code] { exit_code = run_bench(*o); });
 }

@@ -1,4 +1,5 @@
 // welkin render SCENE [--out file.png|.exr] [--size WxH] [--frames N] [--timings] [--json] [--window]
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -46,14 +47,14 @@ void parse_size(const std::string& s, int& w, int& h) {
 namespace {
 
 void print_timings(const std::vector<PassTiming>& avg, int frames) {
-  std::fprintf(stdout, "%-28s %10s %10s   (mean of %d frame%s)\n", "pass", "gpu ms", "cpu ms", frames, frames == 1 ? "" : "s");
+  std::fprintf(stdout, "%-36s %10s %10s   (mean over the %d frame%s each pass ran in)\n", "pass", "gpu ms", "cpu ms", frames, frames == 1 ? "" : "s");
   double g = 0, c = 0;
   for (const auto& t : avg) {
-    std::fprintf(stdout, "%-28s %10.3f %10.3f\n", t.name.c_str(), t.gpu_ms, t.cpu_ms);
+    std::fprintf(stdout, "%-36s %10.3f %10.3f\n", t.name.c_str(), t.gpu_ms, t.cpu_ms);
     g += t.gpu_ms;
     c += t.cpu_ms;
   }
-  std::fprintf(stdout, "%-28s %10.3f %10.3f\n", "total", g, c);
+  std::fprintf(stdout, "%-36s %10.3f %10.3f\n", "total", g, c);
 }
 
 int run_render(const RenderOptions& o) {
@@ -78,7 +79,9 @@ int run_render(const RenderOptions& o) {
   else headless = create_headless_context();
 
   Renderer renderer(*world);
+  // Passes can differ between frames (LUTs rebuilt only on change), so timings average by name.
   std::vector<PassTiming> sum;
+  std::vector<int> counts;
   FrameResult last;
   int frames = std::max(1, o.frames);
   auto start = std::chrono::steady_clock::now();
@@ -86,12 +89,17 @@ int run_render(const RenderOptions& o) {
     FrameInfo fi{.time_s = i / o.fps, .dt_s = i == 0 ? 0.0 : 1.0 / o.fps, .index = uint64_t(i)};
     if (windowed) window->framebuffer_size(w, h);
     last = renderer.render_frame(fi, std::max(w, 1), std::max(h, 1));
-    if (i == 0) sum = last.timings;
-    else
-      for (size_t k = 0; k < sum.size() && k < last.timings.size(); ++k) {
-        sum[k].gpu_ms += last.timings[k].gpu_ms;
-        sum[k].cpu_ms += last.timings[k].cpu_ms;
+    for (const PassTiming& t : last.timings) {
+      auto it = std::find_if(sum.begin(), sum.end(), [&](const PassTiming& s) { return s.name == t.name; });
+      if (it == sum.end()) {
+        sum.push_back(t);
+        counts.push_back(1);
+      } else {
+        it->gpu_ms += t.gpu_ms;
+        it->cpu_ms += t.cpu_ms;
+        ++counts[size_t(it - sum.begin())];
       }
+    }
     if (windowed) {
       GLuint fbo = 0;
       glCreateFramebuffers(1, &fbo);
@@ -106,7 +114,7 @@ int run_render(const RenderOptions& o) {
     if (windowed) frames = i + 1;
   }
   double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  for (auto& t : sum) t.gpu_ms /= frames, t.cpu_ms /= frames;
+  for (size_t k = 0; k < sum.size(); ++k) sum[k].gpu_ms /= counts[k], sum[k].cpu_ms /= counts[k];
 
   std::filesystem::path parent = std::filesystem::path(out).parent_path();
   if (!parent.empty()) std::filesystem::create_directories(parent);
@@ -142,7 +150,7 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("-t,--timings", opts->timings, "Print GPU and CPU time per render pass");
   cmd->add_flag("--json", opts->json, "Print a machine-readable summary");
   cmd->add_flag("-w,--window", opts->window, "Show the frames in a window when a display is available");
-  cmd->add_option("--set", opts->sets, "Override a field: component/path=value (repeatable)")->expected(1)->allow_extra_args(false);
+  cmd->add_option("--set", opts->sets, "Override a field: component/path=value (repeatable)")->allow_extra_args(false)->take_all();
   cmd->callback([opts, &exit_code] { exit_code = run_render(*opts); });
 }
 

@@ -8,6 +8,7 @@ void add_info_command(CLI::App& app, int& exit_code);
 void add_sun_command(CLI::App& app, int& exit_code);
 void add_sequence_command(CLI::App& app, int& exit_code);
 void add_bench_command(CLI::App& app, int& exit_code);
+void add_probe_command(CLI::App& app, int& exit_code);
 // Parses WIDTHxHEIGHT (1..16384 per side); throws Error naming --size.
 void parse_size(const std::string& text, int& width, int& height);
 }  // namespace welkin::cli

@@ -7,6 +7,10 @@
 #include "welkin/scene/field_path.h"
 #include "welkin/scene/json_fields.h"
 
+namespace welkin::modules {
+const ModuleDefinition& atmosphere_module();
+}
+
 namespace welkin::cli {
 
 std::vector<std::string> module_search_dirs() {
@@ -16,6 +20,9 @@ std::vector<std::string> module_search_dirs() {
 std::unique_ptr<World> make_world() {
   auto world = std::make_unique<World>();
   for (const auto& d : module_search_dirs()) world->modules().add_search_dir(d);
+  // `probe` and `accuracy` call into the atmosphere directly, so it is linked in; registering the
+  // linked copy keeps one copy of its code in the process (it is still loaded only on demand).
+  world->modules().add_static(welkin::modules::atmosphere_module());
   return world;
 }
 

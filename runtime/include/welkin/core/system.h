@@ -32,6 +32,9 @@ struct SystemContext {
 struct SystemDesc {
   std::string name;
   Phase phase = Phase::update;
+  // Within a phase, lower runs first (ties keep registration order): producers of per-frame inputs
+  // (LUTs) negative, geometry 0, full-screen composites over the depth buffer positive.
+  int order = 0;
   std::vector<TypeId> reads;   // required, read-only
   std::vector<TypeId> writes;  // required, written
   std::vector<TypeId> optional_reads;  // read if present; do not gate the system

@@ -1,6 +1,7 @@
 #pragma once
-// Shader programs loaded from .glsl files with `#include "file"` (resolved beside the including file,
-// then along the search path) and per-permutation defines. The `#version` line is prepended at load;
+// Shader programs loaded from .glsl files with `#include "file"` (resolved along the search path,
+// then beside the including file) and per-permutation defines. Module folders are searched before
+// the runtime's, so a module overrides a shared include such as welkin/lighting.glsl. The `#version` line is prepended at load;
 // compile errors are reported with the real file and line.
 #include <filesystem>
 #include <glm/glm.hpp>
@@ -45,7 +46,8 @@ struct ShaderSource {
 
 class ShaderLibrary {
  public:
-  void add_search_dir(const std::filesystem::path& dir);
+  // Appends a folder; `front` puts it before all others (modules override the runtime).
+  void add_search_dir(const std::filesystem::path& dir, bool front = false);
   const std::vector<std::filesystem::path>& search_dirs() const { return dirs_; }
 
   // Preprocesses a stage (includes expanded, #version and defines prepended). Throws Error.

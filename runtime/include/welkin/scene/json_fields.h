@@ -16,6 +16,11 @@ void object_from_json(const TypeDesc& type, void* object, const nlohmann::json& 
 // Reads one field value (value points at the field itself, not at the owning object).
 void field_from_json(const FieldDesc& field, void* value, const nlohmann::json& j);
 
+// Checks an object that never went through JSON (built in code, edited by a system): every value
+// finite and in its declared range, arrays within bounds, then the type's cross-field checks.
+// Throws Error with the path of the first bad value, relative to the object ("/layers/0/coverage").
+void check_object(const TypeDesc& type, const void* object);
+
 // A short description of a JSON value for error messages: `"abc"`, `12.5`, `an object`.
 std::string describe_json(const nlohmann::json& j);
 // Parses text, turning syntax errors into an Error with line and column.

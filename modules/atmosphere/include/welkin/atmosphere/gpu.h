@@ -1,0 +1,81 @@
+#pragma once
+// The atmosphere's GPU side: the uniform block every atmosphere shader and material sees, the LUTs
+// a world keeps between frames, and the render system that fills them through the frame graph.
+#include <glm/glm.hpp>
+#include <memory>
+#include <string_view>
+
+#include "welkin/atmosphere/components.h"
+#include "welkin/gfx/camera.h"
+#include "welkin/gfx/gl_objects.h"
+
+namespace welkin {
+class World;
+struct SystemContext;
+}  // namespace welkin
+
+namespace welkin::atmosphere {
+
+// Fixed bindings shared with shaders/atmosphere/common.glsl; units high enough that materials'
+// own textures (from unit 0 up) never collide with them.
+inline constexpr GLuint kUniformBinding = 7;
+inline constexpr GLuint kTransmittanceUnit = 10, kMultiscatteringUnit = 11, kSkyViewUnit = 12;
+inline constexpr GLuint kAerialInscatteringUnit = 13, kAerialTransmittanceUnit = 14, kSkyIrradianceUnit = 15;
+
+// std140 mirror of the WelkinAtmosphere block (vec4/mat4/ivec4 only, so no hidden padding).
+struct GpuUniforms {
+  glm::vec4 rayleigh_scattering{0.0f};
+  glm::vec4 mie_scattering{0.0f};         // w: g
+  glm::vec4 mie_extinction{0.0f};         // w: phase kind
+  glm::vec4 absorption_extinction{0.0f};  // w: multiple-scattering factor
+  glm::vec4 ground_albedo{0.0f};          // w: lift above the ground (km)
+  glm::vec4 radii{0.0f};                  // bottom, top, sqrt(top^2 - bottom^2), top - bottom
+  glm::vec4 density[12]{};
+  glm::vec4 camera_km{0.0f};
+  glm::vec4 sun_direction{0.0f};
+  glm::vec4 sun_illuminance{0.0f};
+  glm::vec4 moon_direction{0.0f};
+  glm::vec4 moon_illuminance{0.0f};
+  glm::vec4 moon_light{0.0f};
+  glm::vec4 flags{0.0f};
+  glm::mat4 inverse_view_projection{1.0f};
+  glm::mat4 view_projection{1.0f};
+  glm::mat4 sky_frame{1.0f};
+  glm::ivec4 transmittance_size{0};
+  glm::ivec4 multiscattering_size{0};
+  glm::ivec4 sky_view_size{0};
+  glm::ivec4 aerial_size{0};
+  glm::vec4 aerial_params{0.0f};  // distance km, raymarch steps, camera in space
+};
+static_assert(sizeof(GpuUniforms) == 672, "GpuUniforms must match the std140 WelkinAtmosphere block");
+
+// The block for one frame. Sun and moon may be null (a default sun; no moon). Pure CPU.
+GpuUniforms make_uniforms(const Atmosphere& atmosphere, const Sun* sun, const Moon* moon,
+                          const FrameView& view);
+// True when two frames' uniforms need different transmittance/multi-scattering LUTs.
+bool luts_differ(const GpuUniforms& a, const GpuUniforms& b);
+
+// LUTs and the uniform buffer of one world (a world resource, so GL objects live with the world).
+struct AtmosphereGpu {
+  static constexpr std::string_view kTypeName = "atmosphere.Gpu";
+  std::unique_ptr<Texture> transmittance, multiscattering, sky_view, aerial_inscattering,
+      aerial_transmittance, sky_irradiance;
+  std::unique_ptr<Buffer> uniform_buffer;
+  GpuUniforms uniforms;      // as last uploaded
+  GpuUniforms lut_uniforms;  // what the persistent LUTs were built from
+  bool luts_valid = false;
+  int lut_builds = 0;  // transmittance + multi-scattering regenerations (tests, stats)
+};
+
+// Binds the uniform block and every LUT at the fixed units: call from a material pass's execute
+// (after the atmosphere's passes in the same frame) before drawing with aerial_perspective.glsl.
+void bind_for_materials(const AtmosphereGpu& gpu);
+
+// Render phase, before geometry (order -100): transmittance and multi-scattering LUTs when the
+// medium changed, the sky-view LUT, the aerial-perspective volume and sky irradiance.
+void lut_system(SystemContext& sc);
+// Render phase, after geometry (order 100): the sky where depth is at infinity, then aerial
+// perspective over the depth buffer.
+void sky_system(SystemContext& sc);
+
+}  // namespace welkin::atmosphere

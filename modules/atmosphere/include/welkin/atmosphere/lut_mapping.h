@@ -1,0 +1,50 @@
+#pragma once
+// CPU mirror (double precision) of the shaders' transmittance-LUT parameterisation, so tests and
+// `welkin probe` can say which (r, mu) a texel holds and where a (r, mu) is looked up.
+#include <algorithm>
+#include <cmath>
+
+namespace welkin::atmosphere {
+
+struct RadiusMu {
+  double r_km;
+  double mu;
+};
+
+// Texel centres at the ends of [0, 1] (the LUT holds its domain's boundary values exactly).
+inline double unit_to_sub_uv(double u, double size) { return (u + 0.5 / size) * (size / (size + 1.0)); }
+inline double sub_uv_to_unit(double u, double size) { return (u - 0.5 / size) * (size / (size - 1.0)); }
+
+// (r, mu) of the texel centre (x, y) of a width x height transmittance LUT.
+inline RadiusMu transmittance_texel_r_mu(int x, int y, int width, int height, double bottom_km,
+                                         double top_km) {
+  double x_mu = sub_uv_to_unit((x + 0.5) / width, width), x_r = sub_uv_to_unit((y + 0.5) / height, height);
+  double H = std::sqrt(top_km * top_km - bottom_km * bottom_km);
+  double rho = H * x_r;
+  double r = std::sqrt(rho * rho + bottom_km * bottom_km);
+  double d_min = top_km - r, d_max = rho + H;
+  double d = d_min + x_mu * (d_max - d_min);
+  double mu = d <= 0.0 ? 1.0 : (H * H - rho * rho - d * d) / (2.0 * r * d);
+  return {r, std::clamp(mu, -1.0, 1.0)};
+}
+
+struct ZenithAzimuth {
+  double cos_zenith;
+  double azimuth;  // radians from the sun's azimuth, in [-pi, pi]
+};
+
+// View direction of the texel centre (x, y) of a width x height sky-view LUT seen from radius r.
+inline ZenithAzimuth sky_view_texel_direction(int x, int y, int width, int height, double r_km,
+                                              double bottom_km) {
+  const double pi = 3.14159265358979323846;
+  double cos_beta = std::sqrt(std::max(0.0, (r_km - bottom_km) * (r_km + bottom_km))) / r_km;
+  double beta = std::acos(std::clamp(cos_beta, -1.0, 1.0));
+  double zenith_horizon = pi - beta;
+  double v = sub_uv_to_unit((y + 0.5) / height, height);
+  double zenith = v < 0.5 ? zenith_horizon * (1.0 - (1.0 - 2.0 * v) * (1.0 - 2.0 * v))
+                          : zenith_horizon + beta * (2.0 * v - 1.0) * (2.0 * v - 1.0);
+  double s = 2.0 * (x + 0.5) / width - 1.0;
+  return {std::cos(zenith), (s < 0 ? -1.0 : 1.0) * s * s * pi};
+}
+
+}  // namespace welkin::atmosphere

@@ -1,0 +1,30 @@
+// Aerial-perspective froxels (Hillaire 2020, section 5.4): one invocation per screen-space column
+// marches outwards once, storing in-scattering and transmittance at every slice centre; slice k
+// lies at distance D ((k + 0.5) / N)^2, so nearby geometry gets most of the slices.
+#include "atmosphere/integrate.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(rgba16f, binding = 0) uniform writeonly image3D o_inscattering;
+layout(rgba16f, binding = 1) uniform writeonly image3D o_transmittance;
+
+void main() {
+  ivec2 column = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(column, atm_aerial_size.xy))) return;
+  vec2 ndc = (vec2(column) + 0.5) / vec2(atm_aerial_size.xy) * 2.0 - 1.0;
+  vec4 far_point = atm_inverse_view_projection * vec4(ndc, 0.5, 1.0);
+  vec3 dir = normalize(far_point.xyz / far_point.w);
+  vec3 origin = atm_camera();
+  AtmLight sun = atm_sun_light(), moon = atm_moon_light_source();
+  AtmMarch m = atm_march_start();
+  int slices = atm_aerial_size.z;
+  float t_prev = 0.0;
+  for (int k = 0; k < slices; ++k) {
+    float w = (float(k) + 0.5) / float(slices);
+    float t = atm_aerial_params.x * w * w;
+    // The ground does not stop the march: geometry seen there (terrain below the ideal sphere) is
+    // in front of it, and its air is ground-level air (atm_medium clamps the altitude).
+    atm_march_segment(m, origin, dir, t_prev, t, atm_aerial_size.w, false, sun, moon, false);
+    t_prev = t;
+    imageStore(o_inscattering, ivec3(column, k), vec4(atm_fit_half(m.luminance), 1.0));
+    imageStore(o_transmittance, ivec3(column, k), vec4(m.transmittance, 1.0));
+  }
+}

@@ -1,0 +1,259 @@
+// The atmosphere's frame: persistent LUTs imported into the render graph, regenerated only when the
+// medium changes; per-frame sky-view LUT, sky irradiance and aerial-perspective froxels; then the
+// sky behind everything and aerial perspective on the geometry in front of it.
+#include <cmath>
+
+#include "welkin/atmosphere/gpu.h"
+#include "welkin/core/error.h"
+#include "welkin/core/world.h"
+#include "welkin/scene/json_fields.h"
+#include "welkin/gfx/renderer.h"
+
+namespace welkin::atmosphere {
+
+namespace {
+
+// (Re)creates a persistent texture when its size or format changes; returns true when it did.
+bool ensure_texture(std::unique_ptr<Texture>& tex, const TextureDesc& desc) {
+  if (tex && tex->desc() == desc) return false;
+  tex = std::make_unique<Texture>(desc);
+  // Defined contents: LUTs a frame skips (the sky view from space) are still bound and read back.
+  glClearTexImage(tex->id(), 0, GL_RGBA, GL_FLOAT, nullptr);
+  return true;
+}
+
+void dispatch(const Program& p, int x, int y, int z = 1) {
+  p.use();
+  glDispatchCompute(GLuint(x), GLuint(y), GLuint(z));
+  // Later passes sample what this one stored.
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+int groups(int n, int size) { return (n + size - 1) / size; }
+
+void bind_image(GLuint unit, const Texture& t) {
+  glBindImageTexture(unit, t.id(), 0, t.is_3d() ? GL_TRUE : GL_FALSE, 0, GL_WRITE_ONLY,
+                     gl_internal_format(t.desc().format));
+}
+
+}  // namespace
+
+void bind_for_materials(const AtmosphereGpu& gpu) {
+  if (gpu.uniform_buffer) glBindBufferBase(GL_UNIFORM_BUFFER, kUniformBinding, gpu.uniform_buffer->id());
+  auto bind = [](GLuint unit, const std::unique_ptr<Texture>& t) {
+    if (t) glBindTextureUnit(unit, t->id());
+  };
+  bind(kTransmittanceUnit, gpu.transmittance);
+  bind(kMultiscatteringUnit, gpu.multiscattering);
+  bind(kSkyViewUnit, gpu.sky_view);
+  bind(kAerialInscatteringUnit, gpu.aerial_inscattering);
+  bind(kAerialTransmittanceUnit, gpu.aerial_transmittance);
+  bind(kSkyIrradianceUnit, gpu.sky_irradiance);
+}
+
+void lut_system(SystemContext& sc) {
+  Registry& reg = sc.world.registry();
+  const Atmosphere atm = *reg.get<Atmosphere>(reg.first<Atmosphere>());
+  const Entity sun_e = reg.first<Sun>(), moon_e = reg.first<Moon>();
+  const Sun* sun = sun_e.is_null() ? nullptr : reg.get<Sun>(sun_e);
+  const Moon* moon = moon_e.is_null() ? nullptr : reg.get<Moon>(moon_e);
+  // Values set in code or by other systems never passed the loaders' checks; a bad one is an error
+  // naming the field, not a black image.
+  auto check = [](const TypeDesc& type, const void* object) {
+    try {
+      check_object(type, object);
+    } catch (const Error& e) {
+      throw e.with_path_prefix(type.name);
+    }
+  };
+  check(type_desc<Atmosphere>(), &atm);
+  if (sun) check(type_desc<Sun>(), sun);
+  if (moon) check(type_desc<Moon>(), moon);
+
+  auto& rc = sc.world.resource<RenderContext>();
+  auto& gpu = sc.world.resource<AtmosphereGpu>();
+  const GpuUniforms u = make_uniforms(atm, sun, moon, rc.view);
+  const ResolvedQuality q = resolve_quality(atm);
+
+  // Persistent textures. Transmittance is float: long grazing paths keep relative precision.
+  bool resized = ensure_texture(
+      gpu.transmittance,
+      {.width = q.transmittance_width, .height = q.transmittance_height, .format = TextureFormat::rgba32f});
+  resized |= ensure_texture(gpu.multiscattering,
+                            {.width = q.multiscattering_size, .height = q.multiscattering_size});
+  if (ensure_texture(gpu.sky_view, {.width = q.sky_view_width, .height = q.sky_view_height}))
+    glTextureParameteri(gpu.sky_view->id(), GL_TEXTURE_WRAP_S, GL_REPEAT);  // azimuth is periodic
+  const TextureDesc froxels{.width = q.aerial_perspective_width,
+                            .height = q.aerial_perspective_height,
+                            .depth = q.aerial_perspective_slices};
+  ensure_texture(gpu.aerial_inscattering, froxels);
+  ensure_texture(gpu.aerial_transmittance, froxels);
+  ensure_texture(gpu.sky_irradiance,
+                 {.width = 4, .height = 1, .format = TextureFormat::rgba32f, .linear_filter = false});
+  if (!gpu.uniform_buffer) gpu.uniform_buffer = std::make_unique<Buffer>(sizeof(GpuUniforms));
+  gpu.uniform_buffer->upload(&u, sizeof(u));
+  gpu.uniforms = u;
+  const bool rebuild = resized || !gpu.luts_valid || luts_differ(u, gpu.lut_uniforms);
+  const bool in_space = u.aerial_params.z > 0.5f;
+
+  RenderGraph& g = *sc.graph;
+  const FrameTargets t = *sc.targets;
+  const ResourceHandle trans = g.import("atmosphere.transmittance", *gpu.transmittance);
+  const ResourceHandle ms = g.import("atmosphere.multiscattering", *gpu.multiscattering);
+  const ResourceHandle sky_view = g.import("atmosphere.sky_view", *gpu.sky_view);
+  const ResourceHandle ap_s = g.import("atmosphere.aerial_inscattering", *gpu.aerial_inscattering);
+  const ResourceHandle ap_t = g.import("atmosphere.aerial_transmittance", *gpu.aerial_transmittance);
+  const ResourceHandle irradiance = g.import("atmosphere.sky_irradiance", *gpu.sky_irradiance);
+  for (auto [name, h] : {std::pair{"atmosphere.transmittance", trans},
+                         {"atmosphere.multiscattering", ms},
+                         {"atmosphere.sky_view", sky_view},
+                         {"atmosphere.aerial_inscattering", ap_s},
+                         {"atmosphere.aerial_transmittance", ap_t},
+                         {"atmosphere.sky_irradiance", irradiance}})
+    g.blackboard[name] = h;
+  AtmosphereGpu* gp = &gpu;
+  RenderContext* rcp = &rc;
+
+  if (rebuild) {
+    gpu.luts_valid = false;  // until the passes below have run
+    // Persistent outputs nobody reads this frame must still be produced: side effects.
+    g.add_pass(
+        "atmosphere.transmittance",
+        [&](PassBuilder& b) {
+          b.write(trans);
+          b.side_effect();
+        },
+        [gp, rcp, q](PassContext&) {
+          bind_for_materials(*gp);
+          bind_image(0, *gp->transmittance);
+          dispatch(rcp->shaders.compute("atmosphere/transmittance_lut.comp"),
+                   groups(q.transmittance_width, 8), groups(q.transmittance_height, 8));
+        });
+    g.add_pass(
+        "atmosphere.multiscattering",
+        [&](PassBuilder& b) {
+          b.read(trans);
+          b.write(ms);
+          b.side_effect();
+        },
+        [gp, rcp, q, u](PassContext&) {
+          bind_for_materials(*gp);
+          bind_image(0, *gp->multiscattering);
+          dispatch(rcp->shaders.compute("atmosphere/multiscattering_lut.comp"), q.multiscattering_size,
+                   q.multiscattering_size);
+          gp->lut_uniforms = u;
+          gp->luts_valid = true;
+          ++gp->lut_builds;
+        });
+  }
+  if (!in_space) {
+    g.add_pass(
+        "atmosphere.sky_view",
+        [&](PassBuilder& b) {
+          b.read(trans);
+          b.read(ms);
+          b.write(sky_view);
+        },
+        [gp, rcp, q](PassContext&) {
+          bind_for_materials(*gp);
+          bind_image(0, *gp->sky_view);
+          dispatch(rcp->shaders.compute("atmosphere/sky_view_lut.comp"), groups(q.sky_view_width, 8),
+                   groups(q.sky_view_height, 8));
+        });
+    g.add_pass(
+        "atmosphere.aerial_perspective",
+        [&](PassBuilder& b) {
+          b.read(trans);
+          b.read(ms);
+          b.write(ap_s);
+          b.write(ap_t);
+        },
+        [gp, rcp, q](PassContext&) {
+          bind_for_materials(*gp);
+          bind_image(0, *gp->aerial_inscattering);
+          bind_image(1, *gp->aerial_transmittance);
+          dispatch(rcp->shaders.compute("atmosphere/aerial_perspective_volume.comp"),
+                   groups(q.aerial_perspective_width, 8), groups(q.aerial_perspective_height, 8));
+        });
+  }
+  g.add_pass(
+      "atmosphere.sky_irradiance",
+      [&](PassBuilder& b) {
+        b.read(trans);
+        b.read(ms);
+        b.read(sky_view);
+        b.write(irradiance);
+        b.side_effect();
+      },
+      [gp, rcp](PassContext&) {
+        bind_for_materials(*gp);
+        bind_image(0, *gp->sky_irradiance);
+        dispatch(rcp->shaders.compute("atmosphere/sky_irradiance.comp"), 1, 1);
+      });
+
+}
+
+void sky_system(SystemContext& sc) {
+  auto& rc = sc.world.resource<RenderContext>();
+  AtmosphereGpu* gp = &sc.world.resource<AtmosphereGpu>();
+  RenderContext* rcp = &rc;
+  RenderGraph& g = *sc.graph;
+  const FrameTargets t = *sc.targets;
+  // Published by lut_system earlier this frame.
+  const ResourceHandle trans = g.blackboard.at("atmosphere.transmittance");
+  const ResourceHandle ms = g.blackboard.at("atmosphere.multiscattering");
+  const ResourceHandle sky_view = g.blackboard.at("atmosphere.sky_view");
+  const ResourceHandle ap_s = g.blackboard.at("atmosphere.aerial_inscattering");
+  const ResourceHandle ap_t = g.blackboard.at("atmosphere.aerial_transmittance");
+  const float pixel_angle = rc.view.vertical_fov_rad / float(std::max(rc.view.height, 1));
+  g.add_pass(
+      "atmosphere.sky",
+      [&](PassBuilder& b) {
+        b.read(trans);
+        b.read(ms);
+        b.read(sky_view);
+        b.read(t.depth);
+        b.read(t.color);
+        b.write(t.color);
+      },
+      [gp, rcp, t, pixel_angle](PassContext& pc) {
+        Framebuffer fb(&pc.texture(t.color), nullptr);
+        fb.bind();
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_BLEND);
+        bind_for_materials(*gp);
+        const Program& p = rcp->shaders.graphics("fullscreen.vert", "atmosphere/sky.frag");
+        glBindTextureUnit(0, pc.texture(t.depth).id());
+        p.set("u_depth", 0);
+        p.set("u_pixel_angle", pixel_angle);
+        p.use();
+        rcp->draw_fullscreen_triangle();
+      });
+  g.add_pass(
+      "atmosphere.aerial_perspective_apply",
+      [&](PassBuilder& b) {
+        b.read(ap_s);
+        b.read(ap_t);
+        b.read(trans);
+        b.read(t.depth);
+        b.read(t.color);
+        b.write(t.color);
+      },
+      [gp, rcp, t](PassContext& pc) {
+        Framebuffer fb(&pc.texture(t.color), nullptr);
+        fb.bind();
+        glDisable(GL_DEPTH_TEST);
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_SRC1_COLOR);  // colour * transmittance + in-scattering
+        bind_for_materials(*gp);
+        const Program& p =
+            rcp->shaders.graphics("fullscreen.vert", "atmosphere/aerial_perspective_apply.frag");
+        glBindTextureUnit(0, pc.texture(t.depth).id());
+        p.set("u_depth", 0);
+        p.use();
+        rcp->draw_fullscreen_triangle();
+        glDisable(GL_BLEND);
+      });
+}
+
+}  // namespace welkin::atmosphere

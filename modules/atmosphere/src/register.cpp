@@ -1,0 +1,29 @@
+// Entry point of the atmosphere module: its components and its one render system.
+#include "welkin/atmosphere/components.h"
+#include "welkin/atmosphere/gpu.h"
+#include "welkin/core/module.h"
+#include "welkin/core/world.h"
+
+namespace welkin::modules {
+
+void register_atmosphere(ModuleContext& ctx) {
+  using namespace welkin::atmosphere;
+  ctx.component<Atmosphere>();
+  ctx.component<Sun>();
+  ctx.component<Moon>();
+  // LUTs first, so every material drawn this frame reads this frame's tables; the sky and the
+  // aerial perspective over the depth buffer last, once the geometry is in.
+  ctx.system({.name = "atmosphere.luts",
+              .phase = Phase::render,
+              .order = -100,
+              .reads = {type_id<Atmosphere>()},
+              .optional_reads = {type_id<Sun>(), type_id<Moon>()},
+              .run = lut_system});
+  ctx.system({.name = "atmosphere.sky",
+              .phase = Phase::render,
+              .order = 100,
+              .reads = {type_id<Atmosphere>()},
+              .run = sky_system});
+}
+
+}  // namespace welkin::modules

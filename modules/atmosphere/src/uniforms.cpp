@@ -1,0 +1,114 @@
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <glm/gtc/constants.hpp>
+
+#include "welkin/atmosphere/gpu.h"
+#include "welkin/gfx/debug_content.h"
+
+namespace welkin::atmosphere {
+
+namespace {
+
+// Bruneton's two-layer form on the GPU always: one layer goes in the second slot with a zero-width
+// first slot, none leaves both at zero density.
+void pack_profile(const DensityProfile& p, glm::vec4* out) {
+  DensityLayer l0{}, l1{};
+  if (p.size() == 1) l1 = p[0];
+  if (p.size() >= 2) l0 = p[0], l1 = p[1];
+  out[0] = {l0.width_km, l0.exp_term, l0.exp_scale_per_km, l0.linear_term_per_km};
+  out[1] = {l0.constant_term, 0, 0, 0};
+  out[2] = {l1.width_km, l1.exp_term, l1.exp_scale_per_km, l1.linear_term_per_km};
+  out[3] = {l1.constant_term, 0, 0, 0};
+}
+
+glm::dvec3 any_perpendicular(const glm::dvec3& v) {
+  glm::dvec3 a = std::abs(v.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  return glm::normalize(glm::cross(v, a));
+}
+
+// Where sunlight comes from on the moon's visible face, from its illuminated fraction k: the phase
+// angle is acos(2k - 1), and the lit limb faces the sun across the sky.
+glm::dvec3 moon_light_direction(const glm::dvec3& moon, const glm::dvec3& sun, double fraction) {
+  double phase = std::acos(std::clamp(2.0 * fraction - 1.0, -1.0, 1.0));
+  glm::dvec3 towards_sun = sun - moon * glm::dot(sun, moon);
+  towards_sun = glm::length(towards_sun) > 1e-9 ? glm::normalize(towards_sun) : any_perpendicular(moon);
+  return -moon * std::cos(phase) + towards_sun * std::sin(phase);
+}
+
+}  // namespace
+
+GpuUniforms make_uniforms(const Atmosphere& a, const Sun* sun_in, const Moon* moon, const FrameView& view) {
+  GpuUniforms u;
+  const ResolvedQuality q = resolve_quality(a);
+  const double bottom = a.bottom_radius_km, top = a.top_radius_km;
+  // Samples and the camera stay this far above the ground: a few float ulps at the planet's radius
+  // (3 m on Earth), so a point on the ground never rounds below it, yet far below any scale height.
+  const double lift = std::max(1e-5 * (top - bottom), 5e-7 * bottom);
+  u.rayleigh_scattering = glm::vec4(a.rayleigh_scattering, 0.0f);
+  u.mie_scattering = glm::vec4(a.mie_scattering, a.mie_g);
+  u.mie_extinction = glm::vec4(a.mie_extinction, float(int(a.mie_phase)));
+  u.absorption_extinction = glm::vec4(a.absorption_extinction, a.multiple_scattering_factor);
+  u.ground_albedo = glm::vec4(a.ground_albedo, float(lift));
+  u.radii = glm::vec4(float(bottom), float(top), float(std::sqrt((top - bottom) * (top + bottom))),
+                      float(top - bottom));
+  pack_profile(a.rayleigh_density, &u.density[0]);
+  pack_profile(a.mie_density, &u.density[4]);
+  pack_profile(a.absorption_density, &u.density[8]);
+
+  // Camera relative to the planet in double, rounded to float only once: stable at any distance.
+  glm::dvec3 cam = (view.camera_position_m - planet_center_m(a)) * 1e-3;
+  double r = glm::length(cam);
+  if (r < bottom + lift) {
+    cam = (r > 0.0 ? cam / r : glm::dvec3(0, 0, 1)) * (bottom + lift);
+    r = bottom + lift;
+  }
+  u.camera_km = glm::vec4(glm::vec3(cam), float(r));
+
+  const Sun sun = sun_in ? *sun_in : Sun{};
+  const glm::dvec3 sun_dir = direction_from_azimuth_elevation(sun.azimuth_deg, sun.elevation_deg);
+  const double sun_radius = glm::radians(double(sun.angular_radius_deg));
+  u.sun_direction = glm::vec4(glm::vec3(sun_dir), float(std::cos(sun_radius)));
+  u.sun_illuminance = glm::vec4(sun.color * sun.illuminance_lux * sun.visible_fraction, float(sun_radius));
+  u.flags = glm::vec4(sun.disc ? 1.0f : 0.0f, sun.limb_darkening ? 1.0f : 0.0f, 0.0f, 0.0f);
+  if (moon) {
+    const glm::dvec3 moon_dir = direction_from_azimuth_elevation(moon->azimuth_deg, moon->elevation_deg);
+    const double moon_radius = glm::radians(double(moon->angular_radius_deg));
+    u.moon_direction = glm::vec4(glm::vec3(moon_dir), float(std::cos(moon_radius)));
+    u.moon_illuminance = glm::vec4(moon->color * moon->illuminance_lux, float(moon_radius));
+    u.moon_light = glm::vec4(glm::vec3(moon_light_direction(moon_dir, sun_dir, moon->illuminated_fraction)),
+                             moon->illuminated_fraction);
+    u.flags.z = moon->disc ? 1.0f : 0.0f;
+    u.flags.w = moon->lights_sky ? 1.0f : 0.0f;
+  } else {
+    u.moon_direction = glm::vec4(0, 0, -1, 1);
+  }
+
+  u.inverse_view_projection = view.inverse_view_projection;
+  u.view_projection = view.view_projection;
+  // Sky-view frame at the camera: z up, x towards the sun's azimuth (any horizontal axis when the
+  // sun is at the zenith or nadir).
+  const glm::dvec3 up = cam / r;
+  glm::dvec3 x = sun_dir - up * glm::dot(sun_dir, up);
+  x = glm::length(x) > 1e-9 ? glm::normalize(x) : any_perpendicular(up);
+  const glm::dvec3 y = glm::cross(up, x);
+  u.sky_frame = glm::mat4(glm::vec4(glm::vec3(x), 0), glm::vec4(glm::vec3(y), 0), glm::vec4(glm::vec3(up), 0),
+                          glm::vec4(0, 0, 0, 1));
+
+  u.transmittance_size = {q.transmittance_width, q.transmittance_height, q.transmittance_steps, 0};
+  u.multiscattering_size = {q.multiscattering_size, q.multiscattering_steps, 0, 0};
+  u.sky_view_size = {q.sky_view_width, q.sky_view_height, q.sky_view_steps, 0};
+  u.aerial_size = {q.aerial_perspective_width, q.aerial_perspective_height, q.aerial_perspective_slices,
+                   q.aerial_perspective_steps_per_slice};
+  u.aerial_params = {a.aerial_perspective_distance_km, float(q.raymarch_steps), r >= top ? 1.0f : 0.0f, 0.0f};
+  return u;
+}
+
+bool luts_differ(const GpuUniforms& a, const GpuUniforms& b) {
+  // Everything up to the camera is the medium: exactly what the persistent LUTs depend on.
+  const size_t medium_bytes = offsetof(GpuUniforms, camera_km);
+  return std::memcmp(&a, &b, medium_bytes) != 0 || a.transmittance_size != b.transmittance_size ||
+         a.multiscattering_size != b.multiscattering_size;
+}
+
+}  // namespace welkin::atmosphere

@@ -1,0 +1,232 @@
+// Components, validation, presets, uniforms and the LUT cache of the atmosphere module.
+#include <filesystem>
+
+#include "gpu_test_support.h"
+#include "welkin/atmosphere/presets.h"
+#include "welkin/core/error.h"
+#include "welkin/scene/json_fields.h"
+
+namespace welkin::atmosphere {
+namespace {
+
+using nlohmann::json;
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// What the render system runs on values built in code: ranges, finiteness and cross-field checks.
+template <class T> void validate_all(const T& v) {
+  try {
+    check_object(type_desc<T>(), &v);
+  } catch (const Error& e) {
+    throw e.with_path_prefix(std::string(T::kTypeName));
+  }
+}
+
+TEST(AtmosphereValidation, DefaultsAreValid) {
+  EXPECT_NO_THROW(validate_all(Atmosphere{}));
+  EXPECT_NO_THROW(validate_all(Sun{}));
+  EXPECT_NO_THROW(validate_all(Moon{}));
+}
+
+TEST(AtmosphereValidation, TopNotAboveBottomNamesTheField) {
+  Atmosphere a;
+  a.top_radius_km = a.bottom_radius_km;
+  std::string msg = error_of([&] { validate_all(a); });
+  EXPECT_NE(msg.find("atmosphere.Atmosphere/top_radius_km"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("greater than bottom_radius_km"), std::string::npos) << msg;
+}
+
+TEST(AtmosphereValidation, NegativeNaNAndAnisotropyAreRejected) {
+  Atmosphere a;
+  a.rayleigh_scattering.y = -1e-3f;
+  EXPECT_NE(error_of([&] { validate_all(a); }).find("rayleigh_scattering/1"), std::string::npos);
+  a = Atmosphere{};
+  a.mie_density[0].exp_scale_per_km = std::nanf("");
+  EXPECT_NE(error_of([&] { validate_all(a); }).find("mie_density/0/exp_scale_per_km"), std::string::npos);
+  a = Atmosphere{};
+  a.mie_g = 1.0f;
+  EXPECT_NE(error_of([&] { validate_all(a); }).find("mie_g"), std::string::npos);
+  a = Atmosphere{};
+  a.mie_extinction = a.mie_scattering * 0.5f;
+  EXPECT_NE(error_of([&] { validate_all(a); }).find("absorption cannot be negative"), std::string::npos);
+  Sun s;
+  s.elevation_deg = std::nanf("");
+  EXPECT_NE(error_of([&] { validate_all(s); }).find("atmosphere.Sun/elevation_deg"), std::string::npos);
+}
+
+TEST(AtmosphereValidation, SceneFileErrorsNameFileAndPath) {
+  World world;
+  world.modules().add_static(welkin::modules::atmosphere_module());
+  json doc = test::scene(json::object(), {{"mie_g", 1.0}});
+  std::string msg = error_of([&] { load_scene(world, doc, "bad.json"); });
+  EXPECT_NE(msg.find("bad.json"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("mie_g"), std::string::npos) << msg;
+  json layers = test::scene(
+      json::object(), {{"rayleigh_density", json::array({json::object(), json::object(), json::object()})}});
+  msg = error_of([&] {
+    World w;
+    w.modules().add_static(welkin::modules::atmosphere_module());
+    load_scene(w, layers, "l.json");
+  });
+  EXPECT_NE(msg.find("at most 2"), std::string::npos) << msg;
+  // Cross-field checks run while loading, so they too name the file and the entity's path.
+  json inverted = test::scene(json::object(), {{"bottom_radius_km", 6360}, {"top_radius_km", 6000}});
+  msg = error_of([&] {
+    World w;
+    w.modules().add_static(welkin::modules::atmosphere_module());
+    load_scene(w, inverted, "inverted.json");
+  });
+  EXPECT_NE(msg.find("inverted.json"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("components/atmosphere.Atmosphere/top_radius_km"), std::string::npos) << msg;
+}
+
+TEST(AtmosphereValidation, RenderingAnInvalidAtmosphereThrowsOneError) {
+  json doc = test::scene(json::object(), {{"bottom_radius_km", 6400}, {"top_radius_km", 6300}});
+  std::string msg = error_of([&] { test::render(doc, 8, 8); });
+  EXPECT_NE(msg.find("top_radius_km"), std::string::npos) << msg;
+}
+
+TEST(AtmospherePresets, AllLoadAndEarthIsTheDefault) {
+  auto dir = preset_dir(std::filesystem::path(WELKIN_SOURCE_DIR) / "modules/atmosphere");
+  auto names = preset_names(dir);
+  for (const char* expected : {"earth", "earth-hazy", "mars", "clear-high-altitude"})
+    EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
+  for (const auto& n : names) EXPECT_NO_THROW(load_preset_file(dir / (n + ".json"))) << n;
+  Atmosphere earth = load_preset_file(dir / "earth.json"), def;
+  EXPECT_EQ(earth.bottom_radius_km, def.bottom_radius_km);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(earth.rayleigh_scattering[c], def.rayleigh_scattering[c], 1e-9);
+    EXPECT_NEAR(earth.absorption_extinction[c], def.absorption_extinction[c], 1e-9);
+  }
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_NEAR(earth.absorption_density[i].linear_term_per_km, def.absorption_density[i].linear_term_per_km,
+                1e-6);
+    EXPECT_NEAR(earth.absorption_density[i].constant_term, def.absorption_density[i].constant_term, 1e-6);
+  }
+  Atmosphere hazy = load_preset_file(dir / "earth-hazy.json");
+  EXPECT_NEAR(hazy.mie_extinction.x, 0.021 * 1.1, 1e-7);
+}
+
+TEST(AtmospherePresets, BadPresetNamesFileAndPath) {
+  auto file = std::filesystem::temp_directory_path() / "welkin-bad-preset.json";
+  write_file_atomically(file.string(), R"({"mie_g": 2})");
+  std::string msg = error_of([&] { load_preset_file(file); });
+  EXPECT_NE(msg.find("welkin-bad-preset.json"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("mie_g"), std::string::npos) << msg;
+  std::filesystem::remove(file);
+}
+
+TEST(AtmosphereUniforms, CameraRelativeToAnyPlanetCentre) {
+  // Far from the scene origin in double, the float uniforms still hold the camera to the metre.
+  Atmosphere a;
+  a.planet_center_below_origin = false;
+  a.planet_center_m = {1.0e9, -2.0e9, -6360000.0};
+  Camera c;
+  c.position_m = {1.0e9, -2.0e9, 100.0};
+  GpuUniforms u = make_uniforms(a, nullptr, nullptr, make_frame_view(c, 16, 16));
+  EXPECT_NEAR(u.camera_km.z, 6360.1, 1e-3);
+  EXPECT_NEAR(u.camera_km.x, 0.0, 1e-6);
+  EXPECT_EQ(u.aerial_params.z, 0.0f);  // inside the atmosphere
+}
+
+TEST(AtmosphereUniforms, CameraUnderGroundIsLiftedAndSpaceIsDetected) {
+  Atmosphere a;
+  Camera c;
+  c.position_m = {0, 0, -5000};
+  GpuUniforms u = make_uniforms(a, nullptr, nullptr, make_frame_view(c, 16, 16));
+  EXPECT_GT(u.camera_km.w, a.bottom_radius_km);
+  c.position_m = {0, 0, 400000};
+  u = make_uniforms(a, nullptr, nullptr, make_frame_view(c, 16, 16));
+  EXPECT_EQ(u.aerial_params.z, 1.0f);
+}
+
+TEST(AtmosphereUniforms, QualityPresetsAndCustom) {
+  Atmosphere a;
+  a.quality = Quality::low;
+  EXPECT_LT(resolve_quality(a).transmittance_width, 256);
+  a.quality = Quality::custom;
+  a.transmittance_width = 7;
+  EXPECT_EQ(resolve_quality(a).transmittance_width, 7);
+  a.quality = Quality::high;
+  ResolvedQuality q = resolve_quality(a);
+  EXPECT_EQ(q.transmittance_width, 256);
+  EXPECT_EQ(q.multiscattering_size, 32);
+  EXPECT_EQ(q.sky_view_width, 192);
+  EXPECT_EQ(q.aerial_perspective_slices, 32);
+}
+
+TEST(AtmosphereLuts, RegeneratedOnlyWhenTheMediumChanges) {
+  auto r = test::render(test::scene(json::object(), json::object()), 16, 8, 3);
+  EXPECT_EQ(r.gpu().lut_builds, 1);
+  auto has_pass = [&](const std::string& name) {
+    for (const auto& t : r.last.timings)
+      if (t.name == name) return true;
+    return false;
+  };
+  EXPECT_FALSE(has_pass("atmosphere.transmittance"));
+  EXPECT_TRUE(has_pass("atmosphere.sky_view"));
+  Registry& reg = r.world->registry();
+  reg.get<Sun>(reg.first<Sun>())->elevation_deg = 3.0f;  // the sun is not part of the medium
+  reg.get<Camera>(reg.first<Camera>())->position_m.z = 3000.0;
+  r.frame(16, 8, 3);
+  EXPECT_EQ(r.gpu().lut_builds, 1);
+  reg.get<Atmosphere>(reg.first<Atmosphere>())->mie_g = 0.7f;
+  r.frame(16, 8, 4);
+  EXPECT_EQ(r.gpu().lut_builds, 2);
+  EXPECT_TRUE(has_pass("atmosphere.multiscattering"));
+}
+
+TEST(AtmosphereFrame, PassesAndBlackboard) {
+  auto r = test::render(test::scene(json::object(), json::object()), 16, 8);
+  std::vector<std::string> names;
+  for (const auto& t : r.last.timings) names.push_back(t.name);
+  for (const char* p : {"atmosphere.transmittance", "atmosphere.multiscattering", "atmosphere.sky_view",
+                        "atmosphere.aerial_perspective", "atmosphere.sky_irradiance", "atmosphere.sky",
+                        "atmosphere.aerial_perspective_apply"})
+    EXPECT_NE(std::find(names.begin(), names.end(), p), names.end()) << p;
+  EXPECT_TRUE(r.last.culled_passes.empty());
+}
+
+TEST(AtmosphereFrame, SameImageWhereverThePlanetIs) {
+  // Camera-relative rendering: moving camera and planet 1000 km across the scene frame changes
+  // nothing on screen.
+  json cam = {{"position_m", {0, 0, 2}}, {"pitch_deg", 10}};
+  json far_cam = {{"position_m", {1.0e6, -1.0e6, 2}}, {"pitch_deg", 10}};
+  json far_atm = {{"planet_center_below_origin", false}, {"planet_center_m", {1.0e6, -1.0e6, -6360000}}};
+  auto a = test::render(test::scene(cam, json::object()), 32, 16);
+  auto b = test::render(test::scene(far_cam, far_atm), 32, 16);
+  ImageF ia = a.renderer->read_hdr(), ib = b.renderer->read_hdr();
+  double worst = 0;
+  for (size_t i = 0; i < ia.rgba.size(); ++i)
+    worst = std::max(worst, std::abs(double(ia.rgba[i]) - ib.rgba[i]) / std::max(1.0, double(ia.rgba[i])));
+  EXPECT_LT(worst, 1e-3);
+}
+
+TEST(AtmosphereFrame, SkyBehavesPhysically) {
+  // Noon: the high sky is blue and darker than the horizon. Sunset: the sky around the low sun turns
+  // red. Images 9 x 33 with a 150-degree vertical field: row 16 is the horizon, row 0 is 75 deg up.
+  auto look = [](double sun_elevation) {
+    auto r = test::render(
+        test::scene({{"pitch_deg", 0}, {"vertical_fov_deg", 150}, {"heading_deg", 0}}, json::object(),
+                    {{"elevation_deg", sun_elevation}, {"azimuth_deg", 0}, {"disc", false}}),
+        9, 33);
+    return r.renderer->read_hdr();
+  };
+  ImageF noon = look(60), sunset = look(1);
+  const float* high = noon.pixel(4, 0);
+  const float* horizon = noon.pixel(4, 15);
+  EXPECT_GT(high[2], high[0] * 2.0f);
+  EXPECT_GT(horizon[1], high[1]);
+  const float* low_sun = sunset.pixel(4, 15);
+  EXPECT_GT(low_sun[0] / low_sun[2], 2.0f * horizon[0] / horizon[2]);
+}
+
+}  // namespace
+}  // namespace welkin::atmosphere
