@@ -105,4 +105,46 @@ TEST(WelkinCli, InfoListsModulesAndWhatASceneLoads) {
   EXPECT_TRUE(has_core);
 }
 
+TEST(WelkinCli, SunJsonHasTheDocumentedKeysAndTheSpaValues) {
+  CliRun r = run("sun --lat 39.742476 --lon -105.1786 --utc 2003-10-17T12:30:30-07:00 --elevation-m 1830.14 "
+                 "--pressure-mbar 820 --temperature-c 11 --delta-t 67 --json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["sun"]["zenith_deg"].get<double>(), 50.11162, 1e-3);  // Reda & Andreas 2004, table A5.1
+  EXPECT_NEAR(j["sun"]["azimuth_deg"].get<double>(), 194.34024, 1e-3);
+  EXPECT_NEAR(j["sun"]["elevation_deg"].get<double>(), 90 - 50.11162, 1e-3);
+  for (const char* k : {"azimuth_deg", "elevation_deg", "ra_deg", "dec_deg", "distance_km", "illuminated_fraction"})
+    EXPECT_TRUE(j["moon"].contains(k)) << k;
+  EXPECT_EQ(j["sun_visible_fraction"], 1.0);
+  r = run("sun --lat 95 --lon 0 --utc 2003-10-17T12:30:30Z");
+  EXPECT_EQ(r.code, 3) << r.out;
+  r = run("sun --lat 10 --lon 0 --utc 2003-02-30T12:00:00Z");
+  EXPECT_EQ(r.code, 3) << r.out;
+  EXPECT_NE(r.out.find("--utc"), std::string::npos) << r.out;
+}
+
+TEST(WelkinCli, SequenceRendersFramesThatGoFromNightToDay) {
+  fs::path dir = tmp("frames");
+  fs::path sheet = tmp("sheet.png");
+  CliRun r = run("sequence " WELKIN_SOURCE_DIR "/assets/scenes/flight.json " WELKIN_SOURCE_DIR
+                 "/assets/sequences/dawn-to-noon.json --fps 0.125 --size 32x18 --out " + dir.string() +
+                 " --contact-sheet " + sheet.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  auto mean = [](const welkin::ImageU8& img) {
+    double s = 0;
+    for (size_t i = 0; i < img.rgba.size(); i += 4) s += img.rgba[i] + img.rgba[i + 1] + img.rgba[i + 2];
+    return s / (img.rgba.size() / 4 * 3);
+  };
+  double night = mean(welkin::read_png((dir / "frame_00000.png").string()));
+  double day = mean(welkin::read_png((dir / "frame_00003.png").string()));
+  EXPECT_LT(night, 30.0);
+  EXPECT_GT(day, 80.0);
+  EXPECT_TRUE(fs::exists(sheet));
+  fs::path bad = tmp("bad-sequence.json");
+  std::ofstream(bad) << R"({"welkin_sequence": 1, "tracks": [{"target": "core.Camera/fov", "keys": [{"t": 0, "value": 1}]}]})";
+  r = run("sequence " WELKIN_SOURCE_DIR "/assets/scenes/flight.json " + bad.string() + " --size 8x8 --out " + dir.string());
+  EXPECT_EQ(r.code, 3);
+  EXPECT_NE(r.out.find(bad.string() + ": at /tracks/0"), std::string::npos) << r.out;
+}
+
 }  // namespace

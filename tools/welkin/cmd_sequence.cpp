@@ -1,5 +1,6 @@
 // welkin sequence SCENE SEQUENCE --out DIR [--fps N] [--size WxH] [--from S] [--to S] [--exr]
 //                 [--video out.mp4] [--contact-sheet sheet.png]
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -68,7 +69,9 @@ int run_sequence(const SequenceOptions& o) {
   Renderer renderer(*world);
   std::filesystem::create_directories(o.out_dir);
   std::vector<ImageU8> thumbs;
-  int thumb_every = std::max(1, (count + 11) / 12);
+  // Up to 12 frames evenly spread over the range, first and last included.
+  std::vector<int> wanted;
+  for (int k = 0, n = std::min(count, 12); k < n; ++k) wanted.push_back(n == 1 ? 0 : int(std::lround(k * (count - 1) / double(n - 1))));
   for (int i = 0; i < count; ++i) {
     double t = o.from + i / o.fps;
     // Every frame is a scrub to its time: the result never depends on the frames before it.
@@ -80,7 +83,7 @@ int run_sequence(const SequenceOptions& o) {
     ImageU8 ldr = renderer.read_output();
     if (o.exr) write_exr(path, renderer.read_hdr());
     else write_png(path, ldr);
-    if (!o.contact_sheet.empty() && i % thumb_every == 0) thumbs.push_back(std::move(ldr));
+    if (!o.contact_sheet.empty() && std::find(wanted.begin(), wanted.end(), i) != wanted.end()) thumbs.push_back(std::move(ldr));
     int bar = (i + 1) * 30 / count;
     std::fprintf(stderr, "\r[%.*s%*s] frame %d/%d  t=%.2f s", bar, "==============================", 30 - bar, "", i + 1, count, t);
   }
