@@ -1,4 +1,4 @@
-#include "welkin/lighting.glsl"
+#include "welkin/shading.glsl"
 in vec3 v_normal;
 in vec3 v_position;
 out vec4 o_color;

@@ -1,14 +1,12 @@
 #pragma once
-// The atmosphere's replacement for the runtime's material lighting (same function, same callers):
+// The atmosphere's replacement for the runtime's material lights (same functions, same callers):
 // sun and moon through the transmittance LUT and the planet's shadow, sky light from the sky's
-// spherical harmonics. Aerial perspective is left to the atmosphere's deferred pass (these
-// materials write depth), so it is applied exactly once.
+// irradiance. Aerial perspective is left to the atmosphere's deferred pass (these materials write
+// depth), so it is applied exactly once.
 #include "atmosphere/aerial_perspective.glsl"
 
-vec3 shade_lambert(vec3 albedo, vec3 normal, vec3 camera_relative_position) {
-  vec3 p = camera_relative_position;
-  vec3 e = atmosphere_sun_irradiance(p) * max(dot(normal, atmosphere_sun_direction()), 0.0) +
-           atmosphere_moon_irradiance(p) * max(dot(normal, atmosphere_moon_direction()), 0.0) +
-           atmosphere_sky_irradiance(normal);
-  return albedo / ATM_PI * e;
-}
+vec3 welkin_sun_direction() { return atmosphere_sun_direction(); }
+vec3 welkin_sun_irradiance(vec3 camera_relative_m) { return atmosphere_sun_irradiance(camera_relative_m); }
+vec3 welkin_moon_direction() { return atmosphere_moon_direction(); }
+vec3 welkin_moon_irradiance(vec3 camera_relative_m) { return atmosphere_moon_irradiance(camera_relative_m); }
+vec3 welkin_sky_irradiance(vec3 normal) { return atmosphere_sky_irradiance(normal); }
