@@ -40,7 +40,7 @@ Renderer::Renderer(World& world) : world_(world), ctx_(world.resource<RenderCont
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
 }
 
-FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height) {
+FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height, const Camera* view_camera) {
   if (width < 1 || height < 1 || width > 16384 || height > 16384)
     throw Error(ErrorInfo{.expected = "a frame size between 1x1 and 16384x16384",
                           .found = std::to_string(width) + "x" + std::to_string(height)});
@@ -54,8 +54,9 @@ FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height
 
   Registry& reg = world_.registry();
   Entity cam = reg.first<Camera>();
-  if (cam.is_null()) throw Error(ErrorInfo{.expected = "an entity with a core.Camera component", .found = "none", .message = "the scene has no camera"});
-  ctx_.view = make_frame_view(*reg.get<Camera>(cam), width, height);
+  if (cam.is_null() && !view_camera)
+    throw Error(ErrorInfo{.expected = "an entity with a core.Camera component", .found = "none", .message = "the scene has no camera"});
+  ctx_.view = make_frame_view(view_camera ? *view_camera : *reg.get<Camera>(cam), width, height);
 
   if (!hdr_ || hdr_->desc().width != width || hdr_->desc().height != height) {
     hdr_ = std::make_unique<Texture>(TextureDesc{.width = width, .height = height, .format = TextureFormat::rgba16f});

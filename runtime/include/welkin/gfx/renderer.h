@@ -43,8 +43,9 @@ class Renderer {
  public:
   // Requires a current GL 4.5 context.
   explicit Renderer(World& world);
-  // Runs the world's update, pre-render and render systems and the frame graph.
-  FrameResult render_frame(const FrameInfo& frame, int width, int height);
+  // Runs the world's update, pre-render and render systems and the frame graph. `view_camera`, when
+  // given, replaces the scene's camera for this frame (the editor's fly camera) without touching it.
+  FrameResult render_frame(const FrameInfo& frame, int width, int height, const Camera* view_camera = nullptr);
   // The last frame's tone-mapped output and linear HDR colour.
   ImageU8 read_output() const;
   ImageF read_hdr() const;
