@@ -19,13 +19,15 @@ DracoDecoder::DracoDecoder(std::span<const uint8_t> stream, const Source& src, c
     draco::DecoderBuffer buffer;
     buffer.Init(reinterpret_cast<const char*>(stream.data()), stream.size());
     auto type = draco::Decoder::GetEncodedGeometryType(&buffer);
-    if (!type.ok()) fail(src, path, "a Draco stream", std::string("a bad header (") + type.status().error_msg() + ")");
+    if (!type.ok())
+      fail(src, path, "a Draco stream", std::string("a bad header (") + type.status().error_msg() + ")");
     if (type.value() != draco::TRIANGULAR_MESH)
       fail(src, path, "a Draco triangle mesh", "a Draco point cloud or unknown geometry");
     draco::Decoder decoder;
     auto result = decoder.DecodeMeshFromBuffer(&buffer);
     if (!result.ok())
-      fail(src, path, "a valid Draco mesh stream", std::string("a decoding error (") + result.status().error_msg() + ")");
+      fail(src, path, "a valid Draco mesh stream",
+           std::string("a decoding error (") + result.status().error_msg() + ")");
     impl_->mesh = std::move(result).value();
     const draco::Mesh& m = *impl_->mesh;
     const auto& lim = src.options.limits;
@@ -53,7 +55,9 @@ DracoDecoder::DracoDecoder(std::span<const uint8_t> stream, const Source& src, c
   }
 }
 
-DracoDecoder::~DracoDecoder() { delete impl_; }
+DracoDecoder::~DracoDecoder() {
+  delete impl_;
+}
 
 DracoAttribute DracoDecoder::attribute(int unique_id, int components, int component_type, bool normalized,
                                        const std::string& path) const {
@@ -73,11 +77,20 @@ DracoAttribute DracoDecoder::attribute(int unique_id, int components, int compon
   // Integer accessors carry integer values that glTF's normalization then maps to floats.
   double lo = 0, hi = 0, scale = 0;
   switch (component_type) {
-    case 5120: lo = -128, hi = 127, scale = 127; break;
-    case 5121: lo = 0, hi = 255, scale = 255; break;
-    case 5122: lo = -32768, hi = 32767, scale = 32767; break;
-    case 5123: lo = 0, hi = 65535, scale = 65535; break;
-    default: break;
+    case 5120:
+      lo = -128, hi = 127, scale = 127;
+      break;
+    case 5121:
+      lo = 0, hi = 255, scale = 255;
+      break;
+    case 5122:
+      lo = -32768, hi = 32767, scale = 32767;
+      break;
+    case 5123:
+      lo = 0, hi = 65535, scale = 65535;
+      break;
+    default:
+      break;
   }
   for (draco::PointIndex p(0); p < n; ++p) {
     const draco::AttributeValueIndex v = a->mapped_index(p);
@@ -98,7 +111,8 @@ DracoAttribute DracoDecoder::attribute(int unique_id, int components, int compon
     }
     for (int c = 0; ok && c < components; ++c) ok = std::isfinite(dst[c]);
     if (!ok)
-      fail(src_, path, "Draco values representable in the accessor's component type " + std::to_string(component_type),
+      fail(src_, path,
+           "Draco values representable in the accessor's component type " + std::to_string(component_type),
            "an unconvertible value at point " + std::to_string(p.value()));
   }
   return out;

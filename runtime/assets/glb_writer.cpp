@@ -40,7 +40,8 @@ void check_mesh(const MeshData& m) {
   if (m.indices.empty() || m.indices.size() % 3 != 0)
     bad(p + "/indices", "a non-zero multiple of 3", std::to_string(m.indices.size()));
   for (uint32_t i : m.indices)
-    if (i >= m.positions.size()) bad(p + "/indices", "indices below " + std::to_string(m.positions.size()), std::to_string(i));
+    if (i >= m.positions.size())
+      bad(p + "/indices", "indices below " + std::to_string(m.positions.size()), std::to_string(i));
 }
 
 }  // namespace
@@ -70,7 +71,8 @@ int GlbWriter::add_view(const void* data, size_t bytes, int target) {
   return int(doc_["bufferViews"].size()) - 1;
 }
 
-int GlbWriter::add_image(const std::vector<uint8_t>& encoded, const std::string& mime_type, const std::string& name) {
+int GlbWriter::add_image(const std::vector<uint8_t>& encoded, const std::string& mime_type,
+                         const std::string& name) {
   json im = {{"bufferView", add_view(encoded.data(), encoded.size(), 0)}, {"mimeType", mime_type}};
   if (!name.empty()) im["name"] = name;
   doc_["images"].push_back(im);
@@ -92,9 +94,10 @@ int GlbWriter::add_material(const Material& m) {
     if (r.tex_coord) t["texCoord"] = r.tex_coord;
     if (r.transform.present) {
       use_extension("KHR_texture_transform", false);
-      t["extensions"]["KHR_texture_transform"] = {{"offset", vec({r.transform.offset.x, r.transform.offset.y})},
-                                                  {"rotation", r.transform.rotation},
-                                                  {"scale", vec({r.transform.scale.x, r.transform.scale.y})}};
+      t["extensions"]["KHR_texture_transform"] = {
+          {"offset", vec({r.transform.offset.x, r.transform.offset.y})},
+          {"rotation", r.transform.rotation},
+          {"scale", vec({r.transform.scale.x, r.transform.scale.y})}};
     }
     return t;
   };
@@ -139,15 +142,15 @@ WrittenMesh GlbWriter::add_mesh(const MeshData& m, const DracoSettings& ds) {
   WrittenMesh out;
   const size_t bin_before = bin_.size();
   if (!ds.enabled) {
-    prim["attributes"]["POSITION"] = add_accessor(add_view(m.positions.data(), m.positions.size() * 12, 34962), 5126,
-                                                  "VEC3", m.positions.size());
+    prim["attributes"]["POSITION"] = add_accessor(
+        add_view(m.positions.data(), m.positions.size() * 12, 34962), 5126, "VEC3", m.positions.size());
     minmax(m.positions, accessors.back());
     if (!m.normals.empty())
-      prim["attributes"]["NORMAL"] = add_accessor(add_view(m.normals.data(), m.normals.size() * 12, 34962), 5126,
-                                                  "VEC3", m.normals.size());
+      prim["attributes"]["NORMAL"] = add_accessor(add_view(m.normals.data(), m.normals.size() * 12, 34962),
+                                                  5126, "VEC3", m.normals.size());
     if (!m.uv0.empty())
-      prim["attributes"]["TEXCOORD_0"] = add_accessor(add_view(m.uv0.data(), m.uv0.size() * 8, 34962), 5126, "VEC2",
-                                                      m.uv0.size());
+      prim["attributes"]["TEXCOORD_0"] =
+          add_accessor(add_view(m.uv0.data(), m.uv0.size() * 8, 34962), 5126, "VEC2", m.uv0.size());
     prim["indices"] = add_accessor(add_view(m.indices.data(), m.indices.size() * 4, 34963), 5125, "SCALAR",
                                    m.indices.size());
     out.vertices = uint32_t(m.positions.size());
@@ -169,7 +172,8 @@ WrittenMesh GlbWriter::add_mesh(const MeshData& m, const DracoSettings& ds) {
     if (!m.normals.empty()) dattrs["NORMAL"] = attr(draco::GeometryAttribute::NORMAL, 3, &m.normals[0].x);
     if (!m.uv0.empty()) dattrs["TEXCOORD_0"] = attr(draco::GeometryAttribute::TEX_COORD, 2, &m.uv0[0].x);
     for (size_t t = 0; t < m.indices.size(); t += 3)
-      dm.AddFace({draco::PointIndex(m.indices[t]), draco::PointIndex(m.indices[t + 1]), draco::PointIndex(m.indices[t + 2])});
+      dm.AddFace({draco::PointIndex(m.indices[t]), draco::PointIndex(m.indices[t + 1]),
+                  draco::PointIndex(m.indices[t + 2])});
     draco::Encoder enc;
     enc.SetAttributeQuantization(draco::GeometryAttribute::POSITION, ds.position_bits);
     enc.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, ds.normal_bits);
@@ -183,7 +187,8 @@ WrittenMesh GlbWriter::add_mesh(const MeshData& m, const DracoSettings& ds) {
     draco::DecoderBuffer dbuf;
     dbuf.Init(buf.data(), buf.size());
     auto decoded = draco::Decoder().DecodeMeshFromBuffer(&dbuf);
-    if (!decoded.ok()) bad("/meshes/" + m.name, "a Draco stream that decodes", decoded.status().error_msg_string());
+    if (!decoded.ok())
+      bad("/meshes/" + m.name, "a Draco stream that decodes", decoded.status().error_msg_string());
     const draco::Mesh& back = *decoded.value();
     out.vertices = back.num_points();
     out.triangles = back.num_faces();
@@ -191,7 +196,8 @@ WrittenMesh GlbWriter::add_mesh(const MeshData& m, const DracoSettings& ds) {
     prim["extensions"]["KHR_draco_mesh_compression"] = {{"bufferView", view}, {"attributes", dattrs}};
     std::vector<glm::vec3> dpos(back.num_points());
     const draco::PointAttribute* pa = back.GetAttributeByUniqueId(dattrs["POSITION"].get<uint32_t>());
-    for (draco::PointIndex i(0); i < back.num_points(); ++i) pa->ConvertValue<float>(pa->mapped_index(i), 3, &dpos[i.value()].x);
+    for (draco::PointIndex i(0); i < back.num_points(); ++i)
+      pa->ConvertValue<float>(pa->mapped_index(i), 3, &dpos[i.value()].x);
     prim["attributes"]["POSITION"] = add_accessor(-1, 5126, "VEC3", out.vertices);
     minmax(dpos, accessors.back());
     if (!m.normals.empty()) prim["attributes"]["NORMAL"] = add_accessor(-1, 5126, "VEC3", out.vertices);
@@ -209,8 +215,8 @@ WrittenMesh GlbWriter::add_mesh(const MeshData& m, const DracoSettings& ds) {
   return out;
 }
 
-int GlbWriter::add_node(const std::string& name, int mesh, const glm::vec3& t, const glm::quat& r, const glm::vec3& s,
-                        int parent) {
+int GlbWriter::add_node(const std::string& name, int mesh, const glm::vec3& t, const glm::quat& r,
+                        const glm::vec3& s, int parent) {
   json n;
   if (!name.empty()) n["name"] = name;
   if (mesh >= 0) n["mesh"] = mesh;
@@ -252,6 +258,8 @@ std::string GlbWriter::glb() const {
   return assemble(doc, bin_);
 }
 
-void GlbWriter::write(const std::string& path) const { write_file_atomically(path, glb()); }
+void GlbWriter::write(const std::string& path) const {
+  write_file_atomically(path, glb());
+}
 
 }  // namespace welkin::assets

@@ -17,10 +17,17 @@ using nlohmann::json;
 
 int component_size(int ct) {
   switch (ct) {
-    case 5120: case 5121: return 1;
-    case 5122: case 5123: return 2;
-    case 5125: case 5126: return 4;
-    default: return 0;
+    case 5120:
+    case 5121:
+      return 1;
+    case 5122:
+    case 5123:
+      return 2;
+    case 5125:
+    case 5126:
+      return 4;
+    default:
+      return 0;
   }
 }
 
@@ -31,7 +38,8 @@ float read_component(const uint8_t* p, int ct, bool normalized) {
       std::memcpy(&v, p, 1);
       return normalized ? std::max(v / 127.0f, -1.0f) : float(v);
     }
-    case 5121: return normalized ? *p / 255.0f : float(*p);
+    case 5121:
+      return normalized ? *p / 255.0f : float(*p);
     case 5122: {
       int16_t v;
       std::memcpy(&v, p, 2);
@@ -69,8 +77,10 @@ class Converter {
       tex.image = t.source;
       if (t.sampler >= 0) {
         const auto& s = gm_.samplers.at(size_t(t.sampler));
-        tex.sampler = Sampler{.mag_filter = std::max(s.magFilter, 0), .min_filter = std::max(s.minFilter, 0),
-                              .wrap_s = s.wrapS, .wrap_t = s.wrapT};
+        tex.sampler = Sampler{.mag_filter = std::max(s.magFilter, 0),
+                              .min_filter = std::max(s.minFilter, 0),
+                              .wrap_s = s.wrapS,
+                              .wrap_t = s.wrapT};
       }
       m_.textures.push_back(std::move(tex));
     }
@@ -85,7 +95,8 @@ class Converter {
     const auto& v = gm_.bufferViews.at(size_t(view));
     const auto& b = gm_.buffers.at(size_t(v.buffer));
     if (v.byteOffset > b.data.size() || v.byteLength > b.data.size() - v.byteOffset)
-      fail(src_, path, "a bufferView inside its buffer", "bufferView " + std::to_string(view) + " past the buffer's end");
+      fail(src_, path, "a bufferView inside its buffer",
+           "bufferView " + std::to_string(view) + " past the buffer's end");
     return std::span<const uint8_t>(b.data.data() + v.byteOffset, v.byteLength);
   }
 
@@ -95,18 +106,20 @@ class Converter {
     const int csize = component_size(a.componentType);
     const auto bytes = view_bytes(a.bufferView, path);
     const size_t esize = size_t(csize) * comps;
-    const size_t stride = gm_.bufferViews[size_t(a.bufferView)].byteStride ? gm_.bufferViews[size_t(a.bufferView)].byteStride
-                                                                        : esize;
+    const size_t stride = gm_.bufferViews[size_t(a.bufferView)].byteStride
+                              ? gm_.bufferViews[size_t(a.bufferView)].byteStride
+                              : esize;
     if (a.count == 0 || a.byteOffset + stride * (a.count - 1) + esize > bytes.size())
-      fail(src_, path, "an accessor inside its bufferView", "accessor " + std::to_string(index) + " past its end");
+      fail(src_, path, "an accessor inside its bufferView",
+           "accessor " + std::to_string(index) + " past its end");
     std::vector<float> out(a.count * comps);
     for (size_t i = 0; i < a.count; ++i) {
       const uint8_t* e = bytes.data() + a.byteOffset + i * stride;
       for (int c = 0; c < comps; ++c) {
         const float v = read_component(e + size_t(c) * csize, a.componentType, a.normalized);
         if (!std::isfinite(v))
-          fail(src_, path, "finite numbers", "a NaN or infinity in element " + std::to_string(i) + " of accessor " +
-               std::to_string(index));
+          fail(src_, path, "finite numbers",
+               "a NaN or infinity in element " + std::to_string(i) + " of accessor " + std::to_string(index));
         out[i * comps + c] = v;
       }
     }
@@ -117,10 +130,12 @@ class Converter {
     const auto& a = gm_.accessors.at(size_t(index));
     const int csize = component_size(a.componentType);
     const auto bytes = view_bytes(a.bufferView, path);
-    const size_t stride = gm_.bufferViews[size_t(a.bufferView)].byteStride ? gm_.bufferViews[size_t(a.bufferView)].byteStride
-                                                                        : size_t(csize);
+    const size_t stride = gm_.bufferViews[size_t(a.bufferView)].byteStride
+                              ? gm_.bufferViews[size_t(a.bufferView)].byteStride
+                              : size_t(csize);
     if (a.count == 0 || a.byteOffset + stride * (a.count - 1) + csize > bytes.size())
-      fail(src_, path, "an accessor inside its bufferView", "accessor " + std::to_string(index) + " past its end");
+      fail(src_, path, "an accessor inside its bufferView",
+           "accessor " + std::to_string(index) + " past its end");
     std::vector<uint32_t> out(a.count);
     for (size_t i = 0; i < a.count; ++i) {
       const uint8_t* e = bytes.data() + a.byteOffset + i * stride;
@@ -147,13 +162,14 @@ class Converter {
       img.mime_type = gi.mimeType;
       if (src_.options.decode_images) {
         if (gi.bufferView >= 0) {
-          img = decode_image(view_bytes(gi.bufferView, path + "/bufferView"), src_, path + "/bufferView", total);
+          img = decode_image(view_bytes(gi.bufferView, path + "/bufferView"), src_, path + "/bufferView",
+                             total);
         } else if (gi.bits == 0 && !gi.image.empty()) {
           img = decode_image(gi.image, src_, path + "/uri", total);
         } else {
           const auto file = resolve_external(src_, gi.uri, path + "/uri");
-          img = decode_image(read_file_limited(src_, file, src_.options.limits.max_file_bytes, path + "/uri"), src_,
-                             path + "/uri", total);
+          img = decode_image(read_file_limited(src_, file, src_.options.limits.max_file_bytes, path + "/uri"),
+                             src_, path + "/uri", total);
         }
         img.name = gi.name;
         img.mime_type = gi.mimeType;
@@ -172,7 +188,8 @@ class Converter {
     if (info && info->contains("extensions") && (*info)["extensions"].contains("KHR_texture_transform")) {
       const json& t = (*info)["extensions"]["KHR_texture_transform"];
       r.transform.present = true;
-      if (t.contains("offset")) r.transform.offset = {t["offset"][0].get<float>(), t["offset"][1].get<float>()};
+      if (t.contains("offset"))
+        r.transform.offset = {t["offset"][0].get<float>(), t["offset"][1].get<float>()};
       if (t.contains("scale")) r.transform.scale = {t["scale"][0].get<float>(), t["scale"][1].get<float>()};
       r.transform.rotation = t.value("rotation", 0.0f);
       if (t.contains("texCoord")) r.tex_coord = t["texCoord"].get<int>();
@@ -198,9 +215,11 @@ class Converter {
       if (f.size() == 4) m.base_color_factor = glm::vec4(f[0], f[1], f[2], f[3]);
       m.metallic_factor = float(g.pbrMetallicRoughness.metallicFactor);
       m.roughness_factor = float(g.pbrMetallicRoughness.roughnessFactor);
-      if (g.emissiveFactor.size() == 3) m.emissive_factor = glm::vec3(g.emissiveFactor[0], g.emissiveFactor[1], g.emissiveFactor[2]);
+      if (g.emissiveFactor.size() == 3)
+        m.emissive_factor = glm::vec3(g.emissiveFactor[0], g.emissiveFactor[1], g.emissiveFactor[2]);
       if (jm.contains("extensions") && jm["extensions"].contains("KHR_materials_emissive_strength"))
-        m.emissive_strength = jm["extensions"]["KHR_materials_emissive_strength"].value("emissiveStrength", 1.0f);
+        m.emissive_strength =
+            jm["extensions"]["KHR_materials_emissive_strength"].value("emissiveStrength", 1.0f);
       const auto& bct = g.pbrMetallicRoughness.baseColorTexture;
       const auto& mrt = g.pbrMetallicRoughness.metallicRoughnessTexture;
       m.base_color = texture_ref(bct.index, bct.texCoord, 1.0, info(pbr, "baseColorTexture"),
@@ -209,11 +228,14 @@ class Converter {
                                          "/pbrMetallicRoughness/metallicRoughnessTexture", mp);
       m.normal = texture_ref(g.normalTexture.index, g.normalTexture.texCoord, g.normalTexture.scale,
                              info(&jm, "normalTexture"), "/normalTexture", mp);
-      m.occlusion = texture_ref(g.occlusionTexture.index, g.occlusionTexture.texCoord, g.occlusionTexture.strength,
-                                info(&jm, "occlusionTexture"), "/occlusionTexture", mp);
-      m.emissive = texture_ref(g.emissiveTexture.index, g.emissiveTexture.texCoord, 1.0, info(&jm, "emissiveTexture"),
-                               "/emissiveTexture", mp);
-      m.alpha_mode = g.alphaMode == "MASK" ? AlphaMode::mask : g.alphaMode == "BLEND" ? AlphaMode::blend : AlphaMode::opaque;
+      m.occlusion =
+          texture_ref(g.occlusionTexture.index, g.occlusionTexture.texCoord, g.occlusionTexture.strength,
+                      info(&jm, "occlusionTexture"), "/occlusionTexture", mp);
+      m.emissive = texture_ref(g.emissiveTexture.index, g.emissiveTexture.texCoord, 1.0,
+                               info(&jm, "emissiveTexture"), "/emissiveTexture", mp);
+      m.alpha_mode = g.alphaMode == "MASK"    ? AlphaMode::mask
+                     : g.alphaMode == "BLEND" ? AlphaMode::blend
+                                              : AlphaMode::opaque;
       m.alpha_cutoff = float(g.alphaCutoff);
       m.double_sided = g.doubleSided;
       m_.materials.push_back(std::move(m));
@@ -253,13 +275,15 @@ class Converter {
     const std::string dp = pp + "/extensions/KHR_draco_mesh_compression";
     if (draco) {
       p.draco = true;
-      dec = std::make_unique<DracoDecoder>(view_bytes((*draco)["bufferView"].get<int>(), dp + "/bufferView"), src_, dp);
+      dec = std::make_unique<DracoDecoder>(view_bytes((*draco)["bufferView"].get<int>(), dp + "/bufferView"),
+                                           src_, dp);
       // Every attribute, used here or not, must have exactly the accessor's count of decoded points.
       for (const auto& [name, accessor] : gp.attributes) {
         const auto& a = gm_.accessors.at(size_t(accessor));
         if (a.count != dec->mesh().num_points)
-          fail(src_, pp + "/attributes/" + pointer_key(name), std::to_string(a.count) + " vertices (accessor " +
-               std::to_string(accessor) + " count)", std::to_string(dec->mesh().num_points) + " decoded by Draco");
+          fail(src_, pp + "/attributes/" + pointer_key(name),
+               std::to_string(a.count) + " vertices (accessor " + std::to_string(accessor) + " count)",
+               std::to_string(dec->mesh().num_points) + " decoded by Draco");
       }
     }
     // Reads one attribute from the Draco stream when compressed there, else from its accessor.
@@ -269,8 +293,9 @@ class Converter {
       const std::string ap = pp + "/attributes/" + name;
       const auto& a = gm_.accessors.at(size_t(it->second));
       if (draco && (*draco)["attributes"].contains(name))
-        return dec->attribute((*draco)["attributes"][name].get<int>(), comps, a.componentType, a.normalized,
-                              dp + "/attributes/" + name)
+        return dec
+            ->attribute((*draco)["attributes"][name].get<int>(), comps, a.componentType, a.normalized,
+                        dp + "/attributes/" + name)
             .values;
       return read_floats(it->second, comps, ap);
     };
@@ -296,8 +321,10 @@ class Converter {
     if (draco) {
       idx = dec->mesh().indices;
       if (indices >= 0 && gm_.accessors.at(size_t(indices)).count != idx.size())
-        fail(src_, ip, std::to_string(gm_.accessors[size_t(indices)].count) + " indices (accessor " +
-             std::to_string(indices) + " count)", std::to_string(idx.size()) + " decoded by Draco");
+        fail(src_, ip,
+             std::to_string(gm_.accessors[size_t(indices)].count) + " indices (accessor " +
+                 std::to_string(indices) + " count)",
+             std::to_string(idx.size()) + " decoded by Draco");
     } else if (indices >= 0) {
       idx = read_indices(indices, ip);
     } else {
@@ -354,11 +381,14 @@ class Converter {
         std::copy(g.matrix.begin(), g.matrix.end(), d);
         n.local = glm::mat4(glm::make_mat4(d));
       } else {
-        if (g.translation.size() == 3) n.translation = glm::vec3(g.translation[0], g.translation[1], g.translation[2]);
-        if (g.rotation.size() == 4) n.rotation = glm::quat(float(g.rotation[3]), float(g.rotation[0]), float(g.rotation[1]), float(g.rotation[2]));
+        if (g.translation.size() == 3)
+          n.translation = glm::vec3(g.translation[0], g.translation[1], g.translation[2]);
+        if (g.rotation.size() == 4)
+          n.rotation = glm::quat(float(g.rotation[3]), float(g.rotation[0]), float(g.rotation[1]),
+                                 float(g.rotation[2]));
         if (g.scale.size() == 3) n.scale = glm::vec3(g.scale[0], g.scale[1], g.scale[2]);
-        n.local = glm::translate(glm::mat4(1.0f), n.translation) * glm::mat4_cast(glm::normalize(n.rotation)) *
-                  glm::scale(glm::mat4(1.0f), n.scale);
+        n.local = glm::translate(glm::mat4(1.0f), n.translation) *
+                  glm::mat4_cast(glm::normalize(n.rotation)) * glm::scale(glm::mat4(1.0f), n.scale);
       }
     }
     for (size_t i = 0; i < count; ++i)
@@ -394,7 +424,8 @@ class Converter {
       for (const Primitive& p : m_.meshes.at(size_t(n.mesh)).primitives) {
         if (p.bounds.empty()) continue;
         for (int c = 0; c < 8; ++c) {
-          const glm::vec3 corner((c & 1) ? p.bounds.max.x : p.bounds.min.x, (c & 2) ? p.bounds.max.y : p.bounds.min.y,
+          const glm::vec3 corner((c & 1) ? p.bounds.max.x : p.bounds.min.x,
+                                 (c & 2) ? p.bounds.max.y : p.bounds.min.y,
                                  (c & 4) ? p.bounds.max.z : p.bounds.min.z);
           m_.bounds.extend(glm::vec3(n.world * glm::vec4(corner, 1.0f)));
         }

@@ -10,8 +10,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "internal.h"
-#include "welkin/assets/glb_writer.h"
 #include "tiny_gltf.h"
+#include "welkin/assets/glb_writer.h"
 
 namespace welkin::assets {
 
@@ -112,8 +112,8 @@ Container split_container(std::span<const uint8_t> bytes, const Source& src) {
   }
   c.is_glb = true;
   if (bytes.size() < 20)
-    fail(src, "<glb header>", "a 12-byte header and a JSON chunk header", "a file truncated to " +
-         std::to_string(bytes.size()) + " bytes");
+    fail(src, "<glb header>", "a 12-byte header and a JSON chunk header",
+         "a file truncated to " + std::to_string(bytes.size()) + " bytes");
   const uint32_t version = read_u32(bytes.data() + 4);
   const uint32_t length = read_u32(bytes.data() + 8);
   if (version != 2) fail(src, "<glb header>/version", "2", std::to_string(version));
@@ -122,18 +122,22 @@ Container split_container(std::span<const uint8_t> bytes, const Source& src) {
          std::to_string(length) + (length > bytes.size() ? " (file truncated)" : " (trailing bytes)"));
   const uint64_t json_len = read_u32(bytes.data() + 12);
   const uint32_t json_type = read_u32(bytes.data() + 16);
-  if (json_type != kChunkJson) fail(src, "<glb chunk 0>/type", "JSON (0x4E4F534A)", std::to_string(json_type));
+  if (json_type != kChunkJson)
+    fail(src, "<glb chunk 0>/type", "JSON (0x4E4F534A)", std::to_string(json_type));
   if (json_len == 0 || 20 + json_len > length)
-    fail(src, "<glb chunk 0>/length", "1 to " + std::to_string(length - 20) + " bytes (what follows the header)",
+    fail(src, "<glb chunk 0>/length",
+         "1 to " + std::to_string(length - 20) + " bytes (what follows the header)",
          std::to_string(json_len));
   if (json_len > src.options.limits.max_json_bytes)
-    fail(src, "<glb chunk 0>/length", "JSON of at most " + std::to_string(src.options.limits.max_json_bytes) +
-         " bytes", std::to_string(json_len));
+    fail(src, "<glb chunk 0>/length",
+         "JSON of at most " + std::to_string(src.options.limits.max_json_bytes) + " bytes",
+         std::to_string(json_len));
   c.json = std::string_view(reinterpret_cast<const char*>(bytes.data() + 20), json_len);
   uint64_t pos = 20 + json_len;
   if (pos == length) return c;
-  if (pos % 4 != 0) fail(src, "<glb chunk 0>/length", "a multiple of 4 (chunks are 4-byte aligned)",
-                         std::to_string(json_len));
+  if (pos % 4 != 0)
+    fail(src, "<glb chunk 0>/length", "a multiple of 4 (chunks are 4-byte aligned)",
+         std::to_string(json_len));
   if (pos + 8 > length)
     fail(src, "<glb chunk 1>", "an 8-byte chunk header", std::to_string(length - pos) + " bytes left");
   const uint64_t bin_len = read_u32(bytes.data() + pos);
@@ -165,7 +169,8 @@ nlohmann::json parse_json(std::string_view text, const Source& src) {
       in_string = true;
     } else if (ch == '[' || ch == '{') {
       if (++depth > src.options.limits.max_json_depth)
-        fail(src, "", "JSON nested at most " + std::to_string(src.options.limits.max_json_depth) + " levels deep",
+        fail(src, "",
+             "JSON nested at most " + std::to_string(src.options.limits.max_json_depth) + " levels deep",
              "deeper nesting at byte " + std::to_string(i));
     } else if (ch == ']' || ch == '}') {
       --depth;
@@ -237,7 +242,8 @@ bool inside_base(const Source& src, const fs::path& candidate) {
   std::error_code ec;
   const fs::path base = fs::canonical(src.base_dir, ec);
   if (ec) return false;
-  const fs::path full = fs::weakly_canonical(candidate, ec);  // relative: to the working directory, as open() does
+  const fs::path full =
+      fs::weakly_canonical(candidate, ec);  // relative: to the working directory, as open() does
   if (ec) return false;
   auto b = base.begin();
   auto f = full.begin();
@@ -251,10 +257,12 @@ fs::path resolve_external(const Source& src, const std::string& uri, const std::
   const std::string expected = "a relative path to a file beside the glTF (or a data: URI)";
   if (decoded.empty()) fail(src, path, expected, "an empty URI");
   if (decoded.find('\0') != std::string::npos) fail(src, path, expected, "a NUL character in " + uri);
-  if (decoded.front() == '/' || decoded.front() == '\\') fail(src, path, expected, "absolute path \"" + uri + "\"");
+  if (decoded.front() == '/' || decoded.front() == '\\')
+    fail(src, path, expected, "absolute path \"" + uri + "\"");
   const size_t colon = decoded.find(':'), slash = decoded.find_first_of("/\\");
   if (colon != std::string::npos && (slash == std::string::npos || colon < slash))
-    fail(src, path, expected, "URI scheme or drive \"" + decoded.substr(0, colon + 1) + "\" in \"" + uri + "\"");
+    fail(src, path, expected,
+         "URI scheme or drive \"" + decoded.substr(0, colon + 1) + "\" in \"" + uri + "\"");
   size_t start = 0;
   while (start <= decoded.size()) {
     size_t end = decoded.find_first_of("/\\", start);
@@ -267,7 +275,8 @@ fs::path resolve_external(const Source& src, const std::string& uri, const std::
     fail(src, path, "no external files (this glTF was loaded from memory)", "external URI \"" + uri + "\"");
   const fs::path full = fs::path(src.base_dir) / decoded;
   std::error_code ec;
-  if (!fs::is_regular_file(full, ec)) fail(src, path, "an existing file beside the glTF", "missing file \"" + uri + "\"");
+  if (!fs::is_regular_file(full, ec))
+    fail(src, path, "an existing file beside the glTF", "missing file \"" + uri + "\"");
   if (!inside_base(src, full))
     fail(src, path, expected, "\"" + uri + "\" resolving outside the folder (through a symbolic link)");
   return full;
@@ -284,16 +293,35 @@ std::vector<uint8_t> read_file_limited(const Source& src, const fs::path& file, 
   }
   if (uint64_t(st.st_size) > max_bytes) {
     std::fclose(f);
-    fail(src, path, "a file of at most " + std::to_string(max_bytes) + " bytes", std::to_string(st.st_size) + " bytes");
+    fail(src, path, "a file of at most " + std::to_string(max_bytes) + " bytes",
+         std::to_string(st.st_size) + " bytes");
   }
   std::vector<uint8_t> data(size_t(st.st_size));
   const size_t got = data.empty() ? 0 : std::fread(data.data(), 1, data.size(), f);
   std::fclose(f);
-  if (got != data.size()) fail(src, path, std::to_string(data.size()) + " readable bytes", std::to_string(got));
+  if (got != data.size())
+    fail(src, path, std::to_string(data.size()) + " readable bytes", std::to_string(got));
   return data;
 }
 
+Model load_checked(std::span<const uint8_t> bytes, const Source& src);
+
+// Validation should leave nothing else to throw; should a library still throw (a failed allocation, a
+// range check in tinygltf or Draco), the caller gets the same one kind of error.
 Model load(std::span<const uint8_t> bytes, const Source& src) {
+  try {
+    return load_checked(bytes, src);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw Error(ErrorInfo{.file = src.name, .message = "not enough memory to load this file"});
+  } catch (const std::exception& e) {
+    throw Error(ErrorInfo{.file = src.name,
+                          .message = std::string("could not load (internal error: ") + e.what() + ")"});
+  }
+}
+
+Model load_checked(std::span<const uint8_t> bytes, const Source& src) {
   const Container container = split_container(bytes, src);
   const nlohmann::json doc = parse_json(container.json, src);
   validate_document(doc, container, src);
@@ -305,7 +333,8 @@ Model load(std::span<const uint8_t> bytes, const Source& src) {
   for (size_t i = 0; doc.contains("meshes") && i < doc["meshes"].size(); ++i)
     for (size_t j = 0; j < doc["meshes"][i]["primitives"].size(); ++j) {
       const nlohmann::json& p = doc["meshes"][i]["primitives"][j];
-      if (p.contains("indices") && p.contains("extensions") && p["extensions"].contains("KHR_draco_mesh_compression")) {
+      if (p.contains("indices") && p.contains("extensions") &&
+          p["extensions"].contains("KHR_draco_mesh_compression")) {
         if (stripped.is_null()) stripped = doc;
         stripped["meshes"][i]["primitives"][j].erase("indices");
       }
@@ -316,7 +345,8 @@ Model load(std::span<const uint8_t> bytes, const Source& src) {
     const std::string text = stripped.dump();
     Container copy = container;
     if (container.is_glb) {
-      const std::string glb = GlbWriter::assemble(stripped, std::vector<uint8_t>(container.bin.begin(), container.bin.end()));
+      const std::string glb =
+          GlbWriter::assemble(stripped, std::vector<uint8_t>(container.bin.begin(), container.bin.end()));
       const auto* b = reinterpret_cast<const uint8_t*>(glb.data());
       parse_with_tinygltf(gm, std::span(b, glb.size()), split_container(std::span(b, glb.size()), src), src);
     } else {

@@ -18,10 +18,17 @@ const std::set<std::string> kSupportedRequired = {"KHR_draco_mesh_compression", 
 
 int component_size(int component_type) {
   switch (component_type) {
-    case 5120: case 5121: return 1;
-    case 5122: case 5123: return 2;
-    case 5125: case 5126: return 4;
-    default: return 0;
+    case 5120:
+    case 5121:
+      return 1;
+    case 5122:
+    case 5123:
+      return 2;
+    case 5125:
+    case 5126:
+      return 4;
+    default:
+      return 0;
   }
 }
 
@@ -60,8 +67,8 @@ class Validator {
     if (!doc_.is_object()) fail(src_, "", "a JSON object at the top level", show(doc_));
     asset();
     extensions();
-    for (const char* key : {"accessors", "animations", "buffers", "bufferViews", "cameras", "images", "materials",
-                            "meshes", "nodes", "samplers", "scenes", "skins", "textures"})
+    for (const char* key : {"accessors", "animations", "buffers", "bufferViews", "cameras", "images",
+                            "materials", "meshes", "nodes", "samplers", "scenes", "skins", "textures"})
       sizes_[key] = array_size(key);
     buffers();
     buffer_views();
@@ -102,15 +109,14 @@ class Validator {
                 uint64_t min = 0, uint64_t max = UINT64_MAX) {
     const json* v = opt(o, key);
     const std::string p = path + "/" + key;
-    const std::string range = min == 0 && max == UINT64_MAX
-                                  ? "a non-negative integer"
-                                  : "an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]";
+    const std::string range = min == 0 && max == UINT64_MAX ? "a non-negative integer"
+                                                            : "an integer in [" + std::to_string(min) + ", " +
+                                                                  std::to_string(max) + "]";
     if (!v) {
       if (required) fail(src_, p, range, "nothing (the property is required)");
       return dflt;
     }
-    if (!v->is_number_integer() || (v->is_number_integer() && !v->is_number_unsigned() && v->get<int64_t>() < 0))
-      bad(p, range, *v);
+    if (!v->is_number_unsigned()) bad(p, range, *v);  // nlohmann keeps non-negative integers unsigned
     const uint64_t x = v->get<uint64_t>();
     if (x < min || x > max) bad(p, range, *v);
     return x;
@@ -120,30 +126,36 @@ class Validator {
     const size_t n = sizes_[array];
     const json* v = opt(o, key);
     const std::string p = path + "/" + key;
-    const std::string expected = n ? "an index into /" + std::string(array) + " (0 to " + std::to_string(n - 1) + ")"
-                                   : "no reference (the file has no " + std::string(array) + ")";
+    const std::string expected =
+        n ? "an index into /" + std::string(array) + " (0 to " + std::to_string(n - 1) + ")"
+          : "no reference (the file has no " + std::string(array) + ")";
     if (!v) {
       if (required) fail(src_, p, expected, "nothing (the property is required)");
       return -1;
     }
-    if (!v->is_number_integer() || v->get<int64_t>() < 0 || uint64_t(v->get<int64_t>()) >= n) bad(p, expected, *v);
+    if (!v->is_number_integer() || v->get<int64_t>() < 0 || uint64_t(v->get<int64_t>()) >= n)
+      bad(p, expected, *v);
     return int(v->get<int64_t>());
   }
 
   int index_value(const json& v, const std::string& p, const char* array) {
     const size_t n = sizes_[array];
     if (!v.is_number_integer() || v.get<int64_t>() < 0 || uint64_t(v.get<int64_t>()) >= n)
-      bad(p, n ? "an index into /" + std::string(array) + " (0 to " + std::to_string(n - 1) + ")"
-               : "no reference (the file has no " + std::string(array) + ")", v);
+      bad(p,
+          n ? "an index into /" + std::string(array) + " (0 to " + std::to_string(n - 1) + ")"
+            : "no reference (the file has no " + std::string(array) + ")",
+          v);
     return int(v.get<int64_t>());
   }
 
-  double number(const json& o, const char* key, const std::string& path, double dflt, double min, double max) {
+  double number(const json& o, const char* key, const std::string& path, double dflt, double min,
+                double max) {
     const json* v = opt(o, key);
     if (!v) return dflt;
     const std::string p = path + "/" + key;
     const std::string expected = "a number in [" + fmt(min) + ", " + fmt(max) + "]";
-    if (!v->is_number() || !std::isfinite(v->get<double>()) || v->get<double>() < min || v->get<double>() > max)
+    if (!v->is_number() || !std::isfinite(v->get<double>()) || v->get<double>() < min ||
+        v->get<double>() > max)
       bad(p, expected, *v);
     return v->get<double>();
   }
@@ -156,7 +168,8 @@ class Validator {
     return buf;
   }
 
-  void number_array(const json& o, const char* key, const std::string& path, size_t n, double min, double max) {
+  void number_array(const json& o, const char* key, const std::string& path, size_t n, double min,
+                    double max) {
     const json* v = opt(o, key);
     if (!v) return;
     const std::string p = path + "/" + key;
@@ -197,7 +210,8 @@ class Validator {
     const json* a = object(doc_, "asset", "");
     if (!a) fail(src_, "/asset", "an object with \"version\": \"2.0\"", "nothing (the property is required)");
     const std::string v = string(*a, "version", "/asset", true);
-    if (v.size() < 2 || v[0] != '2' || v[1] != '.') fail(src_, "/asset/version", "glTF version \"2.x\"", "\"" + v + "\"");
+    if (v.size() < 2 || v[0] != '2' || v[1] != '.')
+      fail(src_, "/asset/version", "glTF version \"2.x\"", "\"" + v + "\"");
     const std::string mv = string(*a, "minVersion", "/asset", false);
     if (!mv.empty() && mv != "2.0") fail(src_, "/asset/minVersion", "\"2.0\"", "\"" + mv + "\"");
   }
@@ -234,8 +248,9 @@ class Validator {
       buffer_lengths_.push_back(len);
       total += len;
       if (total > lim_.max_file_bytes * 4)
-        fail(src_, p + "/byteLength", "all buffers together at most " + std::to_string(lim_.max_file_bytes * 4) +
-             " bytes", std::to_string(total) + " bytes so far");
+        fail(src_, p + "/byteLength",
+             "all buffers together at most " + std::to_string(lim_.max_file_bytes * 4) + " bytes",
+             std::to_string(total) + " bytes so far");
       const std::string uri = string(b, "uri", p, false);
       if (!opt(b, "uri")) {
         if (!c_.is_glb || i != 0)
@@ -277,8 +292,10 @@ class Validator {
       const uint64_t stride = uint(v, "byteStride", p, false, 0, 4, 252);
       if (stride % 4 != 0) bad(p + "/byteStride", "a multiple of 4 in [4, 252]", v["byteStride"]);
       if (offset + length > buffer_lengths_[buffer])
-        fail(src_, p + "/byteLength", "byteOffset + byteLength within buffer " + std::to_string(buffer) + " (" +
-             std::to_string(buffer_lengths_[buffer]) + " bytes)", std::to_string(offset) + " + " + std::to_string(length));
+        fail(src_, p + "/byteLength",
+             "byteOffset + byteLength within buffer " + std::to_string(buffer) + " (" +
+                 std::to_string(buffer_lengths_[buffer]) + " bytes)",
+             std::to_string(offset) + " + " + std::to_string(length));
       view_lengths_.push_back(length);
       view_strides_.push_back(stride);
     }
@@ -294,7 +311,8 @@ class Validator {
       const uint64_t offset = uint(a, "byteOffset", p, false, 0, 0, lim_.max_file_bytes);
       const json* ct = opt(a, "componentType");
       if (!ct) fail(src_, p + "/componentType", "a component type", "nothing (the property is required)");
-      if (!ct->is_number_integer() || component_size(ct->get<int64_t>() > 6000 ? 0 : int(ct->get<int64_t>())) == 0)
+      const int64_t ctv = ct->is_number_integer() ? ct->get<int64_t>() : 0;
+      if (ctv < 5120 || ctv > 5126 || component_size(int(ctv)) == 0)
         bad(p + "/componentType", "5120, 5121, 5122, 5123, 5125 or 5126", *ct);
       info.component_type = int(ct->get<int64_t>());
       info.type = string(a, "type", p, true);
@@ -305,9 +323,11 @@ class Validator {
       info.normalized = a.value("normalized", false);
       if (info.normalized && (info.component_type == 5125 || info.component_type == 5126))
         fail(src_, p + "/normalized", "false for FLOAT and UNSIGNED_INT components", "true");
-      if (opt(a, "sparse")) fail(src_, p + "/sparse", "no sparse storage (not supported by this loader)", "sparse");
+      if (opt(a, "sparse"))
+        fail(src_, p + "/sparse", "no sparse storage (not supported by this loader)", "sparse");
       if (view < 0) {
-        if (opt(a, "byteOffset")) fail(src_, p + "/byteOffset", "no byteOffset without a bufferView", show(a["byteOffset"]));
+        if (opt(a, "byteOffset"))
+          fail(src_, p + "/byteOffset", "no byteOffset without a bufferView", show(a["byteOffset"]));
       } else {
         info.has_view = true;
         const int csize = component_size(info.component_type);
@@ -319,9 +339,11 @@ class Validator {
                std::to_string(stride));
         const uint64_t end = offset + stride * (info.count - 1) + esize;
         if (end > view_lengths_[view])
-          fail(src_, p, "count " + std::to_string(info.count) + " x stride " + std::to_string(stride) +
-               " from byteOffset " + std::to_string(offset) + " within bufferView " + std::to_string(view) + " (" +
-               std::to_string(view_lengths_[view]) + " bytes)", "a range ending at byte " + std::to_string(end));
+          fail(src_, p,
+               "count " + std::to_string(info.count) + " x stride " + std::to_string(stride) +
+                   " from byteOffset " + std::to_string(offset) + " within bufferView " +
+                   std::to_string(view) + " (" + std::to_string(view_lengths_[view]) + " bytes)",
+               "a range ending at byte " + std::to_string(end));
       }
       accessors_.push_back(info);
     }
@@ -421,7 +443,8 @@ class Validator {
       number_array(m, "emissiveFactor", p, 3, 0.0, 1.0);
       if (const json* e = object(m, "extensions", p))
         if (const json* es = object(*e, "KHR_materials_emissive_strength", p + "/extensions"))
-          number(*es, "emissiveStrength", p + "/extensions/KHR_materials_emissive_strength", 1.0, 0.0, HUGE_VAL);
+          number(*es, "emissiveStrength", p + "/extensions/KHR_materials_emissive_strength", 1.0, 0.0,
+                 HUGE_VAL);
       const std::string mode = string(m, "alphaMode", p, false);
       if (!mode.empty() && mode != "OPAQUE" && mode != "MASK" && mode != "BLEND")
         fail(src_, p + "/alphaMode", "\"OPAQUE\", \"MASK\" or \"BLEND\"", "\"" + mode + "\"");
@@ -438,15 +461,16 @@ class Validator {
     const bool n = a.normalized;
     auto need = [&](const char* type, bool ok, const char* formats) {
       if (a.type != type)
-        fail(src_, path, std::string(type) + " accessor", "accessor " + std::to_string(accessor) + " of " + a.type);
+        fail(src_, path, std::string(type) + " accessor",
+             "accessor " + std::to_string(accessor) + " of " + a.type);
       if (!ok)
         fail(src_, path, std::string(formats) + (quant ? "" : " (others need KHR_mesh_quantization)"),
              "accessor " + std::to_string(accessor) + " with componentType " + std::to_string(ct) +
-             (n ? " normalized" : ""));
+                 (n ? " normalized" : ""));
     };
     if (name == "POSITION") {
-      need("VEC3", ct == 5126 || (quant && ct != 5125), quant ? "FLOAT, BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT"
-                                                             : "FLOAT");
+      need("VEC3", ct == 5126 || (quant && ct != 5125),
+           quant ? "FLOAT, BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT" : "FLOAT");
     } else if (name == "NORMAL") {
       need("VEC3", ct == 5126 || (quant && (ct == 5120 || ct == 5122) && n),
            quant ? "FLOAT or normalized BYTE/SHORT" : "FLOAT");
@@ -455,8 +479,9 @@ class Validator {
            quant ? "FLOAT or normalized BYTE/SHORT" : "FLOAT");
     } else if (name == "TEXCOORD_0") {
       const bool core = ct == 5126 || ((ct == 5121 || ct == 5123) && n);
-      need("VEC2", core || (quant && ct != 5125), quant ? "FLOAT, BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT"
-                                                        : "FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT");
+      need("VEC2", core || (quant && ct != 5125),
+           quant ? "FLOAT, BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT"
+                 : "FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT");
     }
   }
 
@@ -467,8 +492,9 @@ class Validator {
       const std::string p = "/meshes/" + std::to_string(i);
       const json* prims = opt(m, "primitives");
       if (!prims || !prims->is_array() || prims->empty() || prims->size() > lim_.max_primitives_per_mesh)
-        fail(src_, p + "/primitives", "an array of 1 to " + std::to_string(lim_.max_primitives_per_mesh) +
-             " primitives", prims ? show(*prims) : "nothing");
+        fail(src_, p + "/primitives",
+             "an array of 1 to " + std::to_string(lim_.max_primitives_per_mesh) + " primitives",
+             prims ? show(*prims) : "nothing");
       for (size_t j = 0; j < prims->size(); ++j) {
         const json& pr = (*prims)[j];
         const std::string pp = p + "/primitives/" + std::to_string(j);
@@ -480,7 +506,8 @@ class Validator {
 
   void primitive(const json& pr, const std::string& pp, uint64_t& total_vertices, uint64_t& total_indices) {
     const json* attrs = object(pr, "attributes", pp);
-    if (!attrs || attrs->empty()) fail(src_, pp + "/attributes", "an object of attribute accessors", "nothing");
+    if (!attrs || attrs->empty())
+      fail(src_, pp + "/attributes", "an object of attribute accessors", "nothing");
     const uint64_t mode = uint(pr, "mode", pp, false, 4, 0, 6);
     index(pr, "material", pp, "materials", false);
     const int indices = index(pr, "indices", pp, "accessors", false);
@@ -490,7 +517,8 @@ class Validator {
     if (draco) {
       if (!used_.count("KHR_draco_mesh_compression"))
         fail(src_, dp, "KHR_draco_mesh_compression listed in /extensionsUsed", "it missing there");
-      if (mode != 4) fail(src_, pp + "/mode", "4 (TRIANGLES) for a Draco-compressed primitive", std::to_string(mode));
+      if (mode != 4)
+        fail(src_, pp + "/mode", "4 (TRIANGLES) for a Draco-compressed primitive", std::to_string(mode));
       index(*draco, "bufferView", dp, "bufferViews", true);
       const json* da = object(*draco, "attributes", dp);
       if (!da) fail(src_, dp + "/attributes", "an object of Draco attribute ids", "nothing");
@@ -499,7 +527,8 @@ class Validator {
         if (!it->is_number_integer() || it->get<int64_t>() < 0 || it->get<int64_t>() > 1 << 20)
           bad(ap, "a Draco attribute unique id", *it);
         if (!attrs->contains(it.key()))
-          fail(src_, ap, "an attribute also listed in the primitive's attributes", "\"" + it.key() + "\" only here");
+          fail(src_, ap, "an attribute also listed in the primitive's attributes",
+               "\"" + it.key() + "\" only here");
       }
     }
     uint64_t count = 0;
@@ -521,19 +550,20 @@ class Validator {
       }
     }
     if (count > lim_.max_vertices_per_primitive)
-      fail(src_, pp + "/attributes", "at most " + std::to_string(lim_.max_vertices_per_primitive) + " vertices",
-           std::to_string(count));
+      fail(src_, pp + "/attributes",
+           "at most " + std::to_string(lim_.max_vertices_per_primitive) + " vertices", std::to_string(count));
     total_vertices += count;
     if (total_vertices > lim_.max_total_vertices)
-      fail(src_, pp + "/attributes", "at most " + std::to_string(lim_.max_total_vertices) + " vertices in all meshes",
+      fail(src_, pp + "/attributes",
+           "at most " + std::to_string(lim_.max_total_vertices) + " vertices in all meshes",
            std::to_string(total_vertices) + " so far");
     if (indices >= 0) {
       const AccessorInfo& a = accessors_[indices];
-      if (a.type != "SCALAR" || (a.component_type != 5121 && a.component_type != 5123 && a.component_type != 5125) ||
-          a.normalized)
+      if (a.type != "SCALAR" ||
+          (a.component_type != 5121 && a.component_type != 5123 && a.component_type != 5125) || a.normalized)
         fail(src_, pp + "/indices", "a SCALAR accessor of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT",
              "accessor " + std::to_string(indices) + " of " + a.type + " componentType " +
-             std::to_string(a.component_type));
+                 std::to_string(a.component_type));
       if (!a.has_view && !draco)
         fail(src_, pp + "/indices", "an accessor with a bufferView", "accessor " + std::to_string(indices));
       if (a.count > lim_.max_indices_per_primitive)
@@ -541,13 +571,15 @@ class Validator {
              std::to_string(a.count));
       total_indices += a.count;
       if (total_indices > lim_.max_total_indices)
-        fail(src_, pp + "/indices", "at most " + std::to_string(lim_.max_total_indices) + " indices in all meshes",
+        fail(src_, pp + "/indices",
+             "at most " + std::to_string(lim_.max_total_indices) + " indices in all meshes",
              std::to_string(total_indices) + " so far");
     } else {
       total_indices += count;
     }
     if (const json* targets = opt(pr, "targets")) {
-      if (!targets->is_array() || targets->size() > 256) bad(pp + "/targets", "an array of morph targets", *targets);
+      if (!targets->is_array() || targets->size() > 256)
+        bad(pp + "/targets", "an array of morph targets", *targets);
       for (size_t t = 0; t < targets->size(); ++t) {
         const json& tg = (*targets)[t];
         const std::string tp = pp + "/targets/" + std::to_string(t);
@@ -581,8 +613,8 @@ class Validator {
         const int c = index_value((*ch)[k], cp, "nodes");
         if (size_t(c) == i) fail(src_, cp, "another node", "the node itself");
         if (parents_[c] >= 0)
-          fail(src_, cp, "a node with one parent", "node " + std::to_string(c) + ", already a child of node " +
-               std::to_string(parents_[c]));
+          fail(src_, cp, "a node with one parent",
+               "node " + std::to_string(c) + ", already a child of node " + std::to_string(parents_[c]));
         parents_[c] = int(i);
       }
     }
@@ -598,8 +630,8 @@ class Validator {
         k = size_t(parents_[k]);
       }
       if (state[k] == 2 && parents_[k] >= 0)
-        fail(src_, "/nodes/" + std::to_string(k) + "/children", "a tree of nodes", "a cycle through node " +
-             std::to_string(k));
+        fail(src_, "/nodes/" + std::to_string(k) + "/children", "a tree of nodes",
+             "a cycle through node " + std::to_string(k));
       for (size_t w : walk) state[w] = 1;
     }
   }
@@ -615,7 +647,8 @@ class Validator {
         const std::string np = p + "/nodes/" + std::to_string(k);
         const int nd = index_value((*ns)[k], np, "nodes");
         if (parents_[nd] >= 0)
-          fail(src_, np, "a root node", "node " + std::to_string(nd) + ", a child of node " + std::to_string(parents_[nd]));
+          fail(src_, np, "a root node",
+               "node " + std::to_string(nd) + ", a child of node " + std::to_string(parents_[nd]));
       }
     }
     index(doc_, "scene", "", "scenes", false);

@@ -59,8 +59,8 @@ std::filesystem::path resolve_external(const Source& src, const std::string& uri
 // True when `candidate` (any spelling) canonically lies inside the base folder; never throws.
 bool inside_base(const Source& src, const std::filesystem::path& candidate);
 // Reads a whole file of at most `max_bytes`. Throws Error at `path`.
-std::vector<uint8_t> read_file_limited(const Source& src, const std::filesystem::path& file, uint64_t max_bytes,
-                                       const std::string& path);
+std::vector<uint8_t> read_file_limited(const Source& src, const std::filesystem::path& file,
+                                       uint64_t max_bytes, const std::string& path);
 
 // Structure, indices, ranges, counts and URI policy of the whole document; throws the first problem.
 void validate_document(const nlohmann::json& doc, const Container& container, const Source& src);
@@ -101,6 +101,7 @@ class DracoDecoder {
 
 // Decodes PNG or JPEG to RGBA8 after checking its header against the limits.
 // `total_bytes` accumulates decoded bytes across images for max_total_image_bytes.
-Image decode_image(std::span<const uint8_t> encoded, const Source& src, const std::string& path, uint64_t& total_bytes);
+Image decode_image(std::span<const uint8_t> encoded, const Source& src, const std::string& path,
+                   uint64_t& total_bytes);
 
 }  // namespace welkin::assets::detail

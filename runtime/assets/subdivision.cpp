@@ -44,11 +44,14 @@ SubdivScheme resolve_scheme(const ControlMesh& m, SubdivScheme s) {
 
 void validate(const ControlMesh& m) {
   if (m.face_sizes.empty() || m.face_sizes.size() > kMaxControlFaces)
-    bad("/face_sizes", "1 to " + std::to_string(kMaxControlFaces) + " faces", std::to_string(m.face_sizes.size()));
+    bad("/face_sizes", "1 to " + std::to_string(kMaxControlFaces) + " faces",
+        std::to_string(m.face_sizes.size()));
   if (m.positions.size() > kMaxControlFaces * 4)
-    bad("/positions", "at most " + std::to_string(kMaxControlFaces * 4) + " vertices", std::to_string(m.positions.size()));
+    bad("/positions", "at most " + std::to_string(kMaxControlFaces * 4) + " vertices",
+        std::to_string(m.positions.size()));
   for (size_t i = 0; i < m.positions.size(); ++i)
-    if (!std::isfinite(m.positions[i].x) || !std::isfinite(m.positions[i].y) || !std::isfinite(m.positions[i].z))
+    if (!std::isfinite(m.positions[i].x) || !std::isfinite(m.positions[i].y) ||
+        !std::isfinite(m.positions[i].z))
       bad("/positions/" + std::to_string(i), "finite coordinates", "a NaN or infinity");
   size_t offset = 0;
   for (size_t f = 0; f < m.face_sizes.size(); ++f) {
@@ -60,20 +63,22 @@ void validate(const ControlMesh& m) {
     for (int k = 0; k < n; ++k) {
       const int v = m.face_indices[offset + k];
       if (v < 0 || size_t(v) >= m.positions.size())
-        bad("/face_indices/" + std::to_string(offset + k), "a vertex index below " + std::to_string(m.positions.size()),
-            std::to_string(v));
+        bad("/face_indices/" + std::to_string(offset + k),
+            "a vertex index below " + std::to_string(m.positions.size()), std::to_string(v));
       for (int j = 0; j < k; ++j)
         if (m.face_indices[offset + j] == v)
-          bad("/face_indices/" + std::to_string(offset + k), "distinct vertices within face " + std::to_string(f),
-              "vertex " + std::to_string(v) + " twice");
+          bad("/face_indices/" + std::to_string(offset + k),
+              "distinct vertices within face " + std::to_string(f), "vertex " + std::to_string(v) + " twice");
     }
     offset += size_t(n);
   }
   if (offset != m.face_indices.size())
-    bad("/face_indices", std::to_string(offset) + " indices (the sum of face_sizes)", std::to_string(m.face_indices.size()));
+    bad("/face_indices", std::to_string(offset) + " indices (the sum of face_sizes)",
+        std::to_string(m.face_indices.size()));
 }
 
-std::unique_ptr<Far::TopologyRefiner> make_refiner(const ControlMesh& m, SubdivScheme scheme, bool sharp_corners) {
+std::unique_ptr<Far::TopologyRefiner> make_refiner(const ControlMesh& m, SubdivScheme scheme,
+                                                   bool sharp_corners) {
   Far::TopologyDescriptor desc;
   desc.numVertices = int(m.positions.size());
   desc.numFaces = int(m.face_sizes.size());
@@ -106,12 +111,11 @@ uint64_t uniform_triangles(const ControlMesh& m, SubdivScheme scheme, int level)
 struct P3 {
   float v[3];
   void Clear(void* = nullptr) { v[0] = v[1] = v[2] = 0.0f; }
-  void AddWithWeight(const P3& s, float w) {
-    v[0] += w * s.v[0], v[1] += w * s.v[1], v[2] += w * s.v[2];
-  }
+  void AddWithWeight(const P3& s, float w) { v[0] += w * s.v[0], v[1] += w * s.v[1], v[2] += w * s.v[2]; }
 };
 
-std::vector<glm::vec3> face_normals_average(const std::vector<glm::vec3>& pos, const std::vector<uint32_t>& idx) {
+std::vector<glm::vec3> face_normals_average(const std::vector<glm::vec3>& pos,
+                                            const std::vector<uint32_t>& idx) {
   std::vector<glm::vec3> n(pos.size(), glm::vec3(0.0f));
   for (size_t t = 0; t + 2 < idx.size(); t += 3) {
     const glm::vec3 fn = glm::cross(pos[idx[t + 1]] - pos[idx[t]], pos[idx[t + 2]] - pos[idx[t]]);
@@ -128,8 +132,10 @@ RefinedMesh refine_uniform(const ControlMesh& m, SubdivScheme scheme, const Refi
   int level = std::clamp(s.levels, 0, kMaxLevels);
   while (level > 0 && uniform_triangles(m, scheme, level) > s.max_triangles) --level;
   if (uniform_triangles(m, scheme, level) > s.max_triangles)
-    bad("/max_triangles", "a budget of at least " + std::to_string(uniform_triangles(m, scheme, 0)) +
-        " triangles (the unrefined mesh)", std::to_string(s.max_triangles));
+    bad("/max_triangles",
+        "a budget of at least " + std::to_string(uniform_triangles(m, scheme, 0)) +
+            " triangles (the unrefined mesh)",
+        std::to_string(s.max_triangles));
   auto refiner = make_refiner(m, scheme, s.sharp_boundary_corners);
   Far::TopologyRefiner::UniformOptions uo(level);
   uo.fullTopologyInLastLevel = true;
@@ -141,7 +147,8 @@ RefinedMesh refine_uniform(const ControlMesh& m, SubdivScheme scheme, const Refi
   const Far::TopologyLevel& last = refiner->GetLevel(level);
   std::vector<P3> fine(size_t(last.GetNumVertices()));
   if (level == 0) {
-    for (size_t i = 0; i < fine.size(); ++i) fine[i] = P3{{m.positions[i].x, m.positions[i].y, m.positions[i].z}};
+    for (size_t i = 0; i < fine.size(); ++i)
+      fine[i] = P3{{m.positions[i].x, m.positions[i].y, m.positions[i].z}};
   } else {
     // Control points to the finest level in one pass of Far stencils evaluated by the Osd CPU kernel.
     Far::StencilTableFactory::Options so;
@@ -150,8 +157,8 @@ RefinedMesh refine_uniform(const ControlMesh& m, SubdivScheme scheme, const Refi
     std::unique_ptr<const Far::StencilTable> st(Far::StencilTableFactory::Create(*refiner, so));
     Osd::BufferDescriptor desc(0, 3, 3);
     Osd::CpuEvaluator::EvalStencils(&m.positions[0].x, desc, fine[0].v, desc, st->GetSizes().data(),
-                                    st->GetOffsets().data(), st->GetControlIndices().data(), st->GetWeights().data(), 0,
-                                    st->GetNumStencils());
+                                    st->GetOffsets().data(), st->GetControlIndices().data(),
+                                    st->GetWeights().data(), 0, st->GetNumStencils());
   }
   std::vector<P3> tan1, tan2;
   if (s.limit_surface) {
@@ -162,7 +169,8 @@ RefinedMesh refine_uniform(const ControlMesh& m, SubdivScheme scheme, const Refi
     fine.swap(limit);
   }
   out.positions.resize(fine.size());
-  for (size_t i = 0; i < fine.size(); ++i) out.positions[i] = glm::vec3(fine[i].v[0], fine[i].v[1], fine[i].v[2]);
+  for (size_t i = 0; i < fine.size(); ++i)
+    out.positions[i] = glm::vec3(fine[i].v[0], fine[i].v[1], fine[i].v[2]);
   for (int f = 0; f < last.GetNumFaces(); ++f) {
     const auto fv = last.GetFaceVertices(f);
     for (int k = 1; k + 1 < fv.size(); ++k)
@@ -175,7 +183,8 @@ RefinedMesh refine_uniform(const ControlMesh& m, SubdivScheme scheme, const Refi
       const glm::vec3 n = glm::cross(glm::vec3(tan1[i].v[0], tan1[i].v[1], tan1[i].v[2]),
                                      glm::vec3(tan2[i].v[0], tan2[i].v[1], tan2[i].v[2]));
       const float l = glm::length(n);
-      if (l > 1e-20f && std::isfinite(l)) out.normals[i] = glm::dot(n, out.normals[i]) < 0.0f ? -n / l : n / l;
+      if (l > 1e-20f && std::isfinite(l))
+        out.normals[i] = glm::dot(n, out.normals[i]) < 0.0f ? -n / l : n / l;
     }
   }
   return out;
@@ -207,13 +216,15 @@ RefinedMesh refine_adaptive(const ControlMesh& m, SubdivScheme scheme, const Ref
     int rates[64];
     for (int f = 0; f < base.GetNumFaces(); ++f) {
       const int n = rates_of(f, drop, rates);
-      Bfr::Tessellation t(Bfr::Parameterization(scheme == SubdivScheme::loop ? Sdc::SCHEME_LOOP : Sdc::SCHEME_CATMARK, n),
-                          n, rates, topts);
+      Bfr::Tessellation t(
+          Bfr::Parameterization(scheme == SubdivScheme::loop ? Sdc::SCHEME_LOOP : Sdc::SCHEME_CATMARK, n), n,
+          rates, topts);
       facets += uint64_t(t.GetNumFacets());
     }
     if (facets <= s.max_triangles) break;
     if (drop >= max_level)
-      bad("/max_triangles", "a budget of at least " + std::to_string(facets) + " triangles (all edges at level 0)",
+      bad("/max_triangles",
+          "a budget of at least " + std::to_string(facets) + " triangles (all edges at level 0)",
           std::to_string(s.max_triangles));
   }
 
@@ -302,8 +313,12 @@ RefinedMesh refine(const ControlMesh& mesh, const RefineSettings& settings) {
   validate(mesh);
   if (settings.levels < 0 || settings.levels > kMaxLevels)
     bad("/levels", "0 to " + std::to_string(kMaxLevels), std::to_string(settings.levels));
+  if (!std::isfinite(settings.camera_position.x) || !std::isfinite(settings.camera_position.y) ||
+      !std::isfinite(settings.camera_position.z))
+    bad("/camera_position", "finite coordinates", "a NaN or infinity");
   if (!std::isfinite(settings.adaptive_distance) || settings.adaptive_distance < 0.0f)
-    bad("/adaptive_distance", "0 (uniform) or a positive distance", std::to_string(settings.adaptive_distance));
+    bad("/adaptive_distance", "0 (uniform) or a positive distance",
+        std::to_string(settings.adaptive_distance));
   const SubdivScheme scheme = resolve_scheme(mesh, settings.scheme);
   return settings.adaptive_distance > 0.0f ? refine_adaptive(mesh, scheme, settings)
                                            : refine_uniform(mesh, scheme, settings);
@@ -311,8 +326,12 @@ RefinedMesh refine(const ControlMesh& mesh, const RefineSettings& settings) {
 
 std::vector<LevelCounts> uniform_level_counts(const ControlMesh& mesh, SubdivScheme scheme, int levels) {
   validate(mesh);
-  if (levels < 0 || levels > kMaxLevels) bad("/levels", "0 to " + std::to_string(kMaxLevels), std::to_string(levels));
+  if (levels < 0 || levels > kMaxLevels)
+    bad("/levels", "0 to " + std::to_string(kMaxLevels), std::to_string(levels));
   scheme = resolve_scheme(mesh, scheme);
+  if (uniform_triangles(mesh, scheme, levels) > (uint64_t(1) << 28))
+    bad("/levels", "at most 2^28 triangles at the last level",
+        std::to_string(uniform_triangles(mesh, scheme, levels)));
   auto refiner = make_refiner(mesh, scheme, true);
   refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(levels));
   std::vector<LevelCounts> out;

@@ -1,9 +1,8 @@
 // The single translation unit that compiles tinygltf, with file access routed through the loader.
 #include <fstream>  // tinygltf's writer needs it and TINYGLTF_NO_FS drops the include
 #define TINYGLTF_IMPLEMENTATION
-#include "tinygltf_config.h"
-
 #include "internal.h"
+#include "tinygltf_config.h"
 
 namespace welkin::assets::detail {
 
@@ -15,7 +14,9 @@ bool file_exists(const std::string& path, void* user) {
   return inside_base(src, path) && std::filesystem::is_regular_file(path, ec);
 }
 
-std::string expand_path(const std::string& path, void*) { return path; }
+std::string expand_path(const std::string& path, void*) {
+  return path;
+}
 
 bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
   const Source& src = *static_cast<const Source*>(user);
@@ -61,7 +62,8 @@ void parse_with_tinygltf(tinygltf::Model& out, std::span<const uint8_t> bytes, c
   if (container.is_glb)
     ok = loader.LoadBinaryFromMemory(&out, &err, &warn, bytes.data(), unsigned(bytes.size()), base);
   else
-    ok = loader.LoadASCIIFromString(&out, &err, &warn, container.json.data(), unsigned(container.json.size()), base);
+    ok = loader.LoadASCIIFromString(&out, &err, &warn, container.json.data(), unsigned(container.json.size()),
+                                    base);
   if (!ok) {
     while (!err.empty() && err.back() == '\n') err.pop_back();
     throw Error(ErrorInfo{.file = src.name, .message = "tinygltf could not parse the file: " + err});

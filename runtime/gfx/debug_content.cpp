@@ -69,13 +69,11 @@ void backdrop_system(SystemContext& sc) {
 void debug_shape_system(SystemContext& sc) {
   Registry& reg = sc.world.registry();
   auto& rc = sc.world.resource<RenderContext>();
-  DirectionalLight light;
-  if (Entity l = reg.first<DirectionalLight>(); !l.is_null()) light = *reg.get<DirectionalLight>(l);
   std::vector<DebugShape> shapes;
   reg.each<DebugShape>([&](Entity, DebugShape& s) { shapes.push_back(s); });
   const FrameTargets t = *sc.targets;
   sc.graph->add_pass("debug_shapes", [&](PassBuilder& pb) { pb.read(t.color); pb.write(t.color); pb.read(t.depth); pb.write(t.depth); },
-                     [&rc, shapes, light, t](PassContext& pc) {
+                     [&rc, &reg, shapes, t](PassContext& pc) {
     Framebuffer fb(&pc.texture(t.color), &pc.texture(t.depth));
     fb.bind();
     glEnable(GL_DEPTH_TEST);
@@ -84,10 +82,7 @@ void debug_shape_system(SystemContext& sc) {
     const Program& p = rc.shaders.graphics("debug_shape.vert", "debug_shape.frag");
     p.use();
     p.set("u_view_projection", rc.view.view_projection);
-    glm::vec3 sun = glm::vec3(direction_from_azimuth_elevation(light.azimuth_deg, light.elevation_deg));
-    p.set("u_sun_direction", sun);
-    p.set("u_sun_illuminance", light.color * light.illuminance_lux);
-    p.set("u_ambient_fraction", light.ambient_fraction);
+    set_default_light_uniforms(p, reg);
     for (const DebugShape& s : shapes) {
       // Camera-relative in double, then to float: precision independent of distance from the origin.
       glm::vec3 rel = glm::vec3(s.position_m - rc.view.camera_position_m);
@@ -104,6 +99,15 @@ void debug_shape_system(SystemContext& sc) {
 }
 
 }  // namespace
+
+void set_default_light_uniforms(const Program& p, const Registry& reg) {
+  DirectionalLight light;
+  if (const ComponentPool* pool = reg.pool(type_id<DirectionalLight>()); pool && !pool->empty())
+    light = *reg.get<DirectionalLight>(pool->entities()[0]);
+  p.set("u_sun_direction", glm::vec3(direction_from_azimuth_elevation(light.azimuth_deg, light.elevation_deg)));
+  p.set("u_sun_illuminance", light.color * light.illuminance_lux);
+  p.set("u_ambient_fraction", light.ambient_fraction);
+}
 
 void register_debug_content(ModuleContext& ctx) {
   ctx.component<Backdrop>();

@@ -14,9 +14,9 @@
 // distance from the valley axis (2-3 km peaks in the ring), domain-warped, then droplet hydraulic
 // erosion and a thermal (talus) pass on a raster of the tile. Same seed and same binary: same bytes
 // (single-threaded, integer hashing for randomness, no clocks).
-#include <CLI/CLI.hpp>
 #include <stb_image_write.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -53,7 +53,9 @@ uint32_t hash3(int32_t x, int32_t y, uint32_t seed) {
   return h;
 }
 
-double smooth(double t) { return t * t * t * (t * (t * 6 - 15) + 10); }
+double smooth(double t) {
+  return t * t * t * (t * (t * 6 - 15) + 10);
+}
 
 double smoothstep(double a, double b, double x) {
   const double t = std::clamp((x - a) / (b - a), 0.0, 1.0);
@@ -64,7 +66,8 @@ double smoothstep(double a, double b, double x) {
 struct Gradients {
   double g[256][2];
   Gradients() {
-    for (int k = 0; k < 256; ++k) g[k][0] = std::cos(k * 6.283185307179586 / 256), g[k][1] = std::sin(k * 6.283185307179586 / 256);
+    for (int k = 0; k < 256; ++k)
+      g[k][0] = std::cos(k * 6.283185307179586 / 256), g[k][1] = std::sin(k * 6.283185307179586 / 256);
   }
 };
 const Gradients kGradients;
@@ -86,7 +89,8 @@ double gradient_noise(double x, double y, uint32_t seed) {
 
 double fbm(double x, double y, uint32_t seed, int octaves) {
   double sum = 0, amp = 0.5;
-  for (int i = 0; i < octaves; ++i, x *= 2.03, y *= 2.03, amp *= 0.5) sum += amp * gradient_noise(x, y, seed + i);
+  for (int i = 0; i < octaves; ++i, x *= 2.03, y *= 2.03, amp *= 0.5)
+    sum += amp * gradient_noise(x, y, seed + i);
   return sum;
 }
 
@@ -120,7 +124,9 @@ class Terrain {
   double runway_height() const { return runway_height_; }
 
   // Valley axis: straight along the runway, meandering farther out.
-  double axis(double x) const { return 900.0 * std::sin(x / 7300.0 + 0.3 * seed_) * smoothstep(2500, 9000, std::abs(x)); }
+  double axis(double x) const {
+    return 900.0 * std::sin(x / 7300.0 + 0.3 * seed_) * smoothstep(2500, 9000, std::abs(x));
+  }
 
   double natural(double x, double y) const {
     const double wx = x + 1800.0 * fbm(x / 11000.0, y / 11000.0, seed_ + 101, 4);
@@ -128,8 +134,10 @@ class Terrain {
     const double dv = std::abs(y - axis(x));
     const double re = std::sqrt((x / 2.2) * (x / 2.2) + dv * dv);
     const double envelope = 2200.0 * smoothstep(2000.0, 24000.0, re);
-    const double floor = 160.0 + 0.006 * std::min(std::abs(x), 20000.0) + 35.0 * fbm(x / 5000.0, y / 5000.0, seed_ + 303, 3);
-    const double hills = 110.0 * (0.5 + 0.5 * fbm(x / 2600.0, y / 2600.0, seed_ + 404, 5)) * smoothstep(2500.0, 7000.0, re);
+    const double floor =
+        160.0 + 0.006 * std::min(std::abs(x), 20000.0) + 35.0 * fbm(x / 5000.0, y / 5000.0, seed_ + 303, 3);
+    const double hills =
+        110.0 * (0.5 + 0.5 * fbm(x / 2600.0, y / 2600.0, seed_ + 404, 5)) * smoothstep(2500.0, 7000.0, re);
     return floor + hills + envelope * (0.25 + 0.8 * ridged(wx / 15000.0, wy / 15000.0, seed_ + 505, 8));
   }
 
@@ -152,8 +160,8 @@ class Terrain {
 
 // A square raster over the tile: heights after erosion, sampled bilinearly.
 struct Raster {
-  int n = 0;         // samples per side
-  double cell = 0;   // metres between samples
+  int n = 0;        // samples per side
+  double cell = 0;  // metres between samples
   std::vector<float> h;
   float& at(int i, int j) { return h[size_t(j) * n + i]; }
   float at(int i, int j) const { return h[size_t(j) * n + i]; }
@@ -164,7 +172,8 @@ struct Raster {
     const double fy = std::clamp((y + kTileHalf) / cell, 0.0, n - 1.0001);
     const int i = int(fx), j = int(fy);
     const double tx = fx - i, ty = fy - j;
-    return (at(i, j) * (1 - tx) + at(i + 1, j) * tx) * (1 - ty) + (at(i, j + 1) * (1 - tx) + at(i + 1, j + 1) * tx) * ty;
+    return (at(i, j) * (1 - tx) + at(i + 1, j) * tx) * (1 - ty) +
+           (at(i, j + 1) * (1 - tx) + at(i + 1, j + 1) * tx) * ty;
   }
 };
 
@@ -186,8 +195,8 @@ void hydraulic_erosion(Raster& r, uint32_t seed, int droplets) {
       }
     }
   for (auto& b : brush) b.second /= wsum;
-  const float inertia = 0.05f, capacity_factor = 4.0f, min_capacity = 0.01f, deposit_rate = 0.3f, erode_rate = 0.5f,
-              evaporate = 0.015f, gravity = 4.0f;
+  const float inertia = 0.05f, capacity_factor = 4.0f, min_capacity = 0.01f, deposit_rate = 0.3f,
+              erode_rate = 0.5f, evaporate = 0.015f, gravity = 4.0f;
   for (int d = 0; d < droplets; ++d) {
     const uint32_t h1 = hash3(d, 1, seed), h2 = hash3(d, 2, seed);
     float px = 2.0f + (h1 % 100000u) / 100000.0f * (n - 5), py = 2.0f + (h2 % 100000u) / 100000.0f * (n - 5);
@@ -198,7 +207,8 @@ void hydraulic_erosion(Raster& r, uint32_t seed, int droplets) {
       const float h00 = H(i, j), h10 = H(i + 1, j), h01 = H(i, j + 1), h11 = H(i + 1, j + 1);
       const float gx = (h10 - h00) * (1 - ty) + (h11 - h01) * ty;
       const float gy = (h01 - h00) * (1 - tx) + (h11 - h10) * tx;
-      const float height = h00 * (1 - tx) * (1 - ty) + h10 * tx * (1 - ty) + h01 * (1 - tx) * ty + h11 * tx * ty;
+      const float height =
+          h00 * (1 - tx) * (1 - ty) + h10 * tx * (1 - ty) + h01 * (1 - tx) * ty + h11 * tx * ty;
       dx = dx * inertia - gx * (1 - inertia);
       dy = dy * inertia - gy * (1 - inertia);
       const float len = std::sqrt(dx * dx + dy * dy);
@@ -260,14 +270,17 @@ void thermal_erosion(Raster& r, int iterations, double talus) {
 struct Rgb {
   double r, g, b;
 };
-Rgb mix(Rgb a, Rgb b, double t) { return {a.r + (b.r - a.r) * t, a.g + (b.g - a.g) * t, a.b + (b.b - a.b) * t}; }
+Rgb mix(Rgb a, Rgb b, double t) {
+  return {a.r + (b.r - a.r) * t, a.g + (b.g - a.g) * t, a.b + (b.b - a.b) * t};
+}
 
 // Albedo (linear) from height, slope (rise over run) and noise: grass, forest, rock, scree, snow.
 Rgb ground_colour(double h, double slope, double n1, double n2, double erosion) {
-  const Rgb grass{0.105, 0.16, 0.045}, dry{0.20, 0.19, 0.09}, forest{0.045, 0.075, 0.03}, rock{0.21, 0.19, 0.17},
-      dark_rock{0.10, 0.095, 0.09}, snow{0.80, 0.82, 0.85}, silt{0.17, 0.15, 0.11};
+  const Rgb grass{0.105, 0.16, 0.045}, dry{0.20, 0.19, 0.09}, forest{0.045, 0.075, 0.03},
+      rock{0.21, 0.19, 0.17}, dark_rock{0.10, 0.095, 0.09}, snow{0.80, 0.82, 0.85}, silt{0.17, 0.15, 0.11};
   Rgb c = mix(grass, dry, std::clamp(0.5 + 0.8 * n1, 0.0, 1.0));
-  c = mix(c, forest, smoothstep(0.05, 0.35, n2) * (1 - smoothstep(1100, 1700, h)) * smoothstep(0.08, 0.2, slope));
+  c = mix(c, forest,
+          smoothstep(0.05, 0.35, n2) * (1 - smoothstep(1100, 1700, h)) * smoothstep(0.08, 0.2, slope));
   c = mix(c, silt, std::clamp(erosion * 0.08, 0.0, 0.7));  // deposits along eroded channels
   c = mix(c, mix(rock, dark_rock, std::clamp(0.5 + n1, 0.0, 1.0)), smoothstep(0.45, 0.75, slope + 0.1 * n2));
   const double snowline = 2050 + 180 * n1;
@@ -275,7 +288,9 @@ Rgb ground_colour(double h, double slope, double n1, double n2, double erosion) 
   return c;
 }
 
-uint8_t srgb(double linear) { return welkin::linear_to_srgb8(float(std::clamp(linear, 0.0, 1.0))); }
+uint8_t srgb(double linear) {
+  return welkin::linear_to_srgb8(float(std::clamp(linear, 0.0, 1.0)));
+}
 
 std::vector<uint8_t> encode_jpeg(const std::vector<uint8_t>& rgb, int w, int h, int quality) {
   std::vector<uint8_t> out;
@@ -295,16 +310,18 @@ double stretched(double u, double half) {
   return half * (a * u + (1 - a) * u * u * u);
 }
 
-glm::vec3 to_gltf(double x, double y, double z) { return glm::vec3(float(x), float(z), float(-y)); }
+glm::vec3 to_gltf(double x, double y, double z) {
+  return glm::vec3(float(x), float(z), float(-y));
+}
 
 struct Options {
   uint32_t seed = 1;
   std::string out = "assets/terrain/valley.glb";
   std::string report;
   std::string preview;
-  int grid = 1024;         // tile cells per side
-  int texture = 4096;      // tile base colour size (~10 m per texel)
-  int raster = 1024;       // erosion raster cells per side
+  int grid = 1024;     // tile cells per side
+  int texture = 4096;  // tile base colour size (~10 m per texel)
+  int raster = 1024;   // erosion raster cells per side
   int droplets = 700000;
   bool quick = false;
 };
@@ -349,7 +366,8 @@ int run(Options o) {
   std::vector<float> th(size_t(T + 2) * (T + 2));
   for (int j = 0; j < T + 2; ++j)
     for (int i = 0; i < T + 2; ++i)
-      th[size_t(j) * (T + 2) + i] = float(height(-kTileHalf + (i - 0.5) * texel, kTileHalf - (j - 0.5) * texel));
+      th[size_t(j) * (T + 2) + i] =
+          float(height(-kTileHalf + (i - 0.5) * texel, kTileHalf - (j - 0.5) * texel));
   std::vector<uint8_t> rgb(size_t(T) * T * 3);
   double max_height = -1e9, min_height = 1e9;
   for (int j = 0; j < T; ++j)
@@ -360,9 +378,11 @@ int run(Options o) {
       max_height = std::max(max_height, h), min_height = std::min(min_height, h);
       const double sx = (at(1, 0) - at(-1, 0)) / (2 * texel), sy = (at(0, 1) - at(0, -1)) / (2 * texel);
       const double slope = std::sqrt(sx * sx + sy * sy);
-      const double n1 = fbm(x / 900.0, y / 900.0, o.seed + 606, 5), n2 = fbm(x / 2500.0, y / 2500.0, o.seed + 707, 4);
+      const double n1 = fbm(x / 900.0, y / 900.0, o.seed + 606, 5),
+                   n2 = fbm(x / 2500.0, y / 2500.0, o.seed + 707, 4);
       Rgb c = ground_colour(h, slope, n1, n2, std::max(0.0, double(delta.sample(x, y))) / 10.0);
-      const double rw = std::max(std::abs(x) - kRunwayHalfLength, 0.0) + std::max(std::abs(y) - kRunwayHalfWidth, 0.0);
+      const double rw =
+          std::max(std::abs(x) - kRunwayHalfLength, 0.0) + std::max(std::abs(y) - kRunwayHalfWidth, 0.0);
       if (rw < texel) c = mix(c, Rgb{0.06, 0.06, 0.065}, 1 - rw / texel);  // asphalt
       uint8_t* p = &rgb[(size_t(j) * T + i) * 3];
       p[0] = srgb(c.r), p[1] = srgb(c.g), p[2] = srgb(c.b);
@@ -412,7 +432,8 @@ int run(Options o) {
   for (size_t k = 0; k < ring_loop.size(); ++k) {
     const uint32_t a = ring_loop[k], b = ring_loop[(k + 1) % ring_loop.size()];
     const uint32_t a2 = skirt0 + uint32_t(k), b2 = skirt0 + uint32_t((k + 1) % ring_loop.size());
-    const glm::vec3 n = glm::cross(tile.positions[b] - tile.positions[a], tile.positions[a2] - tile.positions[a]);
+    const glm::vec3 n =
+        glm::cross(tile.positions[b] - tile.positions[a], tile.positions[a2] - tile.positions[a]);
     const glm::vec3 out(tile.positions[a].x, 0.0f, tile.positions[a].z);
     if (glm::dot(n, out) >= 0)
       tile.indices.insert(tile.indices.end(), {a, b, a2, b, b2, a2});
@@ -441,7 +462,8 @@ int run(Options o) {
     for (int i = 0; i < R; ++i) {
       const double cx = -kRingHalf + (i + 0.5) * rc, cy = -kRingHalf + (j + 0.5) * rc;
       if (std::abs(cx) < kTileHalf && std::abs(cy) < kTileHalf) continue;
-      const uint32_t a = ring_vertex(i, j), b = ring_vertex(i + 1, j), c = ring_vertex(i, j + 1), d = ring_vertex(i + 1, j + 1);
+      const uint32_t a = ring_vertex(i, j), b = ring_vertex(i + 1, j), c = ring_vertex(i, j + 1),
+                     d = ring_vertex(i + 1, j + 1);
       ring.indices.insert(ring.indices.end(), {a, b, c, b, d, c});
     }
   const int RT = o.quick ? 256 : 1024;
@@ -453,14 +475,16 @@ int run(Options o) {
       const double h = terrain.natural(x, y);
       const double sx = (terrain.natural(x + rtexel, y) - terrain.natural(x - rtexel, y)) / (2 * rtexel);
       const double sy = (terrain.natural(x, y + rtexel) - terrain.natural(x, y - rtexel)) / (2 * rtexel);
-      const Rgb c = ground_colour(h, std::sqrt(sx * sx + sy * sy), fbm(x / 3000.0, y / 3000.0, o.seed + 606, 3),
-                                  fbm(x / 6000.0, y / 6000.0, o.seed + 707, 3), 0.0);
+      const Rgb c =
+          ground_colour(h, std::sqrt(sx * sx + sy * sy), fbm(x / 3000.0, y / 3000.0, o.seed + 606, 3),
+                        fbm(x / 6000.0, y / 6000.0, o.seed + 707, 3), 0.0);
       uint8_t* p = &ring_rgb[(size_t(j) * RT + i) * 3];
       p[0] = srgb(c.r), p[1] = srgb(c.g), p[2] = srgb(c.b);
     }
   welkin::assets::Material ring_mat = tile_mat;
   ring_mat.name = "horizon_ground";
-  ring_mat.base_color.texture = w.add_texture(w.add_image(encode_jpeg(ring_rgb, RT, RT, 85), "image/jpeg", "horizon_base_color"), clamp);
+  ring_mat.base_color.texture = w.add_texture(
+      w.add_image(encode_jpeg(ring_rgb, RT, RT, 85), "image/jpeg", "horizon_base_color"), clamp);
   ring.material = w.add_material(ring_mat);
 
   // Runway surface (0.3 m above the flat strip) and box buildings on the apron north of it.
@@ -468,7 +492,8 @@ int run(Options o) {
   MeshData built;
   built.name = "runway_and_buildings";
   auto box = [&](double cx, double cy, double sx, double sy, double sz, double base) {
-    const glm::vec3 c0 = to_gltf(cx - sx / 2, cy - sy / 2, base), c1 = to_gltf(cx + sx / 2, cy + sy / 2, base + sz);
+    const glm::vec3 c0 = to_gltf(cx - sx / 2, cy - sy / 2, base),
+                    c1 = to_gltf(cx + sx / 2, cy + sy / 2, base + sz);
     const glm::vec3 lo = glm::min(c0, c1), hi = glm::max(c0, c1);
     const glm::vec3 normals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
     for (const glm::vec3& n : normals) {
@@ -485,7 +510,8 @@ int run(Options o) {
         built.normals.push_back(n);
         built.uv0.emplace_back(float(k == 1 || k == 2), float(k >= 2));
       }
-      const glm::vec3 fn = glm::cross(built.positions[s + 1] - built.positions[s], built.positions[s + 2] - built.positions[s]);
+      const glm::vec3 fn = glm::cross(built.positions[s + 1] - built.positions[s],
+                                      built.positions[s + 2] - built.positions[s]);
       if (glm::dot(fn, n) > 0)
         built.indices.insert(built.indices.end(), {s, s + 1, s + 2, s, s + 2, s + 3});
       else
@@ -493,11 +519,11 @@ int run(Options o) {
     }
   };
   box(0, 0, 2 * kRunwayHalfLength, 2 * kRunwayHalfWidth, 0.3, z0);
-  box(-600, 210, 70, 45, 16, z0);   // hangars
+  box(-600, 210, 70, 45, 16, z0);  // hangars
   box(-500, 210, 70, 45, 16, z0);
-  box(-350, 230, 110, 28, 11, z0);  // terminal
-  box(-240, 200, 9, 9, 32, z0);     // control tower
-  box(-150, 260, 40, 25, 8, z0);    // fire station
+  box(-350, 230, 110, 28, 11, z0);                                                   // terminal
+  box(-240, 200, 9, 9, 32, z0);                                                      // control tower
+  box(-150, 260, 40, 25, 8, z0);                                                     // fire station
   for (int k = 0; k < 6; ++k) box(250 + 70 * k, 320 + 20 * (k % 2), 18, 12, 7, z0);  // houses
   welkin::assets::Material built_mat;
   built_mat.name = "concrete";
@@ -509,36 +535,47 @@ int run(Options o) {
   std::fprintf(stderr, "terrain: Draco encoding ...\n");
   const auto wt = w.add_mesh(tile, draco);
   const auto wr = w.add_mesh(ring, DracoSettings{.enabled = true, .position_bits = 14, .uv_bits = 12});
-  const auto wb = w.add_mesh(built, DracoSettings{.enabled = true, .position_bits = 16, .normal_bits = 8, .uv_bits = 8});
+  const auto wb =
+      w.add_mesh(built, DracoSettings{.enabled = true, .position_bits = 16, .normal_bits = 8, .uv_bits = 8});
   const int root = w.add_node("valley", -1);
-  w.add_node("valley_tile", wt.mesh, glm::vec3(0.0f), glm::quat(1.0f, 0.0f, 0.0f, 0.0f), glm::vec3(1.0f), root);
-  w.add_node("horizon_ring", wr.mesh, glm::vec3(0.0f), glm::quat(1.0f, 0.0f, 0.0f, 0.0f), glm::vec3(1.0f), root);
-  w.add_node("runway_and_buildings", wb.mesh, glm::vec3(0.0f), glm::quat(1.0f, 0.0f, 0.0f, 0.0f), glm::vec3(1.0f), root);
+  w.add_node("valley_tile", wt.mesh, glm::vec3(0.0f), glm::quat(1.0f, 0.0f, 0.0f, 0.0f), glm::vec3(1.0f),
+             root);
+  w.add_node("horizon_ring", wr.mesh, glm::vec3(0.0f), glm::quat(1.0f, 0.0f, 0.0f, 0.0f), glm::vec3(1.0f),
+             root);
+  w.add_node("runway_and_buildings", wb.mesh, glm::vec3(0.0f), glm::quat(1.0f, 0.0f, 0.0f, 0.0f),
+             glm::vec3(1.0f), root);
   nlohmann::json extras = {
       {"generator", "welkin-terrain-gen"},
       {"seed", o.seed},
-      {"frame", "glTF X = east, Y = up, Z = south; engine (x, y, z) = (X, -Z, Y); metres; origin = runway centre"},
-      {"runway", {{"centre", {0, 0, z0}}, {"length_m", 2 * kRunwayHalfLength}, {"width_m", 2 * kRunwayHalfWidth},
-                  {"heading_deg", 90}, {"elevation_m", z0}}},
+      {"frame",
+       "glTF X = east, Y = up, Z = south; engine (x, y, z) = (X, -Z, Y); metres; origin = runway centre"},
+      {"runway",
+       {{"centre", {0, 0, z0}},
+        {"length_m", 2 * kRunwayHalfLength},
+        {"width_m", 2 * kRunwayHalfWidth},
+        {"heading_deg", 90},
+        {"elevation_m", z0}}},
       {"tile_half_extent_m", kTileHalf},
       {"ring_half_extent_m", kRingHalf}};
   w.document()["asset"]["extras"] = extras;
   const std::string bytes = w.glb();
   welkin::write_file_atomically(o.out, bytes);
 
-  nlohmann::json report = {
-      {"file", o.out},
-      {"seed", o.seed},
-      {"bytes", bytes.size()},
-      {"runway_elevation_m", z0},
-      {"tile_height_range_m", {min_height, max_height}},
-      {"erosion_range_m", {carved, deposited}},
-      {"meshes", nlohmann::json::array()},
-      {"images", {{{"name", "valley_base_color"}, {"width", T}, {"height", T}},
-                  {{"name", "horizon_base_color"}, {"width", RT}, {"height", RT}}}}};
+  nlohmann::json report = {{"file", o.out},
+                           {"seed", o.seed},
+                           {"bytes", bytes.size()},
+                           {"runway_elevation_m", z0},
+                           {"tile_height_range_m", {min_height, max_height}},
+                           {"erosion_range_m", {carved, deposited}},
+                           {"meshes", nlohmann::json::array()},
+                           {"images",
+                            {{{"name", "valley_base_color"}, {"width", T}, {"height", T}},
+                             {{"name", "horizon_base_color"}, {"width", RT}, {"height", RT}}}}};
   uint64_t vertices = 0, triangles = 0;
-  for (const auto& [name, m] : {std::pair{"valley_tile", wt}, {"horizon_ring", wr}, {"runway_and_buildings", wb}}) {
-    report["meshes"].push_back({{"name", name}, {"vertices", m.vertices}, {"triangles", m.triangles}, {"draco_bytes", m.bytes}});
+  for (const auto& [name, m] :
+       {std::pair{"valley_tile", wt}, {"horizon_ring", wr}, {"runway_and_buildings", wb}}) {
+    report["meshes"].push_back(
+        {{"name", name}, {"vertices", m.vertices}, {"triangles", m.triangles}, {"draco_bytes", m.bytes}});
     vertices += m.vertices, triangles += m.triangles;
   }
   report["vertices"] = vertices;
@@ -580,7 +617,8 @@ int main(int argc, char** argv) {
   app.add_option("--report", o.report, "Also write the counts as JSON here");
   app.add_option("--preview", o.preview, "Also write a top-down hillshade PNG of the tile here");
   app.add_flag("--quick", o.quick, "Low resolution, for tests");
-  app.add_option("--droplets", o.droplets, "Hydraulic erosion droplets (0 disables erosion)")->capture_default_str();
+  app.add_option("--droplets", o.droplets, "Hydraulic erosion droplets (0 disables erosion)")
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   try {
     return run(o);

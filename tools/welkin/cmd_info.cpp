@@ -20,6 +20,10 @@ struct InfoOptions {
 };
 
 int run_info(const InfoOptions& o) {
+  if (o.scene.ends_with(".glb") || o.scene.ends_with(".gltf")) {
+    print_asset_info(o.scene, o.json);
+    return kOk;
+  }
   auto world = make_world();
   nlohmann::json j;
   j["version"] = "0.1.0";
@@ -78,7 +82,7 @@ int run_info(const InfoOptions& o) {
 void add_info_command(CLI::App& app, int& exit_code) {
   auto opts = std::make_shared<InfoOptions>();
   CLI::App* cmd = app.add_subcommand("info", "Show available modules, what a scene loads, and the GL device");
-  cmd->add_option("scene", opts->scene, "Scene file: list the modules it loads")->check(CLI::ExistingFile);
+  cmd->add_option("scene", opts->scene, "Scene file (lists the modules it loads) or a .glb/.gltf (lists its content)")->check(CLI::ExistingFile);
   cmd->add_flag("-m,--modules", opts->modules, "List available modules");
   cmd->add_flag("--gl", opts->gl, "Create a headless GL context and print its renderer");
   cmd->add_flag("--json", opts->json, "Machine-readable output");

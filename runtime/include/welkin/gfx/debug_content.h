@@ -42,6 +42,12 @@ struct DebugShape {
 void describe(TypeBuilder<DebugShape>& t);
 
 class ModuleContext;
+class Program;
+class Registry;
+
+// Sets the uniforms of the default welkin/lighting.glsl from the scene's first core.DirectionalLight
+// (or its defaults). Harmless when a module overrides the lights: the uniforms are then unused.
+void set_default_light_uniforms(const Program& program, const Registry& registry);
 // Registers the built-in components and their render systems (part of the "core" module).
 void register_debug_content(ModuleContext& ctx);
 

@@ -41,7 +41,8 @@ class GlbWriter {
  public:
   GlbWriter();
   // Embeds an encoded PNG/JPEG; returns the image index.
-  int add_image(const std::vector<uint8_t>& encoded, const std::string& mime_type, const std::string& name = "");
+  int add_image(const std::vector<uint8_t>& encoded, const std::string& mime_type,
+                const std::string& name = "");
   int add_texture(int image, const Sampler& sampler = {});
   // Texture references use texture indices from add_texture; KHR_texture_transform when present.
   int add_material(const Material& material);
@@ -49,8 +50,8 @@ class GlbWriter {
   WrittenMesh add_mesh(const MeshData& mesh, const DracoSettings& draco = {});
   // Adds a node (a root unless `parent` >= 0); returns its index.
   int add_node(const std::string& name, int mesh, const glm::vec3& translation = glm::vec3(0.0f),
-               const glm::quat& rotation = glm::quat(1.0f, 0.0f, 0.0f, 0.0f), const glm::vec3& scale = glm::vec3(1.0f),
-               int parent = -1);
+               const glm::quat& rotation = glm::quat(1.0f, 0.0f, 0.0f, 0.0f),
+               const glm::vec3& scale = glm::vec3(1.0f), int parent = -1);
 
   // Raw access for tests that corrupt a file on purpose, and for extras.
   nlohmann::json& document() { return doc_; }

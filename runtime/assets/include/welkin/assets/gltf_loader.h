@@ -16,18 +16,18 @@ namespace welkin::assets {
 // The defaults admit any asset this engine ships (the terrain has ~1.1 M vertices) with wide margin
 // while keeping the worst case of one load to a few GiB.
 struct LoadLimits {
-  uint64_t max_file_bytes = 512ull << 20;        // .glb/.gltf and each external buffer or image file
-  uint64_t max_json_bytes = 64ull << 20;         // JSON text (the .gltf or the GLB JSON chunk)
-  int max_json_depth = 64;                       // nesting of [ and {; glTF itself needs < 10
-  uint32_t max_array_elements = 1u << 16;        // entries of any top-level array (nodes, accessors...)
+  uint64_t max_file_bytes = 512ull << 20;  // .glb/.gltf and each external buffer or image file
+  uint64_t max_json_bytes = 64ull << 20;   // JSON text (the .gltf or the GLB JSON chunk)
+  int max_json_depth = 64;                 // nesting of [ and {; glTF itself needs < 10
+  uint32_t max_array_elements = 1u << 16;  // entries of any top-level array (nodes, accessors...)
   uint32_t max_primitives_per_mesh = 4096;
   uint64_t max_vertices_per_primitive = 1u << 24;
   uint64_t max_indices_per_primitive = 3u << 24;
-  uint64_t max_total_vertices = 1u << 25;        // summed over all primitives
+  uint64_t max_total_vertices = 1u << 25;  // summed over all primitives
   uint64_t max_total_indices = 3u << 25;
-  int max_image_side = 16384;                    // pixels
-  uint64_t max_image_pixels = 1u << 26;          // one image (256 MiB as RGBA8)
-  uint64_t max_total_image_bytes = 1ull << 30;   // all decoded images together
+  int max_image_side = 16384;                   // pixels
+  uint64_t max_image_pixels = 1u << 26;         // one image (256 MiB as RGBA8)
+  uint64_t max_total_image_bytes = 1ull << 30;  // all decoded images together
 };
 
 struct LoadOptions {
@@ -40,7 +40,7 @@ Model load_gltf(const std::string& path, const LoadOptions& options = {});
 
 // Loads from bytes. `name` is used in errors; external URIs resolve against `base_dir` and are
 // refused when it is empty (fuzzing, network input).
-Model load_gltf_memory(std::span<const uint8_t> bytes, const std::string& name, const std::string& base_dir = "",
-                       const LoadOptions& options = {});
+Model load_gltf_memory(std::span<const uint8_t> bytes, const std::string& name,
+                       const std::string& base_dir = "", const LoadOptions& options = {});
 
 }  // namespace welkin::assets

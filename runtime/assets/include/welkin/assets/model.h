@@ -39,8 +39,8 @@ struct TextureTransform {
 // A material's reference to a texture; `texture < 0` means none.
 struct TextureRef {
   int texture = -1;
-  int tex_coord = 0;    // which TEXCOORD_n the texture reads (only TEXCOORD_0 is loaded)
-  float scale = 1.0f;   // normalTexture.scale or occlusionTexture.strength
+  int tex_coord = 0;   // which TEXCOORD_n the texture reads (only TEXCOORD_0 is loaded)
+  float scale = 1.0f;  // normalTexture.scale or occlusionTexture.strength
   TextureTransform transform;
   bool valid() const { return texture >= 0; }
 };
@@ -89,9 +89,9 @@ struct Primitive {
   std::vector<glm::vec2> uv0;       // empty when the file has no TEXCOORD_0
   std::vector<uint32_t> indices;    // 3 per triangle, each < positions.size()
   int material = -1;
-  Bounds bounds;                    // of positions, in the mesh's own frame
-  bool draco = false;               // decoded from KHR_draco_mesh_compression
-  bool normals_generated = false;   // the file had no NORMAL; smooth normals were computed
+  Bounds bounds;                   // of positions, in the mesh's own frame
+  bool draco = false;              // decoded from KHR_draco_mesh_compression
+  bool normals_generated = false;  // the file had no NORMAL; smooth normals were computed
   size_t triangle_count() const { return indices.size() / 3; }
 };
 
@@ -121,8 +121,8 @@ struct Model {
   std::vector<Texture> textures;
   std::vector<Image> images;
   std::vector<std::string> extensions_used, extensions_required;
-  Bounds bounds;                       // world-space box of every mesh instance in the scene
-  std::vector<std::string> warnings;   // things skipped on purpose (e.g. line primitives)
+  Bounds bounds;                      // world-space box of every mesh instance in the scene
+  std::vector<std::string> warnings;  // things skipped on purpose (e.g. line primitives)
 
   size_t vertex_count() const;
   size_t triangle_count() const;

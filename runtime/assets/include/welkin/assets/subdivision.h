@@ -20,21 +20,21 @@ struct ControlMesh {
 enum class SubdivScheme { automatic, loop, catmull_clark };
 
 struct RefineSettings {
-  int levels = 2;                          // maximum refinement level (each level quarters faces)
-  size_t max_triangles = 1u << 20;         // levels are lowered until the output fits
+  int levels = 2;                   // maximum refinement level (each level quarters faces)
+  size_t max_triangles = 1u << 20;  // levels are lowered until the output fits
   glm::vec3 camera_position{0.0f};
-  float adaptive_distance = 0.0f;          // > 0: full level within it, one level less per doubling
+  float adaptive_distance = 0.0f;                 // > 0: full level within it, one level less per doubling
   SubdivScheme scheme = SubdivScheme::automatic;  // automatic: Loop if all triangles, else CC
-  bool limit_surface = true;               // uniform mode: project vertices onto the limit surface
-  bool sharp_boundary_corners = true;      // open meshes (terrain tiles) keep their corners
+  bool limit_surface = true;                      // uniform mode: project vertices onto the limit surface
+  bool sharp_boundary_corners = true;             // open meshes (terrain tiles) keep their corners
 };
 
 struct RefinedMesh {
   std::vector<glm::vec3> positions;
-  std::vector<glm::vec3> normals;          // limit-surface normals (or averaged when not at limit)
-  std::vector<uint32_t> indices;           // triangles
+  std::vector<glm::vec3> normals;  // limit-surface normals (or averaged when not at limit)
+  std::vector<uint32_t> indices;   // triangles
   SubdivScheme scheme = SubdivScheme::loop;
-  int level = 0;                           // level actually used (highest, in adaptive mode)
+  int level = 0;  // level actually used (highest, in adaptive mode)
   bool adaptive = false;
   size_t triangle_count() const { return indices.size() / 3; }
 };

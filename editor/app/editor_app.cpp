@@ -1,0 +1,560 @@
+#include "app/editor_app.h"
+
+#include <epoxy/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+#include <imgui_stdlib.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <set>
+
+#include "app/module_dirs.h"
+#include "app/script_player.h"
+#include "model/editor_config.h"
+#include "ui/panel_registry.h"
+#include "ui/viewport_panel.h"
+#include "welkin/core/error.h"
+#include "welkin/core/log.h"
+#include "welkin/gfx/camera.h"
+#include "welkin/gfx/gl_context.h"
+#include "welkin/gfx/image.h"
+#include "welkin/gfx/renderer.h"
+
+namespace welkin::editor {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+enum ExitCode { kOk = 0, kFailure = 1, kUsage = 2, kBadInput = 3 };
+
+// Dear ImGui's context and backends, shut down before the window goes.
+class ImGuiSession {
+ public:
+  ImGuiSession(GLFWwindow* window, const std::string& layout) {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;  // the layout lives in the editor config, written atomically
+    if (!layout.empty()) ImGui::LoadIniSettingsFromMemory(layout.c_str(), layout.size());
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForOpenGL(window, true);
+    ImGui_ImplOpenGL3_Init("#version 450 core");
+  }
+  ~ImGuiSession() {
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+  ImGuiSession(const ImGuiSession&) = delete;
+  ImGuiSession& operator=(const ImGuiSession&) = delete;
+};
+
+ViewPose pose_of(const Camera& c) { return ViewPose{c.position_m, c.heading_deg, c.pitch_deg}; }
+
+// The editor's view: the scene camera's lens and exposure at the fly camera's pose, passed to
+// Renderer::render_frame as the frame's camera (the scene's own camera is left untouched).
+Camera view_camera(const Camera& scene_camera, const ViewPose& pose) {
+  Camera view = scene_camera;
+  view.position_m = pose.position_m;
+  view.heading_deg = float(pose.heading_deg);
+  view.pitch_deg = float(pose.pitch_deg);
+  view.roll_deg = 0.0f;
+  return view;
+}
+
+void write_viewport_image(Renderer& renderer, const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  if (ext != ".png" && ext != ".exr")
+    throw Error(ErrorInfo{.file = path, .expected = "a .png or .exr file name", .found = "'" + ext + "'"});
+  if (fs::path parent = fs::path(path).parent_path(); !parent.empty()) fs::create_directories(parent);
+  if (ext == ".exr") write_exr(path, renderer.read_hdr());
+  else write_png(path, renderer.read_output());
+}
+
+// The whole window as the user sees it (the back buffer, before the swap).
+void write_window_image(int width, int height, const std::string& path) {
+  ImageU8 image{width, height, std::vector<uint8_t>(size_t(width) * height * 4)};
+  std::vector<uint8_t> rows(image.rgba.size());
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glReadBuffer(GL_BACK);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+  size_t stride = size_t(width) * 4;
+  for (int y = 0; y < height; ++y)  // GL is bottom-up, files top-down
+    std::copy_n(&rows[size_t(height - 1 - y) * stride], stride, &image.rgba[size_t(y) * stride]);
+  for (size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;
+  if (fs::path parent = fs::path(path).parent_path(); !parent.empty()) fs::create_directories(parent);
+  write_png(path, image);
+}
+
+// Placement of the panels on first run (afterwards ImGui's remembered layout wins) and again,
+// proportionally, whenever the window changes size.
+void place_panel(const std::string& title, int w, int h, ImGuiCond cond) {
+  float W = float(w), H = float(h), top = ImGui::GetFrameHeight();
+  // Side columns and the timeline strip scale with the window, within readable limits.
+  float left = std::clamp(W * 0.23f, 240.0f, 420.0f), right = std::clamp(W * 0.27f, 280.0f, 470.0f);
+  float bottom = std::clamp(H * 0.28f, 150.0f, 320.0f);
+  ImVec2 pos, size;
+  if (title == "Outliner") pos = {0, top}, size = {left, (H - top) * 0.35f};
+  else if (title == "Inspector") pos = {0, top + (H - top) * 0.35f}, size = {left, (H - top) * 0.65f};
+  else if (title == "Viewport") pos = {left, top}, size = {W - left - right, H - top - bottom};
+  else if (title == "Timeline") pos = {left, H - bottom}, size = {W - left - right, bottom};
+  else if (title == "Presets") pos = {W - right, top}, size = {right, (H - top) * 0.58f};
+  else if (title == "Profiler") pos = {W - right, top + (H - top) * 0.58f}, size = {right, (H - top) * 0.42f};
+  else if (title == "Time of day") pos = {W - right, top + (H - top) * 0.58f}, size = {right, (H - top) * 0.42f};
+  else pos = {left + 40, top + 40}, size = {420, 360};
+  ImGui::SetNextWindowPos(pos, cond);
+  ImGui::SetNextWindowSize(size, cond);
+}
+
+std::vector<std::string> scene_files() {
+  std::vector<std::string> files;
+  std::error_code ec;
+  for (const char* dir : {"assets/scenes", WELKIN_SOURCE_PRESET_DIR "/../scenes"})
+    for (const auto& e : fs::directory_iterator(dir, ec))
+      if (e.path().extension() == ".json") files.push_back(e.path().lexically_normal().string());
+  std::sort(files.begin(), files.end());
+  files.erase(std::unique(files.begin(), files.end()), files.end());
+  return files;
+}
+
+class EditorApp {
+ public:
+  explicit EditorApp(const EditorOptions& o) : options_(o) {}
+  int run();
+
+ private:
+  void load_config();
+  void save_config();
+  bool open_scene(const std::string& path);
+  void reset_view_to_scene_camera();
+  // After the document's world is replaced (a scene opened): the view starts at its camera.
+  void follow_world();
+  void render_scene(const FrameInfo& frame);
+  void draw_ui();
+  void draw_main_menu();
+  void handle_shortcuts();
+  bool run_app_verb(const ScriptLine& line);
+  void finish_frame_requests();
+
+  EditorOptions options_;
+  EditorConfig config_;
+  fs::path config_path_;
+  std::unique_ptr<WindowContext> window_;
+  std::unique_ptr<ImGuiSession> imgui_;
+  std::unique_ptr<EditorDocument> doc_;
+  std::unique_ptr<PresetLibrary> presets_;
+  std::unique_ptr<EditorContext> ctx_;
+  std::unique_ptr<Renderer> renderer_;
+  uint64_t renderer_generation_ = 0;
+  uint64_t view_generation_ = 0;
+  bool rendered_once_ = false;
+  PanelRegistry panels_;
+  ScriptPlayer script_;
+  std::string window_shot_;  // screenshot-window target, taken after this frame's UI
+  bool script_failed_ = false;
+  std::string open_path_, save_path_;
+  uint64_t frame_index_ = 0;
+  int laid_out_w_ = 0, laid_out_h_ = 0;  // the window size the panels were placed for
+  std::set<std::string> available_panels_;  // panels whose module was loaded last frame
+  std::set<std::string> focus_pending_;     // panels to bring to the front next frame
+};
+
+void EditorApp::load_config() {
+  if (options_.no_config) return;
+  config_path_ = options_.config.empty() ? editor_config_path() : fs::path(options_.config);
+  std::vector<std::string> warnings;
+  config_ = load_editor_config(config_path_, warnings);
+  for (const auto& w : warnings) log::warn(w);
+}
+
+void EditorApp::save_config() {
+  if (options_.no_config || config_path_.empty()) return;
+  int w = 0, h = 0;
+  glfwGetWindowSize(window_->handle(), &w, &h);
+  if (w > 0 && h > 0) config_.window_width = w, config_.window_height = h;
+  size_t n = 0;
+  const char* ini = ImGui::SaveIniSettingsToMemory(&n);
+  config_.imgui_layout.assign(ini, n);
+  config_.panels.clear();
+  for (const EditorPanel& p : panels_.panels()) config_.panels[p.title] = p.open;
+  config_.last_scene = doc_->scene_path().empty() ? config_.last_scene : fs::absolute(doc_->scene_path()).string();
+  config_.view = ctx_->viewport.pose;
+  config_.view_scene = config_.last_scene;
+  config_.fly_speed_multiplier = ctx_->viewport.speed_multiplier;
+  config_.look_through_scene_camera = ctx_->viewport.look_through_scene_camera;
+  try {
+    save_editor_config(config_path_, config_);
+  } catch (const Error& e) {
+    log::warn(format_error(e.info()));
+  }
+}
+
+bool EditorApp::open_scene(const std::string& path) {
+  try {
+    doc_->load_scene(path);
+  } catch (const Error& e) {
+    ctx_->log.error(format_error(e.info()));
+    return false;
+  }
+  ctx_->log.info("opened " + path);
+  return true;
+}
+
+void EditorApp::reset_view_to_scene_camera() {
+  Registry& reg = doc_->world().registry();
+  Entity cam = reg.first<Camera>();
+  std::string scene = doc_->scene_path().empty() ? "" : fs::absolute(doc_->scene_path()).string();
+  if (config_.view && !scene.empty() && config_.view_scene == scene) ctx_->viewport.pose = *config_.view;  // as left last time
+  else if (!cam.is_null()) ctx_->viewport.pose = pose_of(*reg.get<Camera>(cam));
+  config_.view.reset();  // only the first scene of a run resumes the remembered view
+}
+
+void EditorApp::follow_world() {
+  if (view_generation_ == doc_->world_generation()) return;
+  view_generation_ = doc_->world_generation();
+  reset_view_to_scene_camera();
+}
+
+void EditorApp::render_scene(const FrameInfo& frame) {
+  ViewportState& vp = ctx_->viewport;
+  if (!renderer_ || renderer_generation_ != doc_->world_generation()) {
+    // A new world (scene opened): its renderer and GL resources start afresh.
+    renderer_.reset();
+    renderer_ = std::make_unique<Renderer>(doc_->world());
+    renderer_generation_ = doc_->world_generation();
+  }
+  Registry& reg = doc_->world().registry();
+  Entity cam = reg.first<Camera>();
+  if (cam.is_null()) {
+    vp.render_error.clear();
+    return;
+  }
+  try {
+    std::optional<Camera> view;
+    if (!vp.look_through_scene_camera) view = view_camera(*reg.get<Camera>(cam), vp.pose);
+    ctx_->stats.last = renderer_->render_frame(frame, vp.render_width, vp.render_height, view ? &*view : nullptr);
+    vp.render_error.clear();
+    rendered_once_ = true;
+  } catch (const Error& e) {
+    vp.render_error = format_error(e.info());
+  } catch (const std::exception& e) {  // a module's bug must not take the artist's session down
+    vp.render_error = e.what();
+  }
+  double gpu = 0;
+  for (const auto& t : ctx_->stats.last.timings) gpu += t.gpu_ms;
+  ctx_->stats.gpu_total_ms = gpu;
+  if (rendered_once_) {
+    vp.texture = renderer_->output_texture().id();
+    vp.texture_width = renderer_->output_texture().desc().width;
+    vp.texture_height = renderer_->output_texture().desc().height;
+  }
+}
+
+void EditorApp::draw_main_menu() {
+  bool open_popup = false, save_popup = false;
+  if (ImGui::BeginMainMenuBar()) {
+    if (ImGui::BeginMenu("File")) {
+      if (ImGui::MenuItem("New scene")) ctx_->attempt([&] { doc_->new_scene(); });
+      if (ImGui::MenuItem("Open scene...")) open_popup = true;
+      if (ImGui::MenuItem("Save scene", "Ctrl+S", false, !doc_->scene_path().empty()))
+        if (ctx_->attempt([&] { doc_->save_scene(doc_->scene_path()); })) ctx_->log.info("saved " + doc_->scene_path());
+      if (ImGui::MenuItem("Save scene as...")) save_popup = true;
+      ImGui::Separator();
+      std::string stem = "screenshots/welkin-" + std::to_string(std::time(nullptr));
+      if (ImGui::MenuItem("Screenshot viewport (PNG)", "F12")) ctx_->screenshot_requests.push_back(stem + ".png");
+      if (ImGui::MenuItem("Screenshot viewport (EXR, linear HDR)")) ctx_->screenshot_requests.push_back(stem + ".exr");
+      ImGui::Separator();
+      if (ImGui::MenuItem("Quit")) ctx_->quit_requested = true;
+      ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Edit")) {
+      const HistoryStep* u = doc_->history().next_undo();
+      const HistoryStep* r = doc_->history().next_redo();
+      if (ImGui::MenuItem(u ? ("Undo " + u->label).c_str() : "Undo", "Ctrl+Z", false, u != nullptr)) ctx_->attempt([&] { doc_->undo(); });
+      if (ImGui::MenuItem(r ? ("Redo " + r->label).c_str() : "Redo", "Ctrl+Y", false, r != nullptr)) ctx_->attempt([&] { doc_->redo(); });
+      ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Panels")) {
+      for (EditorPanel& p : panels_.panels()) {
+        bool available = panels_.available(p, *ctx_);
+        ImGui::MenuItem(p.title.c_str(), nullptr, &p.open, available);
+        if (!available && ImGui::IsItemHovered()) ImGui::SetTooltip("needs module '%s' in the scene", p.requires_module.c_str());
+      }
+      ImGui::EndMenu();
+    }
+    // Title and the latest message, right of the menus.
+    std::string title = (doc_->scene_path().empty() ? std::string("(new scene)") : doc_->scene_path()) + (doc_->dirty() ? " *" : "");
+    ImGui::TextDisabled("  %s", title.c_str());
+    if (!ctx_->log.messages().empty()) {
+      const Message& m = ctx_->log.messages().back();
+      ImGui::SameLine();
+      ImGui::TextColored(m.level == Message::Level::error ? ImVec4(1.0f, 0.45f, 0.4f, 1.0f) : ImVec4(0.6f, 0.85f, 0.6f, 1.0f), "  %s",
+                         m.text.c_str());
+    }
+    ImGui::EndMainMenuBar();
+  }
+  if (open_popup) {
+    open_path_ = doc_->scene_path();
+    ImGui::OpenPopup("Open scene");
+  }
+  if (save_popup) {
+    save_path_ = doc_->scene_path();
+    ImGui::OpenPopup("Save scene as");
+  }
+  if (ImGui::BeginPopupModal("Open scene", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    for (const std::string& f : scene_files())
+      if (ImGui::Selectable(f.c_str(), f == open_path_)) open_path_ = f;
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 30);
+    ImGui::InputText("path", &open_path_);
+    if (ImGui::Button("open") && open_scene(open_path_)) ImGui::CloseCurrentPopup();
+    ImGui::SameLine();
+    if (ImGui::Button("cancel")) ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
+  if (ImGui::BeginPopupModal("Save scene as", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 30);
+    ImGui::InputText("path", &save_path_);
+    if (ImGui::Button("save") && ctx_->attempt([&] { doc_->save_scene(save_path_); })) {
+      ctx_->log.info("saved " + save_path_);
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("cancel")) ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
+}
+
+void EditorApp::handle_shortcuts() {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (io.WantTextInput) return;
+  if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_Z)) ctx_->attempt([&] { io.KeyShift ? doc_->redo() : doc_->undo(); });
+  if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_Y)) ctx_->attempt([&] { doc_->redo(); });
+  if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_S) && !doc_->scene_path().empty())
+    if (ctx_->attempt([&] { doc_->save_scene(doc_->scene_path()); })) ctx_->log.info("saved " + doc_->scene_path());
+  if (ImGui::IsKeyPressed(GLFW_KEY_F12, false))
+    ctx_->screenshot_requests.push_back("screenshots/welkin-" + std::to_string(std::time(nullptr)) + ".png");
+}
+
+void EditorApp::draw_ui() {
+  draw_main_menu();
+  int w = 0, h = 0;
+  glfwGetWindowSize(window_->handle(), &w, &h);
+  bool resized = laid_out_w_ && (w != laid_out_w_ || h != laid_out_h_);
+  laid_out_w_ = w, laid_out_h_ = h;
+  for (EditorPanel& p : panels_.panels()) {
+    bool available = panels_.available(p, *ctx_);
+    bool appeared = available && !available_panels_.count(p.title);
+    if (available) available_panels_.insert(p.title);
+    else available_panels_.erase(p.title);
+    if (!p.open || !available) continue;
+    place_panel(p.title, w, h, resized ? ImGuiCond_Always : ImGuiCond_FirstUseEver);
+    // A module's panel that just arrived comes to the front, a frame later so that panels created in
+    // the same first frame cannot cover it.
+    if (focus_pending_.erase(p.title)) ImGui::SetNextWindowFocus();
+    if (appeared && !p.requires_module.empty()) focus_pending_.insert(p.title);
+    ImGuiWindowFlags flags = p.title == "Viewport" ? ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse : 0;
+    if (p.title == "Viewport") ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(2, 2));
+    bool visible = ImGui::Begin(p.title.c_str(), &p.open, flags);
+    if (p.title == "Viewport") ImGui::PopStyleVar();
+    if (visible) p.draw(*ctx_);
+    ImGui::End();
+  }
+  handle_shortcuts();
+  // A continuous edit ends when nothing is held any more, whichever widget (or popup) made it.
+  if (!ImGui::IsAnyItemActive()) doc_->end_continuous_edit();
+}
+
+bool EditorApp::run_app_verb(const ScriptLine& line) {
+  const std::string& v = line.verb;
+  const auto& a = line.args;
+  auto usage = [&](size_t n, const char* text) {
+    if (a.size() != n) throw Error(ErrorInfo{.message = std::string("usage: ") + text});
+  };
+  auto number = [&](size_t i) {
+    char* end = nullptr;
+    double x = std::strtod(a[i].c_str(), &end);
+    if (*end != '\0' || !std::isfinite(x)) throw Error(ErrorInfo{.expected = "a number", .found = "'" + a[i] + "'"});
+    return x;
+  };
+  if (v == "screenshot") {
+    usage(1, "screenshot PATH.png|PATH.exr");
+    ctx_->screenshot_requests.push_back(a[0]);
+  } else if (v == "screenshot-window") {
+    usage(1, "screenshot-window PATH.png");
+    window_shot_ = a[0];
+  } else if (v == "view") {
+    usage(5, "view X Y Z HEADING PITCH");
+    ctx_->viewport.pose = ViewPose{{number(0), number(1), number(2)}, number(3), std::clamp(number(4), -89.5, 89.5)};
+  } else if (v == "look-through-scene-camera") {
+    usage(1, "look-through-scene-camera on|off");
+    ctx_->viewport.look_through_scene_camera = a[0] == "on";
+  } else if (v == "resize") {
+    usage(2, "resize WIDTH HEIGHT");
+    glfwSetWindowSize(window_->handle(), int(number(0)), int(number(1)));
+  } else if (v == "fly") {
+    // The viewport's own flight path, driven from a script: FORWARD RIGHT UP in [-1, 1], mouse
+    // motion in pixels, for SECONDS (one step; a flight looking through the scene camera is undoable).
+    usage(6, "fly FORWARD RIGHT UP LOOK_DX LOOK_DY SECONDS");
+    fly_view(*ctx_, FlyInput{.forward = number(0), .right = number(1), .up = number(2), .look_dx_px = number(3),
+                             .look_dy_px = number(4), .speed_multiplier = ctx_->viewport.speed_multiplier, .dt_s = number(5)});
+    doc_->end_continuous_edit();
+  } else if (v == "show-preset") {
+    usage(2, "show-preset MODULE NAME");
+    ctx_->preset_browser = PresetBrowserState{a[0], a[1]};
+  } else if (v == "quit") {
+    usage(0, "quit");
+    ctx_->quit_requested = true;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+void EditorApp::finish_frame_requests() {
+  for (const std::string& path : ctx_->screenshot_requests) {
+    bool ok = ctx_->attempt([&] {
+      if (!rendered_once_) throw Error(ErrorInfo{.file = path, .message = "no frame has been rendered yet"});
+      write_viewport_image(*renderer_, path);
+    });
+    if (ok) ctx_->log.info("wrote " + path);
+    else if (script_.loaded()) script_failed_ = true;  // a scripted run must not pass without its image
+  }
+  ctx_->screenshot_requests.clear();
+}
+
+int EditorApp::run() {
+  if (!display_available()) {
+    std::fprintf(stderr,
+                 "welkin-editor: no display (DISPLAY / WAYLAND_DISPLAY unset). On a headless machine run it under Xvfb:\n"
+                 "  Xvfb :99 -screen 0 1920x1080x24 & DISPLAY=:99 welkin-editor assets/scenes/default.json\n");
+    return kUsage;
+  }
+  if (!options_.script.empty()) {
+    try {
+      script_ = ScriptPlayer(load_script(options_.script));
+    } catch (const Error& e) {
+      std::fprintf(stderr, "welkin-editor: %s\n", format_error(e.info()).c_str());
+      return kBadInput;
+    }
+  }
+  load_config();
+  int width = options_.width ? options_.width : config_.window_width;
+  int height = options_.height ? options_.height : config_.window_height;
+  try {
+    window_ = std::make_unique<WindowContext>(width, height, "Welkin editor");
+  } catch (const Error& e) {
+    std::fprintf(stderr, "welkin-editor: %s\n", format_error(e.info()).c_str());
+    return kUsage;
+  }
+  imgui_ = std::make_unique<ImGuiSession>(window_->handle(), config_.imgui_layout);
+
+  doc_ = std::make_unique<EditorDocument>(make_world_with_plugins);
+  presets_ = std::make_unique<PresetLibrary>(make_world_with_plugins());
+  for (const PresetFolder& f : extra_preset_folders()) presets_->add_folder(f);
+  presets_->rescan();
+  ctx_ = std::make_unique<EditorContext>(EditorContext{.doc = *doc_, .presets = *presets_});
+  ctx_->viewport.speed_multiplier = config_.fly_speed_multiplier;
+  ctx_->viewport.look_through_scene_camera = config_.look_through_scene_camera;
+  register_builtin_panels(panels_);
+  std::vector<std::string> panel_errors;
+  register_module_panels(panels_, read_module_panels(doc_->world().modules(), panel_errors));
+  for (const auto& e : panel_errors) ctx_->log.error(e);
+  for (EditorPanel& p : panels_.panels())
+    if (auto it = config_.panels.find(p.title); it != config_.panels.end()) p.open = it->second;
+    else if (p.title == "History") p.open = false;
+
+  std::error_code ec;
+  if (!options_.scene.empty()) {
+    if (!open_scene(options_.scene)) return kBadInput;  // the log has printed why
+  } else if (!config_.last_scene.empty() && fs::exists(config_.last_scene, ec)) {
+    open_scene(config_.last_scene);  // a last scene that no longer loads is only a message
+  }
+
+  auto start = std::chrono::steady_clock::now();
+  auto last = start;
+  while (!window_->should_close() && !ctx_->quit_requested) {
+    glfwPollEvents();
+    auto now = std::chrono::steady_clock::now();
+    double dt = std::chrono::duration<double>(now - last).count();
+    last = now;
+    ctx_->stats.push(dt * 1000.0);
+
+    follow_world();
+    if (script_.active()) {
+      try {
+        script_.step(*ctx_, [this](const ScriptLine& line) { return run_app_verb(line); });
+      } catch (const Error& e) {
+        ctx_->log.error("script: " + format_error(e.info()));
+        script_failed_ = true;
+      }
+    }
+    if (script_failed_) break;
+    follow_world();  // a script line may have opened another scene
+
+    TimelineState& tl = ctx_->timeline;
+    double duration = doc_->sequence().duration_s;
+    if (tl.playing) {
+      tl.playhead_s += dt;
+      if (tl.playhead_s > duration) {
+        tl.playhead_s = tl.loop ? std::fmod(tl.playhead_s, duration) : duration;
+        tl.playing = tl.loop;
+      }
+    }
+    if (!tl.preview || doc_->sequence().tracks.empty()) {
+      tl.problems.clear();
+      tl.previewed_at_s = -1;
+    } else if (tl.playhead_s != tl.previewed_at_s || !(doc_->sequence() == tl.previewed)) {
+      tl.problems = doc_->preview_sequence(tl.playhead_s);
+      tl.previewed_at_s = tl.playhead_s;
+      tl.previewed = doc_->sequence();
+    }
+
+    FrameInfo frame{.time_s = std::chrono::duration<double>(now - start).count(), .dt_s = frame_index_ ? dt : 0.0, .index = frame_index_};
+    render_scene(frame);
+
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    draw_ui();
+    ImGui::Render();
+    int fw = 0, fh = 0;
+    window_->framebuffer_size(fw, fh);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, fw, fh);
+    glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    if (!window_shot_.empty()) {
+      std::string path = std::exchange(window_shot_, {});
+      if (ctx_->attempt([&] { write_window_image(fw, fh, path); })) ctx_->log.info("wrote " + path);
+      else script_failed_ = true;
+    }
+    finish_frame_requests();
+    glfwSwapBuffers(window_->handle());
+    ++frame_index_;
+    if (script_failed_) break;
+  }
+  save_config();
+  // GL objects go while the context is current: renderer, worlds, then ImGui, then the window.
+  renderer_.reset();
+  ctx_.reset();
+  presets_.reset();
+  doc_.reset();
+  imgui_.reset();
+  window_.reset();
+  return script_failed_ ? kFailure : kOk;
+}
+
+}  // namespace
+
+int run_editor(const EditorOptions& options) { return EditorApp(options).run(); }
+
+}  // namespace welkin::editor

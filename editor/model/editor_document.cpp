@@ -1,0 +1,360 @@
+#include "model/editor_document.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "model/reflected_object.h"
+#include "welkin/core/error.h"
+#include "welkin/scene/field_path.h"
+#include "welkin/scene/json_fields.h"
+#include "welkin/scene/scene_file.h"
+
+namespace welkin::editor {
+
+using nlohmann::json;
+
+namespace {
+
+constexpr std::string_view kNameComponent = Name::kTypeName;
+
+std::string step_label(const std::string& verb, const std::string& what) { return verb + " " + what; }
+
+}  // namespace
+
+EditorDocument::EditorDocument(WorldFactory make_world) : make_world_(std::move(make_world)) { new_scene(); }
+
+EditorDocument::~EditorDocument() = default;
+
+// --- Scene -------------------------------------------------------------------------------------
+
+void EditorDocument::new_scene() {
+  world_ = make_world_();
+  ++world_generation_;
+  ids_.clear();
+  history_.clear();
+  selected_ = kNoEntity;
+  scene_path_.clear();
+  dirty_ = false;
+}
+
+void EditorDocument::load_scene(const std::string& path) {
+  // Load into a fresh world first: a bad file leaves the open scene untouched.
+  std::unique_ptr<World> fresh = make_world_();
+  load_scene_file(*fresh, path);
+  world_ = std::move(fresh);
+  ++world_generation_;
+  ids_.clear();
+  ids_.sync(world_->registry());
+  history_.clear();
+  selected_ = kNoEntity;
+  scene_path_ = path;
+  dirty_ = false;
+}
+
+void EditorDocument::save_scene(const std::string& path) {
+  save_scene_file(*world_, path);
+  scene_path_ = path;
+  dirty_ = false;
+}
+
+// --- Entities ----------------------------------------------------------------------------------
+
+std::vector<EntityRow> EditorDocument::entities() {
+  ids_.sync(world_->registry());
+  std::vector<EntityRow> rows;
+  for (Entity e : world_->registry().entities()) {
+    EntityId id = ids_.id_of(e);
+    rows.push_back(EntityRow{id, display_name(id)});
+  }
+  return rows;
+}
+
+std::string EditorDocument::display_name(EntityId id) const {
+  Entity e = ids_.entity_of(id);
+  if (e.is_null()) return "(removed)";
+  if (const Name* n = world_->registry().get<Name>(e); n && !n->value.empty()) return n->value;
+  return "#" + std::to_string(e.index);
+}
+
+EntityId EditorDocument::find_by_name(std::string_view name) {
+  ids_.sync(world_->registry());
+  for (Entity e : world_->registry().entities())
+    if (const Name* n = world_->registry().get<Name>(e); n && n->value == name) return ids_.id_of(e);
+  return kNoEntity;
+}
+
+EntityId EditorDocument::selected() const {
+  return ids_.entity_of(selected_).is_null() ? kNoEntity : selected_;
+}
+
+EntityId EditorDocument::entity_with(const std::string& component) {
+  TypeId type = type_id_of_name(component);
+  Registry& reg = world_->registry();
+  if (Entity sel = ids_.entity_of(selected_); !sel.is_null() && reg.has(sel, type)) return selected_;
+  if (const ComponentPool* pool = reg.pool(type); pool && !pool->empty()) {
+    // The pool is dense, not in creation order: take the earliest entity, as a reader of the file would.
+    for (Entity e : reg.entities())
+      if (pool->contains(e)) return ids_.id_of(e);
+  }
+  return kNoEntity;
+}
+
+std::vector<const TypeDesc*> EditorDocument::components_of(EntityId id) const {
+  Entity e = ids_.entity_of(id);
+  if (e.is_null()) return {};
+  return world_->registry().components_of(e);
+}
+
+const TypeDesc& EditorDocument::require_component(const std::string& component) {
+  return *world_->modules().require_component(component).type;
+}
+
+std::vector<std::string> EditorDocument::known_components() const {
+  std::vector<std::string> names;
+  for (const ModuleManifest& m : world_->modules().available())
+    names.insert(names.end(), m.components.begin(), m.components.end());
+  std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
+  return names;
+}
+
+Entity EditorDocument::require_entity(EntityId id) const {
+  Entity e = ids_.entity_of(id);
+  if (e.is_null() || !world_->registry().valid(e))
+    throw Error(ErrorInfo{.expected = "an existing entity", .found = "entity id " + std::to_string(id), .message = "no such entity"});
+  return e;
+}
+
+// --- Reading -----------------------------------------------------------------------------------
+
+json EditorDocument::get_component(EntityId id, const std::string& component) const {
+  Entity e = ids_.entity_of(id);
+  const ComponentInfo* info = world_->modules().component(component);
+  if (e.is_null() || !info) return nullptr;
+  const void* data = world_->registry().get(e, info->type->id);
+  return data ? object_to_json(*info->type, data) : json(nullptr);
+}
+
+json EditorDocument::get_field(EntityId id, const std::string& component, const std::string& path) const {
+  Entity e = require_entity(id);
+  const ComponentInfo* info = world_->modules().component(component);
+  const void* data = info ? world_->registry().get(e, info->type->id) : nullptr;
+  if (!data)
+    throw Error(ErrorInfo{.path = component, .message = "entity '" + display_name(id) + "' has no " + component + " component"});
+  // resolve_field needs a mutable object; it only reads here.
+  try {
+    return resolve_field(*info->type, const_cast<void*>(data), path).get_json();
+  } catch (const Error& err) {
+    throw err.with_path_prefix(component);
+  }
+}
+
+const void* EditorDocument::component_data(EntityId id, const TypeDesc& type) const {
+  Entity e = ids_.entity_of(id);
+  return e.is_null() ? nullptr : world_->registry().get(e, type.id);
+}
+
+json EditorDocument::entity_snapshot(EntityId id) const {
+  Entity e = require_entity(id);
+  const Registry& reg = world_->registry();
+  json snapshot = json::object();
+  if (const Name* n = reg.get<Name>(e)) snapshot["name"] = n->value;
+  json components = json::object();
+  for (const TypeDesc* t : reg.components_of(e))
+    if (t->name != kNameComponent) components[t->name] = object_to_json(*t, reg.get(e, t->id));
+  snapshot["components"] = std::move(components);
+  return snapshot;
+}
+
+// --- Edits -------------------------------------------------------------------------------------
+
+EntityId EditorDocument::add_entity(const std::string& name, const json& components) {
+  // The id is fixed now, so redo re-creates the entity under the id later edits refer to.
+  EntityId id = ids_.reserve();
+  Edit edit{.target = EditTarget::entity, .entity = id, .before = nullptr,
+            .after = json{{"name", name}, {"components", components}}};
+  execute(std::move(edit), step_label("Add entity", "'" + name + "'"), false);
+  selected_ = id;
+  return id;
+}
+
+void EditorDocument::remove_entity(EntityId id) {
+  Edit edit{.target = EditTarget::entity, .entity = id, .before = entity_snapshot(id), .after = nullptr};
+  execute(std::move(edit), step_label("Remove entity", "'" + display_name(id) + "'"), false);
+}
+
+void EditorDocument::rename_entity(EntityId id, const std::string& name) {
+  require_entity(id);
+  if (get_component(id, std::string(kNameComponent)).is_null())
+    set_component(id, std::string(kNameComponent), json{{"value", name}}, "Rename '" + display_name(id) + "'");
+  else
+    set_field(id, std::string(kNameComponent), "value", name);
+}
+
+void EditorDocument::add_component(EntityId id, const std::string& component) {
+  const TypeDesc& type = require_component(component);
+  if (!get_component(id, component).is_null())
+    throw Error(ErrorInfo{.path = component, .message = "entity '" + display_name(id) + "' already has " + component});
+  Edit edit{.target = EditTarget::component, .entity = id, .component = component, .before = nullptr,
+            .after = default_component_json(type)};
+  execute(std::move(edit), step_label("Add", component + " to '" + display_name(id) + "'"), false);
+}
+
+void EditorDocument::remove_component(EntityId id, const std::string& component) {
+  json before = get_component(id, component);
+  if (before.is_null())
+    throw Error(ErrorInfo{.path = component, .message = "entity '" + display_name(id) + "' has no " + component + " component"});
+  Edit edit{.target = EditTarget::component, .entity = id, .component = component, .before = std::move(before), .after = nullptr};
+  execute(std::move(edit), step_label("Remove", component + " from '" + display_name(id) + "'"), false);
+}
+
+void EditorDocument::set_field(EntityId id, const std::string& component, const std::string& path, const json& value,
+                               bool continuous) {
+  Edit edit{.target = EditTarget::field, .entity = id, .component = component, .path = path,
+            .before = get_field(id, component, path), .after = value};
+  execute(std::move(edit), step_label("Set", component + "/" + path + " on '" + display_name(id) + "'"), continuous);
+}
+
+void EditorDocument::set_component(EntityId id, const std::string& component, const json& value, const std::string& label,
+                                   bool continuous) {
+  require_entity(id);
+  const TypeDesc& type = require_component(component);
+  Edit edit{.target = EditTarget::component, .entity = id, .component = component,
+            .before = get_component(id, component), .after = complete_component_json(type, value)};
+  execute(std::move(edit), label, continuous);
+}
+
+void EditorDocument::set_sequence(Sequence sequence, const std::string& label, bool continuous) {
+  Edit edit{.target = EditTarget::sequence, .before = sequence_to_json(sequence_), .after = sequence_to_json(sequence)};
+  execute(std::move(edit), label, continuous);
+}
+
+void EditorDocument::execute(Edit edit, const std::string& label, bool continuous) {
+  if (!continuous && edit.before == edit.after) {
+    history_.seal();
+    return;  // nothing changes: no empty undo steps
+  }
+  apply(edit, edit.after);
+  // What was stored may differ from what was asked (a float rounds): record the stored value, so
+  // undo/redo reproduce exactly what the user saw.
+  if (edit.target == EditTarget::field) edit.after = get_field(edit.entity, edit.component, edit.path);
+  history_.record(std::move(edit), label, continuous);
+  dirty_ = true;
+}
+
+bool EditorDocument::undo() {
+  history_.seal();
+  const HistoryStep* step = history_.next_undo();
+  if (!step) return false;
+  for (auto it = step->edits.rbegin(); it != step->edits.rend(); ++it) apply(*it, it->before);
+  history_.moved_back();
+  dirty_ = true;
+  return true;
+}
+
+bool EditorDocument::redo() {
+  history_.seal();
+  const HistoryStep* step = history_.next_redo();
+  if (!step) return false;
+  for (const Edit& e : step->edits) apply(e, e.after);
+  history_.moved_forward();
+  dirty_ = true;
+  return true;
+}
+
+void EditorDocument::apply(const Edit& edit, const json& value) {
+  Registry& reg = world_->registry();
+  switch (edit.target) {
+    case EditTarget::field: {
+      Entity e = require_entity(edit.entity);
+      const TypeDesc& type = require_component(edit.component);
+      void* data = reg.get(e, type.id);
+      if (!data)
+        throw Error(ErrorInfo{.path = edit.component, .message = "entity '" + display_name(edit.entity) + "' has no " +
+                                                                 edit.component + " component"});
+      ReflectedObject copy(type, data);
+      try {
+        resolve_field(type, copy.get(), edit.path).set_json(value);
+      } catch (const Error& err) {
+        throw err.with_path_prefix(edit.component);
+      }
+      copy.copy_to(data);
+      return;
+    }
+    case EditTarget::component: {
+      Entity e = require_entity(edit.entity);
+      const TypeDesc& type = require_component(edit.component);
+      if (value.is_null()) {
+        reg.remove(e, type.id);
+        return;
+      }
+      ReflectedObject object(type);
+      try {
+        object.read(value);
+      } catch (const Error& err) {
+        throw err.with_path_prefix(edit.component);
+      }
+      void* data = reg.has(e, type.id) ? reg.get(e, type.id) : reg.emplace(e, type);
+      object.copy_to(data);
+      return;
+    }
+    case EditTarget::entity: {
+      if (value.is_null()) {
+        Entity e = require_entity(edit.entity);
+        reg.destroy(e);
+        ids_.unbind(edit.entity);
+        return;
+      }
+      // Validate every component before creating anything.
+      std::vector<std::pair<const TypeDesc*, std::unique_ptr<ReflectedObject>>> parts;
+      if (auto comps = value.find("components"); comps != value.end()) {
+        for (auto it = comps->begin(); it != comps->end(); ++it) {
+          const TypeDesc& type = require_component(it.key());
+          auto object = std::make_unique<ReflectedObject>(type);
+          try {
+            object->read(it.value());
+          } catch (const Error& err) {
+            throw err.with_path_prefix(it.key());
+          }
+          parts.emplace_back(&type, std::move(object));
+        }
+      }
+      Entity e = reg.create();
+      ids_.bind(edit.entity, e);
+      if (auto n = value.find("name"); n != value.end() && n->is_string()) reg.emplace<Name>(e).value = n->get<std::string>();
+      for (auto& [type, object] : parts) object->copy_to(reg.emplace(e, *type));
+      return;
+    }
+    case EditTarget::sequence: sequence_ = sequence_from_json(value, "sequence"); return;
+  }
+}
+
+// --- Timeline ----------------------------------------------------------------------------------
+
+void EditorDocument::load_sequence(const std::string& path) {
+  Sequence loaded = load_sequence_file(path);
+  set_sequence(std::move(loaded), "Load sequence " + path);
+  sequence_path_ = path;
+}
+
+void EditorDocument::save_sequence(const std::string& path) {
+  save_sequence_file(path, sequence_);
+  sequence_path_ = path;
+}
+
+// Each track goes through welkin::apply_sequence on its own (as the engine plays it), so one
+// that cannot be applied is reported and the others still are.
+std::vector<std::string> EditorDocument::preview_sequence(double time_s) {
+  std::vector<std::string> problems;
+  for (const SequenceTrack& track : sequence_.tracks) {
+    try {
+      apply_sequence(welkin::Sequence{.tracks = {to_runtime_track(track)}}, *world_, time_s);
+    } catch (const Error& err) {
+      // apply_sequence locates its errors in the file; the message says what went wrong.
+      problems.push_back(track.target + ": " + (err.info().message.empty() ? format_error(err.info()) : err.info().message));
+    }
+  }
+  return problems;
+}
+
+}  // namespace welkin::editor

@@ -1,0 +1,71 @@
+#include "model/module_panels.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "welkin/core/error.h"
+#include "welkin/scene/json_fields.h"
+
+namespace welkin::editor {
+
+using nlohmann::json;
+
+namespace {
+
+[[noreturn]] void fail(const std::string& file, const std::string& path, const std::string& expected, const json& found) {
+  throw Error(ErrorInfo{.file = file, .path = path, .expected = expected, .found = describe_json(found)});
+}
+
+std::vector<ModulePanelSpec> parse_panels(const ModuleManifest& m, const json& doc, const std::string& file) {
+  if (!doc.is_object() || !doc.contains("panels")) fail(file, "/panels", "{\"panels\": [...]}", doc);
+  for (auto it = doc.begin(); it != doc.end(); ++it)
+    if (it.key() != "panels") fail(file, "/" + it.key(), "only \"panels\"", json(it.key()));
+  const json& panels = doc["panels"];
+  if (!panels.is_array()) fail(file, "/panels", "array of panels", panels);
+  std::vector<ModulePanelSpec> out;
+  for (size_t i = 0; i < panels.size(); ++i) {
+    std::string pp = "/panels/" + std::to_string(i);
+    const json& p = panels[i];
+    if (!p.is_object()) fail(file, pp, "panel object {\"title\", \"components\"}", p);
+    for (auto it = p.begin(); it != p.end(); ++it)
+      if (it.key() != "title" && it.key() != "components") fail(file, pp + "/" + it.key(), "\"title\" or \"components\"", json(it.key()));
+    ModulePanelSpec spec{.module = m.name};
+    if (!p.contains("title") || !p["title"].is_string() || p["title"].get<std::string>().empty())
+      fail(file, pp + "/title", "a non-empty title", p.value("title", json("nothing")));
+    spec.title = p["title"].get<std::string>();
+    const json& comps = p.value("components", json());
+    if (!comps.is_array() || comps.empty()) fail(file, pp + "/components", "a non-empty array of component names", comps);
+    for (size_t c = 0; c < comps.size(); ++c) {
+      std::string cp = pp + "/components/" + std::to_string(c);
+      if (!comps[c].is_string()) fail(file, cp, "component name", comps[c]);
+      std::string name = comps[c].get<std::string>();
+      if (std::find(m.components.begin(), m.components.end(), name) == m.components.end())
+        fail(file, cp, "a component module '" + m.name + "' declares", comps[c]);
+      spec.components.push_back(name);
+    }
+    out.push_back(std::move(spec));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<ModulePanelSpec> read_module_panels(const ModuleHost& modules, std::vector<std::string>& errors) {
+  std::vector<ModulePanelSpec> out;
+  for (const ModuleManifest& m : modules.available()) {
+    if (m.data_dir.empty()) continue;
+    std::filesystem::path file = m.data_dir / "editor" / "panels.json";
+    std::error_code ec;
+    if (!std::filesystem::exists(file, ec)) continue;
+    try {
+      auto specs = parse_panels(m, read_json_file(file.string()), file.string());
+      out.insert(out.end(), specs.begin(), specs.end());
+    } catch (const Error& e) {
+      errors.push_back(format_error(e.info()));
+    }
+  }
+  return out;
+}
+
+}  // namespace welkin::editor

@@ -1,0 +1,30 @@
+// Metallic-roughness PBR (glTF) lit by the scene's lights (welkin/lighting.glsl: the atmosphere's
+// when present); aerial perspective is added afterwards over the depth buffer.
+#include "welkin/shading.glsl"
+in vec3 v_position;
+in vec3 v_normal;
+in vec2 v_uv;
+out vec4 o_color;
+uniform vec4 u_base_color_factor;
+uniform float u_metallic, u_roughness;
+uniform vec3 u_emissive;
+uniform mat3 u_uv_transform;
+uniform int u_has_base_color, u_has_metallic_roughness, u_has_occlusion;
+layout(binding = 0) uniform sampler2D u_base_color;
+layout(binding = 1) uniform sampler2D u_metallic_roughness;
+layout(binding = 2) uniform sampler2D u_occlusion;
+void main() {
+  vec2 uv = (u_uv_transform * vec3(v_uv, 1.0)).xy;
+  vec4 base = u_base_color_factor;
+  if (u_has_base_color == 1) base *= texture(u_base_color, uv);
+  float metallic = u_metallic, roughness = u_roughness, occlusion = 1.0;
+  if (u_has_metallic_roughness == 1) {
+    vec4 mr = texture(u_metallic_roughness, uv);
+    roughness *= mr.g;
+    metallic *= mr.b;
+  }
+  if (u_has_occlusion == 1) occlusion = texture(u_occlusion, uv).r;
+  vec3 n = normalize(v_normal);
+  if (!gl_FrontFacing) n = -n;
+  o_color = vec4(shade_pbr(base.rgb, metallic, clamp(roughness, 0.03, 1.0), occlusion, n, v_position, 1.0) + u_emissive, 1.0);
+}

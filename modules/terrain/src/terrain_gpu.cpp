@@ -1,0 +1,88 @@
+#include "terrain_gpu.h"
+
+#include "welkin/core/error.h"
+
+namespace welkin::terrain {
+
+namespace {
+
+template <class T> GlBufferName upload(const std::vector<T>& data) {
+  GLuint id = 0;
+  glCreateBuffers(1, &id);
+  glNamedBufferStorage(id, GLsizeiptr(std::max<size_t>(1, data.size()) * sizeof(T)), data.empty() ? nullptr : data.data(), 0);
+  return GlBufferName(id);
+}
+
+// Base colour and emissive are sRGB-encoded in glTF; data textures (normal, metallic-roughness) are linear.
+GlTextureName upload_image(const assets::Model& model, const assets::TextureRef& ref, bool srgb) {
+  if (!ref.valid() || size_t(ref.texture) >= model.textures.size()) return {};
+  const assets::Texture& tex = model.textures[size_t(ref.texture)];
+  if (tex.image < 0 || size_t(tex.image) >= model.images.size()) return {};
+  const assets::Image& img = model.images[size_t(tex.image)];
+  if (img.rgba.empty()) return {};
+  GLuint id = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &id);
+  int levels = 1 + int(std::floor(std::log2(std::max(img.width, img.height))));
+  glTextureStorage2D(id, levels, srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, img.width, img.height);
+  glTextureSubImage2D(id, 0, 0, 0, img.width, img.height, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba.data());
+  glGenerateTextureMipmap(id);
+  glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(id, GL_TEXTURE_WRAP_S, tex.sampler.wrap_s);
+  glTextureParameteri(id, GL_TEXTURE_WRAP_T, tex.sampler.wrap_t);
+  // No anisotropic filtering: on llvmpipe it multiplies the cost of every terrain pixel several times.
+  return GlTextureName(id);
+}
+
+std::string cache_key(const Terrain& s) {
+  return s.file + "|" + std::to_string(s.chunks_per_side) + "|" + std::to_string(s.lod_levels) + "|" +
+         std::to_string(s.refine) + "|" + std::to_string(s.refine_levels) + "|" + std::to_string(s.refine_max_triangles);
+}
+
+}  // namespace
+
+GpuTerrain& TerrainCache::get(const Terrain& s) {
+  auto& slot = terrains[cache_key(s)];
+  if (slot) return *slot;
+  if (s.file.empty()) throw Error(ErrorInfo{.path = "terrain.Terrain/file", .expected = "a .glb or .gltf file", .found = "nothing"});
+  std::shared_ptr<const assets::Model> model = assets.load(s.file);
+  auto gpu = std::make_unique<GpuTerrain>();
+  gpu->mesh = build_terrain_mesh(*model, s);
+  const TerrainMesh& m = gpu->mesh;
+  gpu->positions = upload(m.positions);
+  gpu->normals = upload(m.normals);
+  gpu->uvs = upload(m.uvs);
+  gpu->indices = upload(m.indices);
+  GLuint vao = 0;
+  glCreateVertexArrays(1, &vao);
+  gpu->vao = GlVertexArrayName(vao);
+  const GLuint buffers[] = {gpu->positions.id(), gpu->normals.id(), gpu->uvs.id()};
+  const GLint sizes[] = {3, 3, 2};
+  const GLsizei strides[] = {sizeof(glm::vec3), sizeof(glm::vec3), sizeof(glm::vec2)};
+  for (GLuint a = 0; a < 3; ++a) {
+    glVertexArrayVertexBuffer(vao, a, buffers[a], 0, strides[a]);
+    glVertexArrayAttribFormat(vao, a, sizes[a], GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao, a, a);
+    glEnableVertexArrayAttrib(vao, a);
+  }
+  glVertexArrayElementBuffer(vao, gpu->indices.id());
+  for (const assets::Material& mat : model->materials) {
+    GpuMaterial g;
+    g.base_color_factor = mat.base_color_factor;
+    g.metallic = mat.metallic_factor;
+    g.roughness = mat.roughness_factor;
+    g.emissive = mat.emissive_factor * mat.emissive_strength;
+    g.base_color = upload_image(*model, mat.base_color, true);
+    g.metallic_roughness = upload_image(*model, mat.metallic_roughness, false);
+    g.occlusion = upload_image(*model, mat.occlusion, false);
+    g.emissive_map = upload_image(*model, mat.emissive, true);
+    if (mat.base_color.transform.present) g.uv_transform = mat.base_color.transform.matrix();
+    gpu->materials.push_back(std::move(g));
+  }
+  gpu->materials.emplace_back();  // primitives without a material: glTF's default (white, rough, dielectric)
+  gpu->materials.back().metallic = 0.0f;
+  slot = std::move(gpu);
+  return *slot;
+}
+
+}  // namespace welkin::terrain

@@ -1,0 +1,38 @@
+#pragma once
+// GPU copies of terrain meshes and their material textures, owned by the world and shared by every
+// entity that shows the same file with the same build settings.
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "terrain_mesh.h"
+#include "welkin/assets/asset_cache.h"
+#include "welkin/gfx/gl_objects.h"
+
+namespace welkin::terrain {
+
+struct GpuMaterial {
+  glm::vec4 base_color_factor{1.0f};
+  float metallic = 0.0f, roughness = 1.0f;
+  glm::vec3 emissive{0.0f};
+  GlTextureName base_color, metallic_roughness, normal, occlusion, emissive_map;
+  glm::mat3 uv_transform{1.0f};
+};
+
+struct GpuTerrain {
+  TerrainMesh mesh;
+  GlBufferName positions, normals, uvs, indices;
+  GlVertexArrayName vao;
+  std::vector<GpuMaterial> materials;  // indexed like the glTF's materials; the last is the default
+};
+
+struct TerrainCache {
+  static constexpr std::string_view kTypeName = "terrain.TerrainCache";
+  assets::AssetCache assets;
+  std::map<std::string, std::unique_ptr<GpuTerrain>> terrains;  // key: file + build settings
+  // Loads (or returns) the GPU terrain for these settings; throws welkin::Error naming the file.
+  GpuTerrain& get(const Terrain& settings);
+};
+
+}  // namespace welkin::terrain

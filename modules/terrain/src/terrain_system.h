@@ -1,0 +1,16 @@
+#pragma once
+#include <glm/glm.hpp>
+
+#include "welkin/core/system.h"
+#include "welkin/terrain/components.h"
+
+namespace welkin {
+class World;
+}
+
+namespace welkin::terrain {
+// Where a terrain's model origin sits in the scene frame (metres; geodetic anchors need a
+// timeofday.TimeOfDay for the scene origin's latitude and longitude). Throws Error otherwise.
+glm::dvec3 anchor_position(World& world, const Terrain& terrain);
+void terrain_system(SystemContext& sc);
+}  // namespace welkin::terrain

@@ -1,0 +1,84 @@
+#!/usr/bin/env bash
+# Smoke test of welkin-editor under a private Xvfb display:
+#   smoke_test.sh EDITOR IMAGE_CHECK [SOURCE_DIR]
+# Runs assets/editor/smoke.script (edit, undo/redo, presets, timeline, screenshots), checks the saved
+# preset and sequence files and that the screenshots are not blank, then runs
+# assets/editor/smoke-reload.script in a second editor to load what the first one saved, and checks
+# that a failing script makes the editor exit non-zero. Exit 0 on success, 77 when Xvfb is missing.
+set -u
+EDITOR=${1:?usage: smoke_test.sh EDITOR IMAGE_CHECK [SOURCE_DIR]}
+IMAGE_CHECK=${2:?usage: smoke_test.sh EDITOR IMAGE_CHECK [SOURCE_DIR]}
+SOURCE_DIR=${3:-$(cd "$(dirname "$0")/../.." && pwd)}
+TIMEOUT=${WELKIN_EDITOR_SMOKE_TIMEOUT:-180}
+
+command -v Xvfb > /dev/null || { echo "smoke_test: Xvfb not installed; skipping"; exit 77; }
+
+OUT=$(mktemp -d "${TMPDIR:-/tmp}/welkin-editor-smoke.XXXXXX")
+XVFB_PID=""
+cleanup() {
+  [ -n "$XVFB_PID" ] && kill "$XVFB_PID" 2> /dev/null && wait "$XVFB_PID" 2> /dev/null
+  if [ "${KEEP_SMOKE_OUTPUT:-0}" = 1 ]; then echo "smoke_test: output kept in $OUT"; else rm -rf "$OUT"; fi
+}
+trap cleanup EXIT
+
+fail() {
+  echo "smoke_test: FAIL: $*" >&2
+  exit 1
+}
+
+# Xvfb picks a free display itself and writes its number to fd 3 once it accepts clients.
+Xvfb -displayfd 3 -screen 0 1600x900x24 -nolisten tcp 3> "$OUT/display" 2> "$OUT/xvfb.log" &
+XVFB_PID=$!
+for _ in $(seq 100); do
+  [ -s "$OUT/display" ] && break
+  kill -0 "$XVFB_PID" 2> /dev/null || { cat "$OUT/xvfb.log" >&2; fail "Xvfb did not start"; }
+  sleep 0.1
+done
+[ -s "$OUT/display" ] || fail "Xvfb gave no display number"
+export DISPLAY=":$(head -n1 "$OUT/display")"
+echo "smoke_test: Xvfb on $DISPLAY"
+
+# The editor state goes to the scratch folder, never to the user's config.
+export XDG_CONFIG_HOME="$OUT/config"
+export WELKIN_EDITOR_OUT="$OUT"
+cd "$SOURCE_DIR" || fail "no source dir $SOURCE_DIR"
+
+run_editor() {  # run_editor LOG ARGS...
+  local log=$1
+  shift
+  timeout "$TIMEOUT" "$EDITOR" --size 1600x900 "$@" > "$log" 2>&1
+}
+
+# 1. The scripted session.
+run_editor "$OUT/run1.log" assets/scenes/default.json --script assets/editor/smoke.script
+rc=$?
+cat "$OUT/run1.log"
+[ $rc -eq 0 ] || fail "editor exited with $rc in the scripted session"
+
+# 2. Its outputs.
+preset="$OUT/presets/smoke-light.json"
+[ -f "$preset" ] || fail "no preset written at $preset"
+grep -Eq '"elevation_deg": 12\.5' "$preset" || { cat "$preset"; fail "preset lacks elevation_deg 12.5"; }
+grep -Eq '"azimuth_deg": 250' "$preset" || { cat "$preset"; fail "preset lacks the applied preset's azimuth"; }
+ls "$OUT/presets" | grep -q '\.tmp-' && fail "a temporary file was left beside the preset"
+[ -f "$OUT/smoke-sequence.json" ] || fail "no sequence written"
+"$IMAGE_CHECK" "$OUT/viewport.png" --min-width 200 --min-height 150 || fail "viewport screenshot is blank"
+"$IMAGE_CHECK" "$OUT/viewport.exr" --min-width 200 --min-height 150 || fail "viewport EXR is blank or invalid"
+"$IMAGE_CHECK" "$OUT/window.png" --min-width 1000 --min-height 600 || fail "window screenshot is blank"
+[ -f "$XDG_CONFIG_HOME/welkin/editor.json" ] || fail "editor state was not saved to \$XDG_CONFIG_HOME/welkin/editor.json"
+
+# 3. Another run loads what the first saved.
+run_editor "$OUT/run2.log" --script assets/editor/smoke-reload.script
+rc=$?
+cat "$OUT/run2.log"
+[ $rc -eq 0 ] || fail "editor exited with $rc reloading the saved preset"
+"$IMAGE_CHECK" "$OUT/reloaded.png" --min-width 200 --min-height 150 || fail "reloaded viewport is blank"
+
+# 4. A failing script line fails the run (so the checks above mean something).
+printf 'load-scene assets/scenes/debug.json\nexpect core.Camera/ev100 99\nquit\n' > "$OUT/failing.script"
+run_editor "$OUT/run3.log" --script "$OUT/failing.script"
+rc=$?
+[ $rc -ne 0 ] || { cat "$OUT/run3.log"; fail "a failing expect did not make the editor exit non-zero"; }
+grep -q "failing.script:2" "$OUT/run3.log" || { cat "$OUT/run3.log"; fail "the failure does not name the script line"; }
+
+echo "smoke_test: PASS"

@@ -1,0 +1,97 @@
+// Rendering with the atmosphere: every material the engine draws gets aerial perspective, and the
+// sample terrain renders with the module's PBR material.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "welkin/core/world.h"
+#include "welkin/gfx/gl_context.h"
+#include "welkin/gfx/renderer.h"
+#include "welkin/scene/json_fields.h"
+#include "welkin/scene/scene_file.h"
+
+namespace welkin::modules {
+const ModuleDefinition& atmosphere_module();
+const ModuleDefinition& terrain_module();
+}  // namespace welkin::modules
+
+namespace {
+
+using namespace welkin;
+using nlohmann::json;
+
+class TerrainRender : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { gl_ = create_headless_context().release(); }
+  static void TearDownTestSuite() { delete gl_; }
+  static GlContext* gl_;
+};
+GlContext* TerrainRender::gl_ = nullptr;
+
+json atmosphere_preset(const std::string& name) {
+  return read_json_file(WELKIN_SOURCE_DIR "/modules/atmosphere/presets/" + name + ".json");
+}
+
+// Linear radiance at the image centre looking north along the horizon, with or without a grey box
+// `distance_m` away that fills the centre (its size grows with distance: same pixels every time).
+glm::vec3 centre_radiance(const json& atmosphere, double distance_m, bool with_box) {
+  World world;
+  world.modules().add_static(modules::atmosphere_module());
+  json ents = json::array({
+      json{{"components", {{"core.Camera", {{"position_m", {0, 0, 2}}, {"heading_deg", 0}, {"pitch_deg", 0}, {"vertical_fov_deg", 30}}}}}},
+      json{{"components", {{"atmosphere.Atmosphere", atmosphere}}}},
+      json{{"components", {{"atmosphere.Sun", {{"azimuth_deg", 100}, {"elevation_deg", 30}, {"disc", false}}}}}}});
+  if (with_box) {
+    double s = distance_m * 0.05;
+    ents.push_back(json{{"components", {{"core.DebugShape", {{"shape", "box"}, {"position_m", {0, distance_m, 2}}, {"size_m", {s, 1, s}}, {"albedo", {0.3, 0.3, 0.3}}}}}}});
+  }
+  load_scene(world, json{{"welkin_scene", 1}, {"entities", ents}}, "aerial.json");
+  Renderer r(world);
+  r.render_frame({}, 33, 19);
+  ImageF hdr = r.read_hdr();
+  const float* p = hdr.pixel(16, 9);
+  return {p[0], p[1], p[2]};
+}
+
+double relative_distance(const glm::vec3& a, const glm::vec3& b) { return glm::length(a - b) / glm::length(b); }
+
+TEST_F(TerrainRender, FarObjectsTakeTheSkyColourWithDistanceAndHaze) {
+  json earth = atmosphere_preset("earth");
+  glm::vec3 sky = centre_radiance(earth, 0, false);
+  double previous = 1e9;
+  for (double d : {300.0, 3000.0, 15000.0, 60000.0}) {
+    double gap = relative_distance(centre_radiance(earth, d, true), sky);
+    EXPECT_LT(gap, previous) << "at " << d << " m the box must be closer to the sky colour than nearer";
+    previous = gap;
+  }
+  EXPECT_LT(previous, 0.35) << "60 km of air makes the box mostly sky";
+  json hazy = atmosphere_preset("earth-hazy");
+  glm::vec3 hazy_sky = centre_radiance(hazy, 0, false);
+  double clear_gap = relative_distance(centre_radiance(earth, 3000, true), sky);
+  double hazy_gap = relative_distance(centre_radiance(hazy, 3000, true), hazy_sky);
+  EXPECT_LT(hazy_gap, clear_gap) << "haze hides the same box at the same distance more";
+}
+
+TEST_F(TerrainRender, SampleTerrainRendersWithItsMaterial) {
+  World world;
+  world.modules().add_static(modules::terrain_module());
+  json doc{{"welkin_scene", 1},
+           {"entities",
+            json::array({json{{"components", {{"core.Camera", {{"position_m", {0, -2000, 600}}, {"pitch_deg", -8}, {"ev100", 14}}}}}},
+                         json{{"components", {{"core.DirectionalLight", {{"elevation_deg", 40}}}}}},
+                         json{{"components", {{"terrain.Terrain", {{"file", WELKIN_SOURCE_DIR "/assets/terrain/valley.glb"}}}}}}})}};
+  load_scene(world, doc, "terrain.json");
+  Renderer r(world);
+  FrameResult fr = r.render_frame({}, 48, 27);
+  bool drew = false;
+  for (const auto& t : fr.timings) drew = drew || t.name == "terrain";
+  EXPECT_TRUE(drew);
+  ImageU8 img = r.read_output();
+  // The lower half is lit ground (green-brown terrain texture), not the black clear colour.
+  const uint8_t* g = img.pixel(24, 22);
+  EXPECT_GT(int(g[0]) + g[1] + g[2], 60);
+  EXPECT_GE(g[1], g[2]) << "vegetation, not sky";
+}
+
+}  // namespace

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Builds the glTF loader fuzz target with clang (libFuzzer + ASan) in its own build folder and runs it
+# on a seed corpus of generated files. Usage: run_fuzz.sh [SECONDS (default 30)] [BUILD_DIR]
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+root="$(cd "$here/../../.." && pwd)"
+seconds="${1:-30}"
+build="${2:-$root/build/fuzz-assets}"
+jobs="${WELKIN_FUZZ_JOBS:-2}"
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DWELKIN_FUZZ=ON \
+  -DWELKIN_BUILD_EDITOR=OFF -DWELKIN_BUILD_BENCHMARKS=OFF -DWELKIN_BUILD_MODULES=OFF > "$build.configure.log"
+cmake --build "$build" -j"$jobs" --target welkin_gltf_fuzzer welkin_assets_fuzz_seeds
+corpus="$build/fuzz-corpus"
+mkdir -p "$corpus"
+"$build/bin/welkin_assets_fuzz_seeds" "$corpus"
+mkdir -p "$build/fuzz-artifacts"
+# -rss_limit_mb bounds memory (a file may never make the loader allocate without limit);
+# -timeout flags a single input that takes longer than 10 s (a hang).
+ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 "$build/bin/welkin_gltf_fuzzer" \
+  -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 -max_len=65536 \
+  -dict="$here/fuzz_gltf.dict" -artifact_prefix="$build/fuzz-artifacts/" "$corpus"
