@@ -41,6 +41,17 @@ std::string cache_key(const Terrain& s) {
 
 }  // namespace
 
+Texture& TerrainCache::shadow_map(int size) {
+  if (!shadow_atlas || shadow_atlas->desc().height != size) {
+    shadow_atlas = std::make_unique<Texture>(TextureDesc{.width = size * kShadowCascades, .height = size,
+                                                        .format = TextureFormat::depth32f});
+    // Hardware depth comparison with linear filtering: a 2x2 percentage-closer filter per fetch.
+    glTextureParameteri(shadow_atlas->id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTextureParameteri(shadow_atlas->id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  }
+  return *shadow_atlas;
+}
+
 GpuTerrain& TerrainCache::get(const Terrain& s) {
   auto& slot = terrains[cache_key(s)];
   if (slot) return *slot;

@@ -27,8 +27,13 @@ struct GpuTerrain {
   std::vector<GpuMaterial> materials;  // indexed like the glTF's materials; the last is the default
 };
 
+inline constexpr int kShadowCascades = 3;
+
 struct TerrainCache {
   static constexpr std::string_view kTypeName = "terrain.TerrainCache";
+  // Cascades side by side in one depth atlas (kShadowCascades x 1), compared in the shader.
+  std::unique_ptr<Texture> shadow_atlas;
+  Texture& shadow_map(int cascade_size);
   assets::AssetCache assets;
   std::map<std::string, std::unique_ptr<GpuTerrain>> terrains;  // key: file + build settings
   // Loads (or returns) the GPU terrain for these settings; throws welkin::Error naming the file.

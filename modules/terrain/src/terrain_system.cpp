@@ -1,6 +1,8 @@
 // Render system of the terrain module: places each terrain, picks chunk levels of detail, culls
 // chunks outside the view, and draws them with the runtime's PBR shading into colour and depth.
+#include <array>
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "terrain_gpu.h"
 #include "terrain_system.h"
@@ -26,9 +28,51 @@ std::optional<double> scene_scalar(World& world, std::string_view component, std
 
 constexpr double kEarthRadiusM = 6371008.8;  // mean radius, for geodetic offsets
 
+// Direction toward the sun from the scene's sun (atmosphere) or built-in light; nullopt at night.
+std::optional<glm::vec3> sun_direction(World& world) {
+  auto az = scene_scalar(world, "atmosphere.Sun", "azimuth_deg");
+  auto el = scene_scalar(world, "atmosphere.Sun", "elevation_deg");
+  if (!az) az = scene_scalar(world, "core.DirectionalLight", "azimuth_deg"), el = scene_scalar(world, "core.DirectionalLight", "elevation_deg");
+  if (!az || !el || *el <= 0.0) return std::nullopt;
+  return glm::vec3(direction_from_azimuth_elevation(*az, *el));
+}
+
+struct Cascades {
+  std::array<glm::mat4, 3> light_view_projection;  // camera-relative world -> cascade clip space
+  std::array<float, 3> far_m;                       // each cascade covers view distances up to this
+  std::array<float, 3> extent_m;                    // side of each cascade's square, for texel-sized biases
+};
+
+// Orthographic cascades around slices of the view frustum (bounding spheres, so they do not swim
+// as the camera turns); each reaches `reach_m` toward the sun to catch mountains behind the view.
+Cascades make_cascades(const FrameView& v, const glm::vec3& sun, float distance_m, float reach_m) {
+  Cascades c;
+  const float splits[4] = {v.near_m, distance_m * 0.03f, distance_m * 0.2f, distance_m};
+  const float ty = std::tan(v.vertical_fov_rad * 0.5f), tx = ty * float(v.width) / float(v.height);
+  glm::vec3 up = std::abs(sun.z) > 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1);
+  for (int i = 0; i < 3; ++i) {
+    glm::vec3 corners[8];
+    for (int k = 0; k < 8; ++k) {
+      float d = splits[i + (k >> 2)];
+      corners[k] = v.forward * d + v.right * (k & 1 ? tx : -tx) * d + v.up * (k & 2 ? ty : -ty) * d;
+    }
+    glm::vec3 centre(0.0f);
+    for (const auto& p : corners) centre += p / 8.0f;
+    float radius = 0.0f;
+    for (const auto& p : corners) radius = std::max(radius, glm::length(p - centre));
+    glm::mat4 view = glm::lookAt(centre + sun * (radius + reach_m), centre, up);
+    glm::mat4 proj = glm::orthoRH_ZO(-radius, radius, -radius, radius, 0.0f, 2.0f * radius + reach_m);
+    c.light_view_projection[size_t(i)] = proj * view;
+    c.far_m[size_t(i)] = splits[i + 1];
+    c.extent_m[size_t(i)] = 2.0f * radius;
+  }
+  return c;
+}
+
 struct Draw {
   uint32_t first, count;
   int material;
+  glm::vec3 lo{0.0f}, hi{0.0f};  // camera-relative bounds, for culling against each shadow cascade
 };
 
 struct Placed {
@@ -37,6 +81,7 @@ struct Placed {
   glm::mat3 rotation;   // heading
   float inverse_two_radius;
   std::vector<Draw> draws;
+  std::vector<Draw> shadow_draws;  // every chunk (casters outside the view still cast), coarser
   size_t triangles = 0;
 };
 
@@ -105,10 +150,17 @@ void terrain_system(SystemContext& sc) {
       glm::vec2 far_xy = glm::max(glm::abs(glm::vec2(lo) + glm::vec2(p.anchor_m)), glm::abs(glm::vec2(hi) + glm::vec2(p.anchor_m)));
       lo.z -= glm::dot(far_xy, far_xy) * p.inverse_two_radius;
       lo += rel, hi += rel;
-      if (outside_view(view.view_projection, lo, hi)) continue;
       double distance = glm::length(glm::max(glm::max(lo, -hi), glm::vec3(0.0f)));
-      const LodRange& l = c.lods[size_t(select_lod(c, distance, pixels_per_radian, t.lod_pixel_error))];
-      p.draws.push_back({l.first_index, l.index_count, c.material < 0 ? int(p.gpu->materials.size()) - 1 : c.material});
+      int lod = select_lod(c, distance, pixels_per_radian, t.lod_pixel_error);
+      int material = c.material < 0 ? int(p.gpu->materials.size()) - 1 : c.material;
+      if (t.cast_shadows) {
+        // Shadows tolerate coarser geometry: two levels coarser than the view uses.
+        const LodRange& sl = c.lods[size_t(std::min<int>(lod + 2, int(c.lods.size()) - 1))];
+        p.shadow_draws.push_back({sl.first_index, sl.index_count, material, lo, hi});
+      }
+      if (outside_view(view.view_projection, lo, hi)) continue;
+      const LodRange& l = c.lods[size_t(lod)];
+      p.draws.push_back({l.first_index, l.index_count, material});
       p.triangles += l.index_count / 3;
     }
     placed->push_back(std::move(p));
@@ -116,12 +168,58 @@ void terrain_system(SystemContext& sc) {
 
   const FrameTargets targets = *sc.targets;
   const Registry* reg = &world.registry();
+  // Shadows: cascades from the first terrain that casts them (one sun, one set of cascades).
+  std::optional<glm::vec3> sun = sun_direction(world);
+  const Terrain* shadow_settings = nullptr;
+  world.registry().each<Terrain>([&](Entity, Terrain& t) {
+    if (t.cast_shadows && !shadow_settings) shadow_settings = &t;
+  });
+  auto cascades = std::make_shared<std::optional<Cascades>>();
+  ResourceHandle shadow_handle;
+  if (sun && shadow_settings) {
+    *cascades = make_cascades(view, *sun, shadow_settings->shadow_distance_m, 20000.0f);
+    Texture& atlas = cache.shadow_map(shadow_settings->shadow_map_size);
+    shadow_handle = sc.graph->import("terrain.shadow_atlas", atlas);
+    const int size = shadow_settings->shadow_map_size;
+    sc.graph->add_pass("terrain.shadows", [&](PassBuilder& b) { b.write(shadow_handle); }, [placed, cascades, shadow_handle, size, &rc](PassContext& pc) {
+      Framebuffer fb(nullptr, &pc.texture(shadow_handle));
+      fb.bind();
+      glEnable(GL_DEPTH_TEST);
+      glDepthFunc(GL_LESS);
+      glDepthMask(GL_TRUE);
+      glClearDepth(1.0);
+      glClear(GL_DEPTH_BUFFER_BIT);
+      glEnable(GL_POLYGON_OFFSET_FILL);
+      glPolygonOffset(2.0f, 4.0f);  // slope-scaled bias against self-shadowing acne
+      const Program& prog = rc.shaders.graphics("terrain/terrain.vert", "terrain/depth.frag");
+      prog.use();
+      for (int i = 0; i < kShadowCascades; ++i) {
+        glViewport(i * size, 0, size, size);
+        const glm::mat4& light_vp = (**cascades).light_view_projection[size_t(i)];
+        prog.set("u_view_projection", light_vp);
+        for (const Placed& p : *placed) {
+          prog.set("u_anchor_relative", glm::vec3(p.anchor_m - rc.view.camera_position_m));
+          prog.set("u_anchor_xy", glm::vec2(p.anchor_m));
+          prog.set("u_rotation", p.rotation);
+          prog.set("u_inverse_two_radius", p.inverse_two_radius);
+          glBindVertexArray(p.gpu->vao.id());
+          for (const Draw& d : p.shadow_draws)
+            if (!outside_view(light_vp, d.lo, d.hi))
+              glDrawElements(GL_TRIANGLES, GLsizei(d.count), GL_UNSIGNED_INT, reinterpret_cast<const void*>(uintptr_t(d.first) * 4));
+        }
+      }
+      glDisable(GL_POLYGON_OFFSET_FILL);
+      glDepthFunc(GL_GREATER);  // back to the frame's reversed-Z convention
+      glClearDepth(0.0);
+    });
+  }
   sc.graph->add_pass("terrain", [&](PassBuilder& b) {
     b.read(targets.color);
     b.write(targets.color);
     b.read(targets.depth);
     b.write(targets.depth);
-  }, [placed, targets, &rc, reg](PassContext& pc) {
+    if (shadow_handle.valid()) b.read(shadow_handle);
+  }, [placed, targets, &rc, reg, cascades, shadow_handle](PassContext& pc) {
     Framebuffer fb(&pc.texture(targets.color), &pc.texture(targets.depth));
     fb.bind();
     glEnable(GL_DEPTH_TEST);
@@ -132,6 +230,16 @@ void terrain_system(SystemContext& sc) {
     prog.use();
     set_default_light_uniforms(prog, *reg);
     prog.set("u_view_projection", rc.view.view_projection);
+    prog.set("u_shadows", cascades->has_value() ? 1 : 0);
+    if (cascades->has_value()) {
+      glBindTextureUnit(3, pc.texture(shadow_handle).id());
+      for (int i = 0; i < kShadowCascades; ++i) {
+        prog.set("u_cascade[" + std::to_string(i) + "]", (**cascades).light_view_projection[size_t(i)]);
+        prog.set("u_cascade_far[" + std::to_string(i) + "]", (**cascades).far_m[size_t(i)]);
+        prog.set("u_cascade_texel_m[" + std::to_string(i) + "]",
+                 (**cascades).extent_m[size_t(i)] / float(pc.texture(shadow_handle).desc().height));
+      }
+    }
     for (const Placed& p : *placed) {
       prog.set("u_anchor_relative", glm::vec3(p.anchor_m - rc.view.camera_position_m));
       prog.set("u_anchor_xy", glm::vec2(p.anchor_m));
