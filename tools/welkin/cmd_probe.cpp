@@ -1,27 +1,27 @@
-// welkin probe [--scene FILE | --preset NAME] [--altitude-km A] [--view-zenith D] [--view-azimuth D]
-//              [--sun-zenith D] [--sun-azimuth D] [--samples N] [--no-path-trace] [--json]
-// One camera, one view ray, one sun (reference/probe.h geometry): the GPU path's transmittance and
-// radiance next to the double-precision CPU reference (quadrature for single scattering, path
-// tracing for all orders), with relative errors and run times. Radiance is for a sun of 1 lux.
-#include <chrono>
+// welkin probe [--scene FILE | --preset NAME] [--set FIELD=VALUE ...] [--altitude-km A]
+//              [--view-zenith-deg VZ] [--view-azimuth-deg VA] [--sun-zenith-deg SZ] [--sun-azimuth-deg SA]
+//              [--method reference|pathtrace|lut|raymarch|all] [--orders 1|all] [--samples N] [--seed S]
+//              [--threads N] [--size WxH] [--json]
+// One camera, one view ray, one sun (reference/probe.h geometry: z up, azimuths from x towards y for
+// view and sun alike): transmittance and radiance of the ray by any method, so anyone can compare
+// methods on the same ray; `--method all` puts them side by side with their relative errors.
+// Radiance is for sun illuminance 1, atmosphere only (no sun disc, the ground lit as its albedo says
+// where the ray meets it), in 1/sr. `--orders 1` is single scattering (for lut and raymarch the
+// multiple-scattering LUT is switched off).
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "commands.h"
-#include "reference/path_tracer.h"
-#include "reference/probe.h"
-#include "reference/ray_geometry.h"
 #include "session.h"
+#include "validation/probe.h"
+#include "validation/reference_model.h"
 #include "welkin/atmosphere/components.h"
-#include "welkin/atmosphere/gpu.h"
-#include "welkin/atmosphere/lut_mapping.h"
+#include "welkin/atmosphere/presets.h"
 #include "welkin/core/error.h"
 #include "welkin/gfx/gl_context.h"
-#include "welkin/gfx/image.h"
-#include "welkin/gfx/renderer.h"
-#include "welkin/scene/json_fields.h"
 #include "welkin/scene/scene_file.h"
 
 namespace welkin::cli {
@@ -31,163 +31,76 @@ void add_probe_command(CLI::App& app, int& exit_code);
 namespace {
 
 using nlohmann::json;
+using atmosphere::ProbeMethod;
+using atmosphere::ProbeValue;
 namespace ref = welkin::atmosphere::reference;
 
 struct ProbeOptions {
-  std::string scene, preset;
+  std::string scene, preset, method = "all", orders, size = "640x360";
+  std::vector<std::string> sets;
   double altitude_km = 0.0, view_zenith = 80.0, view_azimuth = 0.0, sun_zenith = 60.0, sun_azimuth = 0.0;
-  uint64_t samples = 1u << 16;
-  bool no_path_trace = false;
+  uint64_t samples = 1u << 16, seed = 1;
+  int threads = 2;
   bool json = false;
 };
 
-// The atmosphere.Atmosphere object of a scene file, a preset, or {} (the defaults: Earth).
-json atmosphere_json(World& world, const ProbeOptions& o) {
-  if (!o.scene.empty()) {
-    json doc = read_json_file(o.scene);
-    if (doc.contains("entities") && doc["entities"].is_array())
-      for (const auto& e : doc["entities"])
-        if (e.contains("components") && e["components"].contains("atmosphere.Atmosphere"))
-          return e["components"]["atmosphere.Atmosphere"];
-    throw Error(ErrorInfo{.file = o.scene,
-                          .path = "/entities",
-                          .expected = "an entity with atmosphere.Atmosphere",
-                          .found = "none"});
+// `--set module.field=value` names a field of whichever of the module's components has it; the
+// full `module.Component/field=value` is passed through. Either way the runtime's field paths
+// resolve, range-check and validate it, so the errors are the same as a scene file's.
+std::string full_assignment(World& world, const std::string& assignment) {
+  const auto eq = assignment.find('='), slash = assignment.find('/'), dot = assignment.find('.');
+  if (eq == std::string::npos || (slash != std::string::npos && slash < eq) || dot == std::string::npos ||
+      dot > eq)
+    return assignment;
+  const std::string module = assignment.substr(0, dot);
+  const std::string path = assignment.substr(dot + 1, eq - dot - 1);
+  const std::string field = path.substr(0, path.find('/'));
+  const ModuleManifest* m = world.modules().manifest(module);
+  if (!m || m->components.empty()) return assignment;  // apply_assignment names what is wrong
+  for (const std::string& component : m->components) {
+    const ComponentInfo& info = world.modules().require_component(component);
+    if (info.type->field(field)) return component + "/" + path + assignment.substr(eq);
   }
-  if (!o.preset.empty()) {
-    world.modules().require_component("atmosphere.Atmosphere");
-    const ModuleManifest* m = world.modules().manifest("atmosphere");
-    auto file = m->data_dir / "presets" / (o.preset + ".json");
-    if (!std::filesystem::is_regular_file(file))
-      throw Error(ErrorInfo{.path = "--preset",
-                            .expected = "a preset in " + (m->data_dir / "presets").string(),
-                            .found = "'" + o.preset + "'"});
-    return read_json_file(file.string());
-  }
-  return json::object();
+  // No component has it: let the first report the unknown field with the list of its fields.
+  return m->components.front() + "/" + path + assignment.substr(eq);
 }
 
-ref::DensityProfile to_reference(const atmosphere::DensityProfile& p) {
-  ref::DensityProfile out;
-  auto conv = [](const atmosphere::DensityLayer& l) {
-    return ref::DensityLayer{l.width_km, l.exp_term, l.exp_scale_per_km, l.linear_term_per_km,
-                             l.constant_term};
-  };
-  if (p.size() == 1) out.layers[1] = conv(p[0]);
-  if (p.size() >= 2) out.layers[0] = conv(p[0]), out.layers[1] = conv(p[1]);
-  return out;
-}
-
-ref::AtmosphereModel to_reference(const atmosphere::Atmosphere& a) {
-  ref::AtmosphereModel m;
-  m.bottom_radius_km = a.bottom_radius_km;
-  m.top_radius_km = a.top_radius_km;
-  m.rayleigh_scattering = glm::dvec3(a.rayleigh_scattering);
-  m.rayleigh_density = to_reference(a.rayleigh_density);
-  m.mie_scattering = glm::dvec3(a.mie_scattering);
-  m.mie_extinction = glm::dvec3(a.mie_extinction);
-  m.mie_density = to_reference(a.mie_density);
-  m.mie_phase = a.mie_phase == atmosphere::MiePhase::cornette_shanks ? ref::MiePhase::cornette_shanks
-                                                                     : ref::MiePhase::henyey_greenstein;
-  m.mie_g = a.mie_g;
-  m.absorption_extinction = glm::dvec3(a.absorption_extinction);
-  m.absorption_density = to_reference(a.absorption_density);
-  m.ground_albedo = glm::dvec3(a.ground_albedo);
-  return m;
-}
-
-// Bilinear lookup of the read-back transmittance LUT, as the shader's texture() does.
-glm::dvec3 sample_transmittance(const ImageF& lut, const atmosphere::Atmosphere& a, double r, double mu) {
-  double b = a.bottom_radius_km, t = a.top_radius_km;
-  double H = std::sqrt(t * t - b * b), rho = std::sqrt(std::max(0.0, r * r - b * b));
-  double d = std::max(0.0, -r * mu + std::sqrt(std::max(0.0, r * r * (mu * mu - 1.0) + t * t)));
-  double d_min = t - r, d_max = rho + H;
-  double x_mu = d_max > d_min ? std::clamp((d - d_min) / (d_max - d_min), 0.0, 1.0) : 0.0;
-  double u = atmosphere::unit_to_sub_uv(x_mu, lut.width),
-         v = atmosphere::unit_to_sub_uv(std::clamp(rho / H, 0.0, 1.0), lut.height);
-  double fx = std::clamp(u * lut.width - 0.5, 0.0, lut.width - 1.0),
-         fy = std::clamp(v * lut.height - 0.5, 0.0, lut.height - 1.0);
-  int x0 = int(fx), y0 = int(fy), x1 = std::min(x0 + 1, lut.width - 1), y1 = std::min(y0 + 1, lut.height - 1);
-  double wx = fx - x0, wy = fy - y0;
-  auto at = [&](int x, int y) {  // readback rows run top to bottom
-    const float* p = lut.pixel(x, lut.height - 1 - y);
-    return glm::dvec3(p[0], p[1], p[2]);
-  };
-  return glm::mix(glm::mix(at(x0, y0), at(x1, y0), wx), glm::mix(at(x0, y1), at(x1, y1), wx), wy);
-}
-
-struct GpuProbe {
-  glm::dvec3 radiance{0.0}, transmittance{1.0};
-  double gpu_ms = 0.0;   // atmosphere passes of a steady frame (LUTs cached), 1x1 pixel
-  double wall_ms = 0.0;  // everything: world, shaders, two frames, readback
-};
-
-// Renders a 1x1 frame looking along the probe ray; LUTs are built in the same frame.
-GpuProbe probe_gpu(const json& atmosphere, const ProbeOptions& o, bool single_only) {
-  auto start = std::chrono::steady_clock::now();
+// The atmosphere the probe uses: from a scene, a preset or the defaults (Earth), then `--set`.
+atmosphere::Atmosphere probe_atmosphere(const ProbeOptions& o) {
   auto world = make_world();
-  json atm = atmosphere;
-  if (single_only) atm["multiple_scattering_factor"] = 0, atm["ground_albedo"] = {0, 0, 0};
-  json camera = {{"position_m", {0, 0, o.altitude_km * 1000.0}},
-                 {"heading_deg", std::remainder(90.0 - o.view_azimuth, 360.0)},
-                 {"pitch_deg", 90.0 - o.view_zenith},
-                 {"vertical_fov_deg", 1.0},
-                 {"near_m", 1.0}};
-  json sun = {{"azimuth_deg", std::remainder(90.0 - o.sun_azimuth, 360.0)},
-              {"elevation_deg", 90.0 - o.sun_zenith},
-              {"illuminance_lux", 1.0},
-              {"color", {1, 1, 1}},
-              {"visible_fraction", 1.0},
-              {"disc", false}};
-  json doc = {{"welkin_scene", 1},
-              {"entities",
-               {{{"name", "probe"},
-                 {"components",
-                  {{"core.Camera", camera}, {"atmosphere.Atmosphere", atm}, {"atmosphere.Sun", sun}}}}}}};
-  load_scene(*world, doc, "probe");
-  Renderer renderer(*world);
-  // Frame 0 compiles shaders and builds the LUTs; frame 1 costs what every later frame costs.
-  renderer.render_frame(FrameInfo{}, 1, 1);
-  FrameResult frame = renderer.render_frame(FrameInfo{.index = 1}, 1, 1);
-  GpuProbe g;
-  for (const auto& t : frame.timings)
-    if (t.name.rfind("atmosphere.", 0) == 0) g.gpu_ms += t.gpu_ms;
-  ImageF hdr = renderer.read_hdr();
-  g.radiance = glm::dvec3(hdr.rgba[0], hdr.rgba[1], hdr.rgba[2]);
-
   Registry& reg = world->registry();
-  const auto& a = *reg.get<atmosphere::Atmosphere>(reg.first<atmosphere::Atmosphere>());
-  const ImageF lut = read_texture_float(*world->resource<atmosphere::AtmosphereGpu>().transmittance);
-  const ref::ProbeRay ray = ref::probe_ray(
-      to_reference(a),
-      {.altitude_km = o.altitude_km, .view_zenith_deg = o.view_zenith, .view_azimuth_deg = o.view_azimuth});
-  double r = ray.camera_km.z, mu = ray.view_dir.z;
-  if (r > a.top_radius_km) {  // from space: transmittance from where the ray enters the air
-    double disc = r * r * (mu * mu - 1.0) + a.top_radius_km * a.top_radius_km;
-    if (disc < 0.0 || mu >= 0.0) return g;  // misses the air: nothing in the way
-    double s = -r * mu - std::sqrt(disc);
-    double r_entry = a.top_radius_km;
-    mu = (r * mu + s) / r_entry;
-    r = r_entry;
-  }
-  if (ref::ray_hits_sphere_below(a.bottom_radius_km, r, mu)) {
-    // Bruneton: T(camera -> ground) = T(ground, upwards) / T(camera, upwards along the reversed ray).
-    double d =
-        -r * mu - std::sqrt(std::max(0.0, r * r * (mu * mu - 1.0) + a.bottom_radius_km * a.bottom_radius_km));
-    double r_g = a.bottom_radius_km, mu_g = (r * mu + d) / r_g;
-    g.transmittance = glm::min(sample_transmittance(lut, a, r_g, -mu_g) /
-                                   glm::max(sample_transmittance(lut, a, r, -mu), glm::dvec3(1e-30)),
-                               glm::dvec3(1.0));
+  if (!o.scene.empty()) {
+    load_scene_file(*world, o.scene);
   } else {
-    g.transmittance = sample_transmittance(lut, a, r, mu);
+    const ComponentInfo& info = world->modules().require_component("atmosphere.Atmosphere");
+    atmosphere::Atmosphere a;
+    if (!o.preset.empty()) {
+      const ModuleManifest* m = world->modules().manifest("atmosphere");
+      const auto file = atmosphere::preset_dir(m->data_dir) / (o.preset + ".json");
+      if (!std::filesystem::is_regular_file(file))
+        throw Error(ErrorInfo{.path = "--preset",
+                              .expected = "a preset in " + atmosphere::preset_dir(m->data_dir).string(),
+                              .found = "'" + o.preset + "'"});
+      a = atmosphere::load_preset_file(file);
+    }
+    *static_cast<atmosphere::Atmosphere*>(reg.emplace(reg.create(), *info.type)) = a;
   }
-  g.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  return g;
+  if (reg.first<atmosphere::Atmosphere>().is_null())
+    throw Error(ErrorInfo{
+        .file = o.scene, .path = "/entities", .expected = "an entity with atmosphere.Atmosphere", .found = "none"});
+  for (const std::string& s : o.sets) {
+    const std::string full = full_assignment(*world, s);
+    if (full.rfind("atmosphere.Atmosphere/", 0) != 0 && full.find('/') != std::string::npos &&
+        full.find('/') < full.find('='))
+      throw Error(ErrorInfo{.path = "--set " + s,
+                            .expected = "a field of atmosphere.Atmosphere (the probe's sun comes from --sun-*)",
+                            .found = "'" + full.substr(0, full.find('/')) + "'"});
+    apply_assignment(*world, full);
+  }
+  return *reg.get<atmosphere::Atmosphere>(reg.first<atmosphere::Atmosphere>());
 }
 
 json rgb(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
-json rgb(const double v[3]) { return json::array({v[0], v[1], v[2]}); }
-glm::dvec3 vec(const double v[3]) { return {v[0], v[1], v[2]}; }
 
 double max_rel(const glm::dvec3& a, const glm::dvec3& b) {
   double e = 0.0;
@@ -195,98 +108,164 @@ double max_rel(const glm::dvec3& a, const glm::dvec3& b) {
   return e;
 }
 
+struct Evaluated {
+  ProbeMethod method;
+  bool single = false;
+  ProbeValue value;
+  std::optional<atmosphere::FrameCost> cost;  // GPU methods: per frame at --size
+};
+
+Evaluated evaluate(ProbeMethod method, bool single, const atmosphere::Atmosphere& atm, const ref::ProbeGeometry& g,
+                   const ProbeOptions& o, int width, int height) {
+  Evaluated e{.method = method, .single = single};
+  const ref::AtmosphereModel model = atmosphere::to_reference(atm);
+  switch (method) {
+    case ProbeMethod::reference:
+      e.value = atmosphere::probe_reference(model, g);
+      break;
+    case ProbeMethod::pathtrace:
+      std::fprintf(stderr, "path tracing %llu paths...\n", (unsigned long long)o.samples);
+      e.value = atmosphere::probe_pathtrace(model, g, single,
+                                            {.samples = o.samples, .seed = o.seed, .threads = o.threads});
+      break;
+    case ProbeMethod::lut:
+    case ProbeMethod::raymarch: {
+      atmosphere::GpuProbe probe(
+          atm, method == ProbeMethod::raymarch ? atmosphere::SkyMethod::raymarch : atmosphere::SkyMethod::lut,
+          single);
+      e.value = probe.evaluate(g);
+      e.cost = probe.frame_cost(g, width, height, 5);
+      e.value.ms = e.cost->atmosphere_ms;
+      break;
+    }
+  }
+  return e;
+}
+
+json to_json(const Evaluated& e) {
+  json j{{"method", atmosphere::probe_method_name(e.method)},
+         {"orders", e.single ? json(1) : json("all")},
+         {"transmittance", rgb(e.value.transmittance)},
+         {"radiance", rgb(e.value.radiance)},
+         {"ms", e.value.ms}};
+  if (e.method == ProbeMethod::pathtrace) {
+    j["radiance_ci95"] = rgb(e.value.radiance_ci95);
+    j["samples"] = e.value.samples;
+  }
+  if (e.method == ProbeMethod::reference) j["radiance_error_estimate"] = rgb(e.value.radiance_ci95);
+  if (e.cost) {
+    j["ms_is"] = "GPU time of the atmosphere's passes per frame at frame_size (median, forced to completion)";
+    j["frame_size"] = std::to_string(e.cost->width) + "x" + std::to_string(e.cost->height);
+    j["sky_pass_ms"] = e.cost->sky_ms;
+    j["frame_ms"] = e.cost->frame_ms;
+    j["copy_ms"] = e.cost->copy_ms;
+  } else {
+    j["ms_is"] = "CPU wall time of this ray";
+  }
+  return j;
+}
+
+std::string cost_text(const Evaluated& e) {
+  char buf[200];
+  if (e.cost)
+    std::snprintf(buf, sizeof buf, "%.2f ms GPU per %dx%d frame (sky pass %.2f ms, copy %.2f ms)", e.value.ms,
+                  e.cost->width, e.cost->height, e.cost->sky_ms, e.cost->copy_ms);
+  else if (e.method == ProbeMethod::pathtrace)
+    std::snprintf(buf, sizeof buf, "%.0f ms CPU, %llu paths", e.value.ms, (unsigned long long)e.value.samples);
+  else
+    std::snprintf(buf, sizeof buf, "%.1f ms CPU", e.value.ms);
+  return buf;
+}
+
 int run_probe(const ProbeOptions& o) {
   if (!o.scene.empty() && !o.preset.empty())
     throw Error(ErrorInfo{.path = "--preset", .expected = "either --scene or --preset", .found = "both"});
-  // Declared first: the worlds' GL objects must go while the context lives.
-  auto context = create_headless_context();
-  auto world = make_world();
-  json atm = atmosphere_json(*world, o);
+  const bool all = o.method == "all";
+  const std::optional<ProbeMethod> method = all ? std::nullopt : atmosphere::parse_probe_method(o.method);
+  if (!all && !method)
+    throw Error(ErrorInfo{
+        .path = "--method", .expected = "reference, pathtrace, lut, raymarch or all", .found = "'" + o.method + "'"});
+  if (!o.orders.empty() && o.orders != "1" && o.orders != "all")
+    throw Error(ErrorInfo{.path = "--orders", .expected = "1 or all", .found = "'" + o.orders + "'"});
+  // The quadrature is single scattering only; it is the default there, and asking for more is an error.
+  const bool is_reference = method.has_value() && *method == ProbeMethod::reference;
+  const bool single = o.orders == "1" || (o.orders.empty() && is_reference);
+  if (is_reference && !single)
+    throw Error(ErrorInfo{.path = "--orders",
+                          .expected = "1 with --method reference (quadrature is single scattering; pathtrace "
+                                      "gives all orders)",
+                          .found = "'all'"});
+  int width = 0, height = 0;
+  parse_size(o.size, width, height);
 
-  GpuProbe single = probe_gpu(atm, o, true), full = probe_gpu(atm, o, false);
-  // The model the GPU used, as loaded and validated by the module.
-  world = make_world();
-  load_scene(*world,
-             {{"welkin_scene", 1},
-              {"entities", {{{"name", "a"}, {"components", {{"atmosphere.Atmosphere", atm}}}}}}},
-             "probe");
-  Registry& reg = world->registry();
-  const ref::AtmosphereModel model =
-      to_reference(*reg.get<atmosphere::Atmosphere>(reg.first<atmosphere::Atmosphere>()));
-  const ref::ProbeGeometry geometry{.altitude_km = o.altitude_km,
-                                    .view_zenith_deg = o.view_zenith,
-                                    .view_azimuth_deg = o.view_azimuth,
-                                    .sun_zenith_deg = o.sun_zenith,
-                                    .sun_azimuth_deg = o.sun_azimuth};
-  const ref::ProbeResult quad = ref::probe_quadrature(model, geometry);
-  ref::ProbeResult traced;
-  if (!o.no_path_trace) {
-    const ref::ProbeRay ray = ref::probe_ray(model, geometry);
-    // The GPU sky includes the lit ground where the ray meets it; so must the all-orders reference.
-    ref::PathTraceSettings s{.samples = o.samples,
-                             .camera_sees_ground = ref::ray_hits_sphere_below(
-                                 model.bottom_radius_km, ray.camera_km.z, ray.view_dir.z)};
-    traced = ref::probe_path_traced(model, geometry, s);
+  const atmosphere::Atmosphere atm = probe_atmosphere(o);
+  const ref::ProbeGeometry g{.altitude_km = o.altitude_km,
+                             .view_zenith_deg = o.view_zenith,
+                             .view_azimuth_deg = o.view_azimuth,
+                             .sun_zenith_deg = o.sun_zenith,
+                             .sun_azimuth_deg = o.sun_azimuth};
+  std::vector<ProbeMethod> methods;
+  if (all) {
+    // The baseline first: quadrature for single scattering, path tracing for all orders.
+    methods = single ? std::vector{ProbeMethod::reference, ProbeMethod::pathtrace, ProbeMethod::lut,
+                                   ProbeMethod::raymarch}
+                     : std::vector{ProbeMethod::pathtrace, ProbeMethod::lut, ProbeMethod::raymarch};
+  } else {
+    methods = {*method};
   }
+  std::unique_ptr<GlContext> context;
+  for (ProbeMethod m : methods)
+    if (!context && (m == ProbeMethod::lut || m == ProbeMethod::raymarch)) context = create_headless_context();
+  std::vector<Evaluated> results;
+  for (ProbeMethod m : methods) results.push_back(evaluate(m, single, atm, g, o, width, height));
 
+  const json geometry{{"altitude_km", o.altitude_km},
+                      {"view_zenith_deg", o.view_zenith},
+                      {"view_azimuth_deg", o.view_azimuth},
+                      {"sun_zenith_deg", o.sun_zenith},
+                      {"sun_azimuth_deg", o.sun_azimuth}};
   if (o.json) {
-    json j{{"geometry",
-            {{"altitude_km", o.altitude_km},
-             {"view_zenith_deg", o.view_zenith},
-             {"view_azimuth_deg", o.view_azimuth},
-             {"sun_zenith_deg", o.sun_zenith},
-             {"sun_azimuth_deg", o.sun_azimuth}}},
-           {"transmittance",
-            {{"gpu", rgb(full.transmittance)},
-             {"reference", rgb(quad.transmittance)},
-             {"max_relative_error", max_rel(full.transmittance, vec(quad.transmittance))}}},
-           {"single_scattering",
-            {{"gpu", rgb(single.radiance)},
-             {"reference", rgb(quad.radiance)},
-             {"reference_error_estimate", rgb(quad.radiance_ci95)},
-             {"max_relative_error", max_rel(single.radiance, vec(quad.radiance))},
-             {"gpu_ms", single.gpu_ms},
-             {"gpu_wall_ms", single.wall_ms},
-             {"reference_ms", quad.wall_ms}}},
-           {"units", "radiance in cd/m^2 per lux of sun (1/sr)"}};
-    json all{{"gpu", rgb(full.radiance)}, {"gpu_ms", full.gpu_ms}, {"gpu_wall_ms", full.wall_ms}};
-    if (!o.no_path_trace)
-      all.update({{"reference", rgb(traced.radiance)},
-                  {"reference_ci95", rgb(traced.radiance_ci95)},
-                  {"samples", traced.samples},
-                  {"max_relative_error", max_rel(full.radiance, vec(traced.radiance))},
-                  {"reference_ms", traced.wall_ms}});
-    j["all_orders"] = all;
+    json j;
+    if (!all) {
+      j = to_json(results[0]);
+    } else {
+      json list = json::array();
+      for (const Evaluated& e : results) {
+        json m = to_json(e);
+        m["radiance_max_relative_error"] = max_rel(e.value.radiance, results[0].value.radiance);
+        m["transmittance_max_relative_error"] = max_rel(e.value.transmittance, results[0].value.transmittance);
+        list.push_back(m);
+      }
+      j = {{"methods", list}, {"baseline", atmosphere::probe_method_name(results[0].method)}};
+    }
+    j["geometry"] = geometry;
+    j["units"] = "radiance in 1/sr (cd/m^2 per lux of sun)";
     std::printf("%s\n", j.dump(2).c_str());
     return kOk;
   }
-  auto row = [](const char* what, const glm::dvec3& v, const char* extra) {
-    std::printf("%-34s %12.6g %12.6g %12.6g  %s\n", what, v.x, v.y, v.z, extra);
+  std::printf("probe: altitude %g km, view zenith %g deg azimuth %g deg, sun zenith %g deg azimuth %g deg, %s\n",
+              o.altitude_km, o.view_zenith, o.view_azimuth, o.sun_zenith, o.sun_azimuth,
+              single ? "single scattering (orders 1)" : "all orders");
+  std::printf("%-26s %12s %12s %12s\n", "", "R", "G", "B");
+  auto row = [](const std::string& what, const glm::dvec3& v, const std::string& extra) {
+    std::printf("%-26s %12.6g %12.6g %12.6g  %s\n", what.c_str(), v.x, v.y, v.z, extra.c_str());
   };
-  char buf[160];
-  std::printf(
-      "probe: altitude %.6g km, view zenith %.6g deg azimuth %.6g deg, sun zenith %.6g deg azimuth %.6g "
-      "deg\n",
-      o.altitude_km, o.view_zenith, o.view_azimuth, o.sun_zenith, o.sun_azimuth);
-  std::printf("%-34s %12s %12s %12s\n", "", "R", "G", "B");
-  row("transmittance  gpu (LUT)", full.transmittance, "");
-  std::snprintf(buf, sizeof buf, "max rel. error %.3g", max_rel(full.transmittance, vec(quad.transmittance)));
-  row("transmittance  reference", vec(quad.transmittance), buf);
-  std::snprintf(buf, sizeof buf, "%.2f ms GPU/frame, %.0f ms wall", single.gpu_ms, single.wall_ms);
-  row("single scattering  gpu", single.radiance, buf);
-  std::snprintf(buf, sizeof buf, "%.0f ms; max rel. error %.3g", quad.wall_ms,
-                max_rel(single.radiance, vec(quad.radiance)));
-  row("single scattering  quadrature", vec(quad.radiance), buf);
-  std::snprintf(buf, sizeof buf, "%.2f ms GPU/frame, %.0f ms wall", full.gpu_ms, full.wall_ms);
-  row("all orders  gpu (Hillaire)", full.radiance, buf);
-  if (!o.no_path_trace) {
-    std::snprintf(buf, sizeof buf, "%llu paths, %.0f ms; max rel. error %.3g",
-                  (unsigned long long)traced.samples, traced.wall_ms,
-                  max_rel(full.radiance, vec(traced.radiance)));
-    row("all orders  path traced", vec(traced.radiance), buf);
-    row("  95% confidence half-width", vec(traced.radiance_ci95), "");
+  for (const Evaluated& e : results) {
+    const std::string name = atmosphere::probe_method_name(e.method);
+    std::string t_extra, l_extra = cost_text(e);
+    if (all && &e != &results[0]) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "max rel. error %.3g", max_rel(e.value.transmittance, results[0].value.transmittance));
+      t_extra = buf;
+      std::snprintf(buf, sizeof buf, "max rel. error %.3g; ", max_rel(e.value.radiance, results[0].value.radiance));
+      l_extra = buf + l_extra;
+    }
+    row(name + "  transmittance", e.value.transmittance, t_extra);
+    row(name + "  radiance", e.value.radiance, l_extra);
+    if (e.method == ProbeMethod::pathtrace) row("  95% half-width", e.value.radiance_ci95, "");
   }
-  std::printf("radiance in cd/m^2 per lux of sun (1/sr)\n");
+  std::printf("radiance in 1/sr (cd/m^2 per lux of sun)%s\n",
+              all ? (std::string("; errors against ") + atmosphere::probe_method_name(results[0].method)).c_str() : "");
   return kOk;
 }
 
@@ -294,32 +273,50 @@ int run_probe(const ProbeOptions& o) {
 
 void add_probe_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<ProbeOptions>();
-  CLI::App* cmd =
-      app.add_subcommand("probe", "One view ray: GPU atmosphere against the CPU reference (error and time)");
+  CLI::App* cmd = app.add_subcommand(
+      "probe", "One view ray: transmittance and radiance by any method (GPU LUTs, raymarch, CPU references)");
   cmd->add_option("--scene", o->scene, "Take atmosphere.Atmosphere from this scene file")
       ->check(CLI::ExistingFile);
   cmd->add_option("--preset", o->preset,
                   "Take the atmosphere from a preset of the atmosphere module (earth, mars, ...)");
+  cmd->add_option("--set", o->sets,
+                  "Override an atmosphere field: atmosphere.mie_g=0.76 or atmosphere.Atmosphere/mie_g=0.76 "
+                  "(repeatable)")
+      ->allow_extra_args(false)
+      ->take_all();
   cmd->add_option("--altitude-km", o->altitude_km, "Camera altitude above the ground")
       ->check(CLI::Range(-1e6, 1e7))
       ->capture_default_str();
-  cmd->add_option("--view-zenith", o->view_zenith, "View zenith angle, degrees")
+  cmd->add_option("--view-zenith-deg,--view-zenith", o->view_zenith, "View zenith angle, degrees")
       ->check(CLI::Range(0.0, 180.0))
       ->capture_default_str();
-  cmd->add_option("--view-azimuth", o->view_azimuth, "View azimuth, degrees from x towards y")
+  cmd->add_option("--view-azimuth-deg,--view-azimuth", o->view_azimuth,
+                  "View azimuth, degrees from x towards y (the sun's frame)")
       ->check(CLI::Range(-360.0, 360.0))
       ->capture_default_str();
-  cmd->add_option("--sun-zenith", o->sun_zenith, "Sun zenith angle, degrees")
+  cmd->add_option("--sun-zenith-deg,--sun-zenith", o->sun_zenith, "Sun zenith angle, degrees")
       ->check(CLI::Range(0.0, 180.0))
       ->capture_default_str();
-  cmd->add_option("--sun-azimuth", o->sun_azimuth, "Sun azimuth, degrees from x towards y")
+  cmd->add_option("--sun-azimuth-deg,--sun-azimuth", o->sun_azimuth, "Sun azimuth, degrees from x towards y")
       ->check(CLI::Range(-360.0, 360.0))
       ->capture_default_str();
-  cmd->add_option("--samples", o->samples, "Paths for the all-orders reference")
+  cmd->add_option("--method", o->method,
+                  "reference (CPU quadrature, single scattering), pathtrace (CPU Monte Carlo), lut (Hillaire "
+                  "2020 on the GPU), raymarch (per-pixel nested raymarch on the GPU) or all (side by side)")
+      ->capture_default_str();
+  cmd->add_option("--orders", o->orders,
+                  "1: single scattering (GPU methods without the multiple-scattering LUT); all: every order "
+                  "(default, except 1 for reference)");
+  cmd->add_option("--samples", o->samples, "Paths for pathtrace")
       ->check(CLI::Range(uint64_t(1), uint64_t(1) << 32))
       ->capture_default_str();
-  cmd->add_flag("--no-path-trace", o->no_path_trace, "Skip the (slow) all-orders reference");
-  cmd->add_flag("--json", o->json, "Machine-readable output");
+  cmd->add_option("--seed", o->seed, "Seed for pathtrace (same seed and samples: the same result)")
+      ->capture_default_str();
+  cmd->add_option("--threads", o->threads, "Threads for pathtrace")->check(CLI::Range(1, 1024))->capture_default_str();
+  cmd->add_option("--size", o->size, "Frame size WxH at which GPU methods' cost (ms) is measured")
+      ->capture_default_str();
+  cmd->add_flag("--json", o->json,
+                "Machine-readable output: {\"transmittance\":[r,g,b],\"radiance\":[r,g,b],\"method\":...,\"ms\":...}");
   cmd->callback([o, &exit_code] { exit_code = run_probe(*o); });
 }
 

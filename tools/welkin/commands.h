@@ -9,6 +9,7 @@ void add_sun_command(CLI::App& app, int& exit_code);
 void add_sequence_command(CLI::App& app, int& exit_code);
 void add_bench_command(CLI::App& app, int& exit_code);
 void add_probe_command(CLI::App& app, int& exit_code);
+void add_accuracy_command(CLI::App& app, int& exit_code);
 // Prints nodes, meshes, counts, materials, extensions and bounds of a glTF; throws welkin::Error.
 void print_asset_info(const std::string& file, bool json);
 // Parses WIDTHxHEIGHT (1..16384 per side); throws Error naming --size.

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   welkin::cli::add_sequence_command(app, exit_code);
   welkin::cli::add_bench_command(app, exit_code);
   welkin::cli::add_probe_command(app, exit_code);
+  welkin::cli::add_accuracy_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -78,6 +78,9 @@ void describe(TypeBuilder<Atmosphere>& t) {
       .unit("m")
       .range(-1e12, 1e12)
       .tooltip("Planet centre in the scene frame, used when planet_center_below_origin is off");
+  t.field("method", &Atmosphere::method)
+      .values({{"lut", int(SkyMethod::lut)}, {"raymarch", int(SkyMethod::raymarch)}})
+      .tooltip("lut: Hillaire 2020 sky-view LUT; raymarch: per-pixel nested raymarch (for comparison)");
   t.field("quality", &Atmosphere::quality)
       .values({{"low", 0}, {"medium", 1}, {"high", 2}, {"ultra", 3}, {"custom", 4}})
       .tooltip("LUT sizes and step counts; custom uses the fields below");
@@ -99,7 +102,10 @@ void describe(TypeBuilder<Atmosphere>& t) {
       .tooltip("Depth of the froxel volume; slices are spaced quadratically");
   t.field("raymarch_steps", &Atmosphere::raymarch_steps)
       .range(1, 4096)
-      .tooltip("Per-pixel march length when the camera is in space");
+      .tooltip("Per-pixel march length: the sky seen from space, and every pixel with method raymarch");
+  t.field("raymarch_light_steps", &Atmosphere::raymarch_light_steps)
+      .range(1, 4096)
+      .tooltip("Method raymarch: steps of each per-sample march towards the sun or moon");
 }
 
 void describe(TypeBuilder<Sun>& t) {
@@ -135,13 +141,13 @@ void describe(TypeBuilder<Moon>& t) {
 ResolvedQuality resolve_quality(const Atmosphere& a) {
   switch (a.quality) {
     case Quality::low:
-      return {128, 32, 20, 16, 10, 96, 54, 16, 16, 16, 16, 1, 16};
+      return {128, 32, 20, 16, 10, 96, 54, 16, 16, 16, 16, 1, 16, 4};
     case Quality::medium:
-      return {256, 64, 30, 32, 15, 144, 81, 20, 32, 32, 32, 1, 24};
+      return {256, 64, 30, 32, 15, 144, 81, 20, 32, 32, 32, 1, 24, 8};
     case Quality::high:
-      return {256, 64, 40, 32, 20, 192, 108, 30, 32, 32, 32, 2, 32};
+      return {256, 64, 40, 32, 20, 192, 108, 30, 32, 32, 32, 2, 32, 12};
     case Quality::ultra:
-      return {512, 128, 80, 64, 40, 384, 216, 60, 64, 64, 64, 2, 64};
+      return {512, 128, 80, 64, 40, 384, 216, 60, 64, 64, 64, 2, 64, 16};
     case Quality::custom:
       break;
   }
@@ -157,7 +163,8 @@ ResolvedQuality resolve_quality(const Atmosphere& a) {
           a.aerial_perspective_height,
           a.aerial_perspective_slices,
           a.aerial_perspective_steps_per_slice,
-          a.raymarch_steps};
+          a.raymarch_steps,
+          a.raymarch_light_steps};
 }
 
 glm::dvec3 planet_center_m(const Atmosphere& a) {

@@ -31,6 +31,16 @@ void dispatch(const Program& p, int x, int y, int z = 1) {
 
 int groups(int n, int size) { return (n + size - 1) / size; }
 
+
+// Shader permutations of one frame: software rasterisers run both sides of every branch, so
+// features a frame does not use are compiled out rather than branched around.
+ShaderDefines moon_defines(const GpuUniforms& u) {
+  const bool moon_lights_sky = u.flags.w > 0.5f && glm::any(glm::greaterThan(glm::vec3(u.moon_illuminance), glm::vec3(0.0f)));
+  return {{"ATM_MOON_LIGHT", moon_lights_sky ? "1" : "0"}};
+}
+
+bool in_space(const GpuUniforms& u) { return u.aerial_params.z > 0.5f; }
+
 void bind_image(GLuint unit, const Texture& t) {
   glBindImageTexture(unit, t.id(), 0, t.is_3d() ? GL_TRUE : GL_FALSE, 0, GL_WRITE_ONLY,
                      gl_internal_format(t.desc().format));
@@ -94,7 +104,11 @@ void lut_system(SystemContext& sc) {
   gpu.uniform_buffer->upload(&u, sizeof(u));
   gpu.uniforms = u;
   const bool rebuild = resized || !gpu.luts_valid || luts_differ(u, gpu.lut_uniforms);
-  const bool in_space = u.aerial_params.z > 0.5f;
+  const bool space = in_space(u);
+  const bool raymarch = atm.method == SkyMethod::raymarch;
+  const ShaderDefines moon_defs = moon_defines(u);
+  ShaderDefines irradiance_defines = moon_defs;
+  irradiance_defines["ATM_IRRADIANCE_MARCH"] = space || raymarch ? "1" : "0";
 
   RenderGraph& g = *sc.graph;
   const FrameTargets t = *sc.targets;
@@ -146,7 +160,9 @@ void lut_system(SystemContext& sc) {
           ++gp->lut_builds;
         });
   }
-  if (!in_space) {
+  // The sky-view LUT serves the LUT method inside the atmosphere only; from space, and with method
+  // raymarch, the sky is marched per pixel instead.
+  if (!space && !raymarch) {
     g.add_pass(
         "atmosphere.sky_view",
         [&](PassBuilder& b) {
@@ -154,12 +170,14 @@ void lut_system(SystemContext& sc) {
           b.read(ms);
           b.write(sky_view);
         },
-        [gp, rcp, q](PassContext&) {
+        [gp, rcp, q, moon_defs](PassContext&) {
           bind_for_materials(*gp);
           bind_image(0, *gp->sky_view);
-          dispatch(rcp->shaders.compute("atmosphere/sky_view_lut.comp"), groups(q.sky_view_width, 8),
+          dispatch(rcp->shaders.compute("atmosphere/sky_view_lut.comp", moon_defs), groups(q.sky_view_width, 8),
                    groups(q.sky_view_height, 8));
         });
+  }
+  if (!space) {
     g.add_pass(
         "atmosphere.aerial_perspective",
         [&](PassBuilder& b) {
@@ -168,11 +186,11 @@ void lut_system(SystemContext& sc) {
           b.write(ap_s);
           b.write(ap_t);
         },
-        [gp, rcp, q](PassContext&) {
+        [gp, rcp, q, moon_defs](PassContext&) {
           bind_for_materials(*gp);
           bind_image(0, *gp->aerial_inscattering);
           bind_image(1, *gp->aerial_transmittance);
-          dispatch(rcp->shaders.compute("atmosphere/aerial_perspective_volume.comp"),
+          dispatch(rcp->shaders.compute("atmosphere/aerial_perspective_volume.comp", moon_defs),
                    groups(q.aerial_perspective_width, 8), groups(q.aerial_perspective_height, 8));
         });
   }
@@ -185,12 +203,48 @@ void lut_system(SystemContext& sc) {
         b.write(irradiance);
         b.side_effect();
       },
-      [gp, rcp](PassContext&) {
+      [gp, rcp, irradiance_defines](PassContext&) {
         bind_for_materials(*gp);
         bind_image(0, *gp->sky_irradiance);
-        dispatch(rcp->shaders.compute("atmosphere/sky_irradiance.comp"), 1, 1);
+        dispatch(rcp->shaders.compute("atmosphere/sky_irradiance.comp", irradiance_defines), 1, 1);
       });
 
+  // The sky goes first, over the whole target, and the geometry drawn later covers it: cheaper than
+  // testing depth per pixel afterwards (on a software rasteriser that test costs as much as a copy),
+  // and the discs are hidden behind geometry for free.
+  const float pixel_angle = rc.view.vertical_fov_rad / float(std::max(rc.view.height, 1));
+  ShaderDefines sky = moon_defs;
+  sky["ATM_SKY_MODE"] = raymarch ? "2" : space ? "1" : "0";
+  ShaderDefines discs = sky;
+  discs["ATM_SKY_DISCS"] = "1";
+  const bool any_disc = u.flags.x > 0.5f || u.flags.z > 0.5f;
+  g.add_pass(
+      "atmosphere.sky",
+      [&](PassBuilder& b) {
+        b.read(trans);
+        b.read(ms);
+        b.read(sky_view);
+        b.read(t.color);
+        b.write(t.color);
+      },
+      [gp, rcp, t, pixel_angle, sky, discs, any_disc](PassContext& pc) {
+        Framebuffer fb(&pc.texture(t.color), nullptr);
+        fb.bind();
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_BLEND);
+        bind_for_materials(*gp);
+        const Program& p = rcp->shaders.graphics("atmosphere/sky.vert", "atmosphere/sky.frag", sky);
+        p.use();
+        rcp->draw_fullscreen_triangle();
+        if (any_disc) {
+          // Overwrites its squares with sky + disc (no blending: the sum must be fitted to RGBA16F).
+          const Program& d = rcp->shaders.graphics("atmosphere/sky.vert", "atmosphere/sky.frag", discs);
+          d.use();
+          d.set("u_pixel_angle", pixel_angle);
+          glBindVertexArray(rcp->empty_vao.id());
+          glDrawArraysInstanced(GL_TRIANGLES, 0, 6, 2);
+        }
+      });
 }
 
 void sky_system(SystemContext& sc) {
@@ -201,34 +255,12 @@ void sky_system(SystemContext& sc) {
   const FrameTargets t = *sc.targets;
   // Published by lut_system earlier this frame.
   const ResourceHandle trans = g.blackboard.at("atmosphere.transmittance");
-  const ResourceHandle ms = g.blackboard.at("atmosphere.multiscattering");
-  const ResourceHandle sky_view = g.blackboard.at("atmosphere.sky_view");
   const ResourceHandle ap_s = g.blackboard.at("atmosphere.aerial_inscattering");
   const ResourceHandle ap_t = g.blackboard.at("atmosphere.aerial_transmittance");
-  const float pixel_angle = rc.view.vertical_fov_rad / float(std::max(rc.view.height, 1));
-  g.add_pass(
-      "atmosphere.sky",
-      [&](PassBuilder& b) {
-        b.read(trans);
-        b.read(ms);
-        b.read(sky_view);
-        b.read(t.depth);
-        b.read(t.color);
-        b.write(t.color);
-      },
-      [gp, rcp, t, pixel_angle](PassContext& pc) {
-        Framebuffer fb(&pc.texture(t.color), nullptr);
-        fb.bind();
-        glDisable(GL_DEPTH_TEST);
-        glDisable(GL_BLEND);
-        bind_for_materials(*gp);
-        const Program& p = rcp->shaders.graphics("fullscreen.vert", "atmosphere/sky.frag");
-        glBindTextureUnit(0, pc.texture(t.depth).id());
-        p.set("u_depth", 0);
-        p.set("u_pixel_angle", pixel_angle);
-        p.use();
-        rcp->draw_fullscreen_triangle();
-      });
+  const GpuUniforms& u = gp->uniforms;
+  const bool space = in_space(u);
+  ShaderDefines ap = moon_defines(u);
+  ap["ATM_AP_MODE"] = space ? "1" : "0";
   g.add_pass(
       "atmosphere.aerial_perspective_apply",
       [&](PassBuilder& b) {
@@ -239,20 +271,26 @@ void sky_system(SystemContext& sc) {
         b.read(t.color);
         b.write(t.color);
       },
-      [gp, rcp, t](PassContext& pc) {
-        Framebuffer fb(&pc.texture(t.color), nullptr);
+      [gp, rcp, t, ap](PassContext& pc) {
+        // Depth attached read-only and sampled with texelFetch at the fragment's own texel, which
+        // GL 4.5 defines (9.3.1); GL_LESS against depth 0 passes only on geometry.
+        Framebuffer fb(&pc.texture(t.color), &pc.texture(t.depth));
         fb.bind();
-        glDisable(GL_DEPTH_TEST);
+        glEnable(GL_DEPTH_TEST);
+        glDepthMask(GL_FALSE);
+        glDepthFunc(GL_LESS);
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_SRC1_COLOR);  // colour * transmittance + in-scattering
         bind_for_materials(*gp);
         const Program& p =
-            rcp->shaders.graphics("fullscreen.vert", "atmosphere/aerial_perspective_apply.frag");
+            rcp->shaders.graphics("fullscreen.vert", "atmosphere/aerial_perspective_apply.frag", ap);
         glBindTextureUnit(0, pc.texture(t.depth).id());
         p.set("u_depth", 0);
         p.use();
         rcp->draw_fullscreen_triangle();
         glDisable(GL_BLEND);
+        glDepthMask(GL_TRUE);
+        glDisable(GL_DEPTH_TEST);
       });
 }
 

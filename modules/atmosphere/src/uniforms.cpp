@@ -4,6 +4,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "welkin/atmosphere/gpu.h"
+#include "welkin/atmosphere/lut_mapping.h"
 #include "welkin/gfx/debug_content.h"
 
 namespace welkin::atmosphere {
@@ -100,7 +101,15 @@ GpuUniforms make_uniforms(const Atmosphere& a, const Sun* sun_in, const Moon* mo
   u.sky_view_size = {q.sky_view_width, q.sky_view_height, q.sky_view_steps, 0};
   u.aerial_size = {q.aerial_perspective_width, q.aerial_perspective_height, q.aerial_perspective_slices,
                    q.aerial_perspective_steps_per_slice};
-  u.aerial_params = {a.aerial_perspective_distance_km, float(q.raymarch_steps), r >= top ? 1.0f : 0.0f, 0.0f};
+  u.aerial_params = {a.aerial_perspective_distance_km, float(q.raymarch_steps), r >= top ? 1.0f : 0.0f,
+                     float(q.raymarch_light_steps)};
+  // The sky-view LUT's horizon for this camera (common.glsl, atm_sky_view_uv_local), once per frame in
+  // double rather than per pixel.
+  const SkyViewMapping sv = sky_view_mapping(r, bottom);
+  const double n = q.sky_view_height;
+  u.sky_view_params = {float(std::sin(sv.beta)), float(std::cos(sv.beta)),
+                       float(1.0 / std::tan(0.5 * sv.zenith_horizon)), float(1.0 / std::tan(0.5 * sv.beta))};
+  u.sky_view_params_v = {float(n / (n + 1.0)), float(0.5 / (n + 1.0)), float(sv.zenith_horizon), float(sv.beta)};
   return u;
 }
 

@@ -10,10 +10,12 @@
 #include "welkin/gfx/renderer.h"
 #include "welkin/scene/json_fields.h"
 #include "welkin/scene/scene_file.h"
+#include "golden.h"
 
 namespace welkin::modules {
 const ModuleDefinition& atmosphere_module();
 const ModuleDefinition& terrain_module();
+const ModuleDefinition& timeofday_module();
 }  // namespace welkin::modules
 
 namespace {
@@ -92,6 +94,24 @@ TEST_F(TerrainRender, SampleTerrainRendersWithItsMaterial) {
   const uint8_t* g = img.pixel(24, 22);
   EXPECT_GT(int(g[0]) + g[1] + g[2], 60);
   EXPECT_GE(g[1], g[2]) << "vegetation, not sky";
+}
+
+TEST_F(TerrainRender, DefaultDemoSceneMatchesGolden) {
+  // Terrain, sky, time of day and aerial perspective on the distant mountains, at a small size.
+  World world;
+  world.modules().add_static(modules::atmosphere_module());
+  world.modules().add_static(modules::terrain_module());
+  world.modules().add_static(modules::timeofday_module());
+  json doc = read_json_file(WELKIN_SOURCE_DIR "/assets/scenes/default.json");
+  for (auto& e : doc["entities"])  // the scene names the terrain relative to the repository root
+    if (e["components"].contains("terrain.Terrain"))
+      e["components"]["terrain.Terrain"]["file"] = WELKIN_SOURCE_DIR "/assets/terrain/valley.glb";
+  load_scene(world, doc, "default.json");
+  Renderer r(world);
+  r.render_frame({}, 160, 90);
+  auto res = welkin::testing::compare_with_golden(r.read_output(), "terrain/default_scene",
+                                                  {.max_channel_difference = 10, .max_failing_fraction = 0.02});
+  EXPECT_TRUE(res.passed) << res.message;
 }
 
 }  // namespace

@@ -15,15 +15,19 @@ vec3 atmosphere_point_km(vec3 camera_relative_m) { return atm_camera() + camera_
 vec3 atmosphere_sun_direction() { return atm_sun_direction.xyz; }
 vec3 atmosphere_moon_direction() { return atm_moon_direction.xyz; }
 
-AtmosphereAerialPerspective atmosphere_aerial_perspective(vec3 camera_relative_m) {
+// Froxels inside the atmosphere; from space (no froxels there: they would cover vacuum) the path is
+// marched. The atmosphere's own pass picks one at compile time (ATM_AP_MODE 0 froxels, 1 march);
+// materials that leave it undefined choose at run time.
+AtmosphereAerialPerspective atm_aerial_perspective_march(vec3 camera_relative_m) {
   float d_km = length(camera_relative_m) * 1e-3;
-  if (atm_camera_in_space()) {
-    // No froxels in space (they would cover vacuum): march the path instead.
-    vec3 dir = camera_relative_m / max(length(camera_relative_m), 1e-9);
-    AtmMarch m = atm_march_to_surface(atm_camera(), dir, d_km, int(atm_aerial_params.y), atm_sun_light(),
-                                      atm_moon_light_source());
-    return AtmosphereAerialPerspective(m.luminance, m.transmittance);
-  }
+  vec3 dir = camera_relative_m / max(length(camera_relative_m), 1e-9);
+  AtmMarch m = atm_march_to_surface(atm_camera(), dir, d_km, int(atm_aerial_params.y), atm_sun_light(),
+                                    atm_moon_light_source());
+  return AtmosphereAerialPerspective(m.luminance, m.transmittance);
+}
+
+AtmosphereAerialPerspective atm_aerial_perspective_froxels(vec3 camera_relative_m) {
+  float d_km = length(camera_relative_m) * 1e-3;
   vec4 clip = atm_view_projection * vec4(camera_relative_m, 1.0);
   vec2 uv = clip.w > 0.0 ? clip.xy / clip.w * 0.5 + 0.5 : vec2(0.5);
   float w = sqrt(d_km / atm_aerial_params.x);
@@ -32,6 +36,17 @@ AtmosphereAerialPerspective atmosphere_aerial_perspective(vec3 camera_relative_m
   vec3 s = texture(atm_aerial_inscattering, vec3(uv, w)).rgb;
   vec3 t = texture(atm_aerial_transmittance, vec3(uv, w)).rgb;
   return AtmosphereAerialPerspective(s * fade, mix(vec3(1.0), t, fade));
+}
+
+AtmosphereAerialPerspective atmosphere_aerial_perspective(vec3 camera_relative_m) {
+#if !defined(ATM_AP_MODE)
+  if (atm_camera_in_space()) return atm_aerial_perspective_march(camera_relative_m);
+  return atm_aerial_perspective_froxels(camera_relative_m);
+#elif ATM_AP_MODE == 1
+  return atm_aerial_perspective_march(camera_relative_m);
+#else
+  return atm_aerial_perspective_froxels(camera_relative_m);
+#endif
 }
 
 vec3 atmosphere_apply(vec3 color, vec3 camera_relative_m) {

@@ -22,7 +22,7 @@ void main() {
     float t = atm_aerial_params.x * w * w;
     // The ground does not stop the march: geometry seen there (terrain below the ideal sphere) is
     // in front of it, and its air is ground-level air (atm_medium clamps the altitude).
-    atm_march_segment(m, origin, dir, t_prev, t, atm_aerial_size.w, false, sun, moon, false);
+    atm_march_segment(m, origin, dir, t_prev, t, atm_aerial_size.w, false, sun, moon, atm_ms_factor());
     t_prev = t;
     imageStore(o_inscattering, ivec3(column, k), vec4(atm_fit_half(m.luminance), 1.0));
     imageStore(o_transmittance, ivec3(column, k), vec4(m.transmittance, 1.0));

@@ -26,7 +26,9 @@ layout(std140, binding = 7) uniform WelkinAtmosphere {
   ivec4 atm_multiscattering_size;  // size, steps
   ivec4 atm_sky_view_size;         // width, height, steps
   ivec4 atm_aerial_size;           // width, height, slices, steps per slice
-  vec4 atm_aerial_params;          // distance (km), raymarch steps, 1 when the camera is in space
+  vec4 atm_aerial_params;          // distance (km), raymarch steps, 1 when in space, raymarch light steps
+  vec4 atm_sky_view_params;        // sky-view LUT mapping for the camera (atm_sky_view_uv_local)
+  vec4 atm_sky_view_params_v;
 };
 
 layout(binding = 10) uniform sampler2D atm_transmittance_lut;
@@ -40,18 +42,51 @@ float atm_bottom() { return atm_radii.x; }
 float atm_top() { return atm_radii.y; }
 bool atm_camera_in_space() { return atm_aerial_params.z > 0.5; }
 
+// What the marching loops read of the block, loaded into registers once per invocation: software
+// rasterisers reload uniform-block values at every use inside a loop, which made the medium alone
+// cost four times its arithmetic. Functions taking an AtmParams are the loops' versions; those
+// without load it themselves (for one-off use by materials).
+struct AtmProfileParams {
+  vec4 lower;      // layer 0: width, exp term, exp scale, linear term
+  vec4 upper;      // layer 1
+  vec2 constants;  // constant terms of layers 0 and 1
+};
+
+struct AtmParams {
+  AtmProfileParams rayleigh_density, mie_density, absorption_density;
+  vec3 rayleigh_scattering, mie_scattering, mie_extinction, absorption_extinction;
+  float bottom, top, horizon_distance, thickness;  // horizon_distance: sqrt(top^2 - bottom^2)
+  float lift;                                      // samples stay this far above the ground
+  float ms_factor;
+  vec2 transmittance_size;
+  float multiscattering_size;
+};
+
+AtmProfileParams atm_profile_params(int p) {
+  return AtmProfileParams(atm_density[p * 4 + 0], atm_density[p * 4 + 2],
+                          vec2(atm_density[p * 4 + 1].x, atm_density[p * 4 + 3].x));
+}
+
+AtmParams atm_params() {
+  return AtmParams(atm_profile_params(0), atm_profile_params(1), atm_profile_params(2),
+                   atm_rayleigh_scattering.rgb, atm_mie_scattering.rgb, atm_mie_extinction.rgb,
+                   atm_absorption_extinction.rgb, atm_radii.x, atm_radii.y, atm_radii.z, atm_radii.w,
+                   atm_ground_albedo.w, atm_absorption_extinction.w, vec2(atm_transmittance_size.xy),
+                   float(atm_multiscattering_size.x));
+}
+
 // ---- Medium ------------------------------------------------------------------------------------
 
 float atm_layer(vec4 l, float constant_term, float h) {
-  float v = l.w * h + constant_term;
-  // Skipping absent exponentials avoids 0 * inf for steep scales; the clamp bounds the rest.
-  if (l.y != 0.0) v += l.y * exp(min(l.z * h, 80.0));
-  return clamp(v, 0.0, 1.0);
+  // min(.., 80) keeps exp finite, so an absent exponential (exp_term 0) adds exactly 0; the clamp
+  // bounds the rest. No branch: software rasterisers run both sides of one.
+  return clamp(l.w * h + constant_term + l.y * exp(min(l.z * h, 80.0)), 0.0, 1.0);
 }
 
-float atm_profile(int p, float h) {
-  vec4 l0 = atm_density[p * 4 + 0], l1 = atm_density[p * 4 + 2];
-  return h < l0.x ? atm_layer(l0, atm_density[p * 4 + 1].x, h) : atm_layer(l1, atm_density[p * 4 + 3].x, h);
+// The layer is chosen before evaluating it: one exp per profile instead of two.
+float atm_profile(AtmProfileParams p, float h) {
+  bool lower = h < p.lower.x;
+  return atm_layer(lower ? p.lower : p.upper, lower ? p.constants.x : p.constants.y, h);
 }
 
 struct AtmMedium {
@@ -61,16 +96,18 @@ struct AtmMedium {
 };
 
 // Coefficients at altitude h (km); zero above the top so rays may run past it.
-AtmMedium atm_medium(float h) {
+AtmMedium atm_medium(AtmParams P, float h) {
   AtmMedium m;
-  float inside = h <= atm_radii.w ? 1.0 : 0.0;
+  float inside = h <= P.thickness ? 1.0 : 0.0;
   h = max(h, 0.0);
-  float dr = atm_profile(0, h) * inside, dm = atm_profile(1, h) * inside, da = atm_profile(2, h) * inside;
-  m.rayleigh = atm_rayleigh_scattering.rgb * dr;
-  m.mie = atm_mie_scattering.rgb * dm;
-  m.extinction = m.rayleigh + atm_mie_extinction.rgb * dm + atm_absorption_extinction.rgb * da;
+  float dr = atm_profile(P.rayleigh_density, h) * inside, dm = atm_profile(P.mie_density, h) * inside;
+  float da = atm_profile(P.absorption_density, h) * inside;
+  m.rayleigh = P.rayleigh_scattering * dr;
+  m.mie = P.mie_scattering * dm;
+  m.extinction = m.rayleigh + P.mie_extinction * dm + P.absorption_extinction * da;
   return m;
 }
+AtmMedium atm_medium(float h) { return atm_medium(atm_params(), h); }
 
 // ---- Phase functions (1/sr; cos_theta between propagation directions, i.e. dot(view, light)) -----
 
@@ -115,11 +152,11 @@ bool atm_hits_ground(float r, float mu) {
   return mu < 0.0 && r * r * (mu * mu - 1.0) + b * b >= 0.0;
 }
 
-float atm_distance_to_top(float r, float mu) {
-  float t = atm_top();
-  float disc = r * r * (mu * mu - 1.0) + t * t;
+float atm_distance_to_top(AtmParams P, float r, float mu) {
+  float disc = r * r * (mu * mu - 1.0) + P.top * P.top;
   return max(0.0, -r * mu + sqrt(max(disc, 0.0)));
 }
+float atm_distance_to_top(float r, float mu) { return atm_distance_to_top(atm_params(), r, mu); }
 
 // ---- LUT parameterisations (Bruneton 2017 / Hillaire 2020) -------------------------------------
 
@@ -129,15 +166,15 @@ float atm_sub_uv_to_unit(float u, float size) { return (u - 0.5 / size) * (size 
 
 // Transmittance to the top: x_r = rho / H and x_mu = the distance to the top normalised between
 // its minimum (straight up) and maximum (the horizon), so the horizon is a texel row, not a smear.
-vec2 atm_transmittance_uv(float r, float mu) {
-  float H = atm_radii.z, b = atm_bottom();
+vec2 atm_transmittance_uv(AtmParams P, float r, float mu) {
+  float H = P.horizon_distance, b = P.bottom;
   float rho = sqrt(max(0.0, (r - b) * (r + b)));
-  float d = atm_distance_to_top(r, mu);
-  float d_min = atm_top() - r, d_max = rho + H;
+  float d = atm_distance_to_top(P, r, mu);
+  float d_min = P.top - r, d_max = rho + H;
   float x_mu = d_max > d_min ? (d - d_min) / (d_max - d_min) : 0.0;
   float x_r = rho / H;
-  return vec2(atm_unit_to_sub_uv(clamp(x_mu, 0.0, 1.0), float(atm_transmittance_size.x)),
-              atm_unit_to_sub_uv(clamp(x_r, 0.0, 1.0), float(atm_transmittance_size.y)));
+  return vec2(atm_unit_to_sub_uv(clamp(x_mu, 0.0, 1.0), P.transmittance_size.x),
+              atm_unit_to_sub_uv(clamp(x_r, 0.0, 1.0), P.transmittance_size.y));
 }
 
 vec2 atm_transmittance_r_mu(vec2 uv) {
@@ -153,73 +190,76 @@ vec2 atm_transmittance_r_mu(vec2 uv) {
 }
 
 // Transmittance from radius r along zenith cosine mu to the top (the ray must not hit the ground).
-vec3 atm_transmittance(float r, float mu) {
-  return texture(atm_transmittance_lut, atm_transmittance_uv(r, mu)).rgb;
+vec3 atm_transmittance(AtmParams P, float r, float mu) {
+  return texture(atm_transmittance_lut, atm_transmittance_uv(P, r, mu)).rgb;
 }
+vec3 atm_transmittance(float r, float mu) { return atm_transmittance(atm_params(), r, mu); }
 
 // Fraction of a light's disc above the planet's horizon at radius r (Bruneton's smooth horizon).
-float atm_light_visibility(float r, float mu_l, float angular_radius) {
-  float sin_h = min(atm_bottom() / r, 1.0);
+float atm_light_visibility(AtmParams P, float r, float mu_l, float angular_radius) {
+  float sin_h = min(P.bottom / r, 1.0);
   float cos_h = -sqrt(max(0.0, 1.0 - sin_h * sin_h));
   float w = sin_h * max(angular_radius, 1e-4);
   return smoothstep(-w, w, mu_l - cos_h);
 }
 
 // Direct light reaching radius r from a light at zenith cosine mu_l, shadowed by the planet.
+vec3 atm_transmittance_to_light(AtmParams P, float r, float mu_l, float angular_radius) {
+  return atm_transmittance(P, r, mu_l) * atm_light_visibility(P, r, mu_l, angular_radius);
+}
 vec3 atm_transmittance_to_light(float r, float mu_l, float angular_radius) {
-  float v = atm_light_visibility(r, mu_l, angular_radius);
-  return v > 0.0 ? atm_transmittance(r, mu_l) * v : vec3(0.0);
+  return atm_transmittance_to_light(atm_params(), r, mu_l, angular_radius);
 }
 
 // Multi-scattering LUT: u = mu_s, v = altitude, both linear (Hillaire 2020, section 5.5).
-vec2 atm_multiscattering_uv(float r, float mu_s) {
-  float n = float(atm_multiscattering_size.x);
+vec2 atm_multiscattering_uv(AtmParams P, float r, float mu_s) {
+  float n = P.multiscattering_size;
   return vec2(atm_unit_to_sub_uv(clamp(mu_s * 0.5 + 0.5, 0.0, 1.0), n),
-              atm_unit_to_sub_uv(clamp((r - atm_bottom()) / atm_radii.w, 0.0, 1.0), n));
+              atm_unit_to_sub_uv(clamp((r - P.bottom) / P.thickness, 0.0, 1.0), n));
 }
 
-vec3 atm_multiscattering(float r, float mu_s) {
-  return texture(atm_multiscattering_lut, atm_multiscattering_uv(r, mu_s)).rgb;
+vec3 atm_multiscattering(AtmParams P, float r, float mu_s) {
+  return texture(atm_multiscattering_lut, atm_multiscattering_uv(P, r, mu_s)).rgb;
 }
 
-// Sky-view LUT: u = azimuth from the sun over the whole circle (signed square root: fine near the
-// sun), v = zenith angle with the horizon at v = 0.5 and texels squeezed towards it from both sides.
-vec2 atm_sky_view_uv(float r, float cos_zenith, float azimuth) {
-  float b = atm_bottom();
-  float cos_beta = sqrt(max(0.0, (r - b) * (r + b))) / r;
-  float beta = acos(clamp(cos_beta, -1.0, 1.0));
-  float zenith_horizon = ATM_PI - beta;
-  float zenith = acos(clamp(cos_zenith, -1.0, 1.0));
-  float v;
-  if (zenith < zenith_horizon) {
-    float c = sqrt(max(0.0, 1.0 - zenith / zenith_horizon));
-    v = 0.5 * (1.0 - c);
-  } else {
-    float c = sqrt(clamp((zenith - zenith_horizon) / max(beta, 1e-6), 0.0, 1.0));
-    v = 0.5 + 0.5 * c;
-  }
-  float a = clamp(azimuth / ATM_PI, -1.0, 1.0);
-  float u = 0.5 + 0.5 * sign(a) * sqrt(abs(a));
-  return vec2(u, atm_unit_to_sub_uv(v, float(atm_sky_view_size.y)));
+// Sky light of the higher orders on the ground, as irradiance / pi for an illuminance of 1
+// (multiscattering_lut.comp keeps the upper hemisphere's share in alpha).
+vec3 atm_multiscattering_ground(AtmParams P, float mu_s) {
+  vec4 ms = texture(atm_multiscattering_lut, atm_multiscattering_uv(P, P.bottom + P.lift, mu_s));
+  return ms.rgb * ms.a;
 }
 
-// Inverse of atm_sky_view_uv for a texel: (cos zenith, azimuth).
-vec2 atm_sky_view_direction(float r, vec2 uv) {
-  float b = atm_bottom();
-  float cos_beta = sqrt(max(0.0, (r - b) * (r + b))) / r;
-  float beta = acos(clamp(cos_beta, -1.0, 1.0));
-  float zenith_horizon = ATM_PI - beta;
-  float v = atm_sub_uv_to_unit(uv.y, float(atm_sky_view_size.y));
-  float zenith;
-  if (v < 0.5) {
-    float c = 1.0 - 2.0 * v;
-    zenith = zenith_horizon * (1.0 - c * c);
-  } else {
-    float c = 2.0 * v - 1.0;
-    zenith = zenith_horizon + beta * c * c;
-  }
+// Sky-view LUT (Hillaire 2020's layout: horizon at v = 0.5, texels crowded towards it from both
+// sides under a square root; the sun's azimuth at u = 0.5, texels crowded towards it). The angles go
+// through pseudo-angles with exact inverses instead of acos and atan, because the sky pass evaluates
+// this for every pixel and software rasterisers expand inverse trigonometry into long polynomials:
+//   v: the angle e from the horizon (positive upwards) as t = tan(e / 2), linear near the horizon,
+//      over its value at the zenith (above) or the nadir (below);
+//   u: the azimuth phi from the sun as q = 1 - x / (|x| + |y|), which runs from 0 to 2 as phi runs
+//      from 0 to pi and is linear near 0.
+// atm_sky_view_params: sin beta and cos beta (beta: the horizon's angle from the nadir), 1 / tan of
+// half the horizon-to-zenith and horizon-to-nadir angles; _v: v's texel scale and offset, zenith
+// angle of the horizon, beta. lut_mapping.h mirrors this on the CPU.
+vec2 atm_sky_view_uv_local(vec3 d) {  // d in the LUT's frame, any length
+  float h = length(d.xy), len = length(d);
+  float sin_e = atm_sky_view_params.x * d.z + atm_sky_view_params.y * h;  // times |d|
+  float cos_e = atm_sky_view_params.x * h - atm_sky_view_params.y * d.z;
+  float k = sin_e / max(len + cos_e, 1e-30);
+  k *= k >= 0.0 ? atm_sky_view_params.z : atm_sky_view_params.w;
+  float v = 0.5 - 0.5 * sign(k) * sqrt(min(abs(k), 1.0));
+  float q = 1.0 - d.x / max(abs(d.x) + abs(d.y), 1e-30);
+  float u = 0.5 + (d.y < 0.0 ? -0.5 : 0.5) * sqrt(0.5 * q);
+  return vec2(u, v * atm_sky_view_params_v.x + atm_sky_view_params_v.y);
+}
+
+// Inverse of atm_sky_view_uv_local for a texel: (cos zenith, azimuth).
+vec2 atm_sky_view_direction(vec2 uv) {
+  float zenith_horizon = atm_sky_view_params_v.z, beta = atm_sky_view_params_v.w;
+  float c = 1.0 - 2.0 * atm_sub_uv_to_unit(uv.y, float(atm_sky_view_size.y));  // > 0 above the horizon
+  float e = 2.0 * atan(c * abs(c) * tan(0.5 * (c >= 0.0 ? zenith_horizon : beta)));
   float s = 2.0 * uv.x - 1.0;
-  return vec2(cos(zenith), sign(s) * s * s * ATM_PI);
+  float x = 1.0 - 2.0 * s * s;
+  return vec2(cos(zenith_horizon - e), sign(s) * atan(1.0 - abs(x), x));
 }
 
 // World direction of a sky-view texel and back, through the frame at the camera.
@@ -229,10 +269,13 @@ vec3 atm_sky_view_world_direction(float cos_zenith, float azimuth) {
   return normalize(mat3(atm_sky_frame) * local);
 }
 
+// Luminance of the sky-view LUT along a direction (any length) in the LUT's frame (x towards the sun).
+vec3 atm_sky_view_lookup_local(vec3 local) {
+  return texture(atm_sky_view_lut, atm_sky_view_uv_local(local)).rgb;
+}
+
 vec3 atm_sky_view_lookup(vec3 world_dir) {
-  vec3 local = transpose(mat3(atm_sky_frame)) * world_dir;
-  float azimuth = atan(local.y, local.x);
-  return texture(atm_sky_view_lut, atm_sky_view_uv(atm_camera_km.w, local.z, azimuth)).rgb;
+  return atm_sky_view_lookup_local(transpose(mat3(atm_sky_frame)) * world_dir);
 }
 
 // (1 - exp(-x)) / x without the cancellation at small x; the per-step energy-conserving integral.

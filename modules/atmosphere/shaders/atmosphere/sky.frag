@@ -1,27 +1,44 @@
-// The sky behind everything (scene depth at infinity): the sky-view LUT inside the atmosphere, a
-// march through the LUTs from space (planet, limb and night side included), then the discs.
-#include "atmosphere/integrate.glsl"
+// The sky behind everything (its depth test keeps it off the geometry). ATM_SKY_MODE 0: the
+// sky-view LUT inside the atmosphere, one fetch; 1: a march through the LUTs from space (planet,
+// limb and night side included); 2: method raymarch, a nested march per pixel. ATM_SKY_DISCS adds
+// the sun and moon discs, on their small squares only (sky.vert), so most pixels never pay for them.
+#include "atmosphere/raymarch.glsl"
 #include "atmosphere/discs.glsl"
-in vec2 v_ndc;
+#ifndef ATM_SKY_MODE
+#define ATM_SKY_MODE 0
+#endif
+#ifndef ATM_SKY_DISCS
+#define ATM_SKY_DISCS 0
+#endif
+in vec3 v_dir;
 out vec4 o_color;
-uniform sampler2D u_depth;
 uniform float u_pixel_angle;  // radians per pixel, for anti-aliased disc edges
 
-void main() {
-  if (texelFetch(u_depth, ivec2(gl_FragCoord.xy), 0).r > 0.0) discard;  // reversed Z: geometry here
-  vec4 far_point = atm_inverse_view_projection * vec4(v_ndc, 0.5, 1.0);
-  vec3 v = normalize(far_point.xyz / far_point.w);
-  vec3 origin = atm_camera();
-  vec3 luminance;
-  if (atm_camera_in_space())
-    luminance = atm_march_ray(origin, v, 1e30, int(atm_aerial_params.y), false, true, atm_sun_light(),
-                              atm_moon_light_source(), false).luminance;
-  else
-    luminance = atm_sky_view_lookup(v);
+// Luminance of the air (and the ground behind it) along unit direction v, in world axes.
+vec3 sky_luminance(vec3 v) {
+#if ATM_SKY_MODE == 0
+  return atm_sky_view_lookup(v);
+#elif ATM_SKY_MODE == 1
+  return atm_march_ray(atm_camera(), v, 1e30, int(atm_aerial_params.y), false, true, atm_sun_light(),
+                       atm_moon_light_source(), atm_ms_factor()).luminance;
+#else
+  return atm_raymarch(atm_camera(), v, int(atm_aerial_params.y), int(atm_aerial_params.w), atm_sun_light(),
+                      atm_moon_light_source()).luminance;
+#endif
+}
 
+void main() {
+#if ATM_SKY_MODE == 0 && !ATM_SKY_DISCS
+  // The common case is one fetch: the LUT's values already fit RGBA16F.
+  o_color = vec4(atm_sky_view_lookup_local(v_dir), 1.0);
+#else
+  vec3 v = normalize(v_dir);
+  vec3 luminance = sky_luminance(v);
+#if ATM_SKY_DISCS
   // Discs behind the air: transmittance from where the ray enters the atmosphere (or the camera).
+  vec3 origin = atm_camera();
   vec3 discs = atm_sun_disc(v, u_pixel_angle) + atm_moon_disc(v, u_pixel_angle);
-  if (any(greaterThan(discs, vec3(0.0))) && !(atm_ray_sphere(origin, v, atm_bottom()).y > 0.0)) {
+  if (!(atm_ray_sphere(origin, v, atm_bottom()).y > 0.0)) {
     vec3 t = vec3(1.0);
     vec2 top = atm_ray_sphere(origin, v, atm_top());
     if (top.y > 0.0) {
@@ -31,5 +48,7 @@ void main() {
     }
     luminance += t * discs;
   }
+#endif
   o_color = vec4(atm_fit_half(luminance), 1.0);
+#endif
 }

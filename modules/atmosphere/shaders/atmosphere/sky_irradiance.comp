@@ -1,14 +1,21 @@
 // Sky irradiance for materials: the sky around the camera (sky-view LUT inside the atmosphere, a
-// short march from space) projected on L1 spherical harmonics, one 64-invocation group.
+// short march from space or with method raymarch: ATM_IRRADIANCE_MARCH) projected on L1 spherical
+// harmonics, one 64-invocation group.
 #include "atmosphere/integrate.glsl"
+#ifndef ATM_IRRADIANCE_MARCH
+#define ATM_IRRADIANCE_MARCH 0
+#endif
 layout(local_size_x = 64) in;
 layout(rgba32f, binding = 0) uniform writeonly image2D o_sh;
 shared vec3 s_sh[4][64];
 
 vec3 sky_radiance(vec3 dir) {
-  if (!atm_camera_in_space()) return atm_sky_view_lookup(dir);
+#if ATM_IRRADIANCE_MARCH
   AtmLight sun = atm_sun_light(), moon = atm_moon_light_source();
-  return atm_march_ray(atm_camera(), dir, 1e30, 8, false, true, sun, moon, false).luminance;
+  return atm_march_ray(atm_camera(), dir, 1e30, 8, false, true, sun, moon, atm_ms_factor()).luminance;
+#else
+  return atm_sky_view_lookup(dir);
+#endif
 }
 
 void main() {

@@ -8,6 +8,7 @@ layout(rgba32f, binding = 0) uniform writeonly image2D o_lut;
 // Midpoint rule over [0, len] with n steps, dense near t = 0; the ray is described from its
 // densest point at radius r with zenith cosine mu, marching away from it.
 vec3 optical_depth(float r, float mu, float len, int n) {
+  AtmParams P = atm_params();
   vec3 depth = vec3(0.0);
   for (int i = 0; i < n; ++i) {
     float a = float(i) / float(n), b = float(i + 1) / float(n);
@@ -15,7 +16,7 @@ vec3 optical_depth(float r, float mu, float len, int n) {
     float t = 0.5 * (ta + tb);
     // Radius along the ray as a sum of non-negative terms where it matters (no cancellation).
     float ri = sqrt(max(0.0, r * r + t * (t + 2.0 * r * mu)));
-    depth += atm_medium(ri - atm_bottom()).extinction * (tb - ta);
+    depth += atm_medium(P, ri - P.bottom).extinction * (tb - ta);
   }
   return depth;
 }

@@ -48,7 +48,7 @@ glm::dvec3 simpson_transmittance(const Atmosphere& a, double r, double mu, int i
 
 glm::dvec3 reference_transmittance(const Atmosphere& a, double r, double mu) {
 #if WELKIN_HAVE_ATMOSPHERE_REFERENCE
-  const reference::AtmosphereModel m = test::to_reference(a);
+  const reference::AtmosphereModel m = to_reference(a);
   // The LUT's last column is the horizon itself; rounding must not turn it into a ground hit.
   double mu_h = -std::sqrt(std::max(0.0, 1.0 - (a.bottom_radius_km / r) * (a.bottom_radius_km / r)));
   if (mu <= mu_h) mu = mu_h + 1e-12;

@@ -34,6 +34,10 @@ DensityProfile tent_profile(float centre_km, float half_width_km);
 enum class MiePhase : int { cornette_shanks = 0, henyey_greenstein = 1 };
 // Presets of LUT sizes and step counts; `custom` uses the explicit fields of Atmosphere.
 enum class Quality : int { low = 0, medium = 1, high = 2, ultra = 3, custom = 4 };
+// How the sky is rendered. `lut` is Hillaire 2020 (a sky-view LUT per frame, one fetch per pixel);
+// `raymarch` marches every pixel with a nested march to the sun (the approach Hillaire's replaces),
+// kept so that both can be measured against each other and the reference on the same frames.
+enum class SkyMethod : int { lut = 0, raymarch = 1 };
 
 // The planet and its air. Defaults are Hillaire 2020's Earth (presets/earth.json).
 struct Atmosphere {
@@ -56,6 +60,7 @@ struct Atmosphere {
   bool planet_center_below_origin = true;
   glm::dvec3 planet_center_m{0.0, 0.0, -6360000.0};
 
+  SkyMethod method = SkyMethod::lut;
   Quality quality = Quality::high;
   int transmittance_width = 256, transmittance_height = 64, transmittance_steps = 40;
   int multiscattering_size = 32, multiscattering_steps = 20;
@@ -64,6 +69,7 @@ struct Atmosphere {
   int aerial_perspective_steps_per_slice = 2;
   float aerial_perspective_distance_km = 128.0f;
   int raymarch_steps = 32;  // per-pixel marches: the sky seen from space, aerial perspective there
+  int raymarch_light_steps = 8;  // method raymarch: steps of each march towards the sun
 };
 void describe(TypeBuilder<Atmosphere>& t);
 
@@ -105,6 +111,7 @@ struct ResolvedQuality {
   int aerial_perspective_width, aerial_perspective_height, aerial_perspective_slices;
   int aerial_perspective_steps_per_slice;
   int raymarch_steps;
+  int raymarch_light_steps;
 };
 ResolvedQuality resolve_quality(const Atmosphere& a);
 

@@ -45,9 +45,11 @@ struct GpuUniforms {
   glm::ivec4 multiscattering_size{0};
   glm::ivec4 sky_view_size{0};
   glm::ivec4 aerial_size{0};
-  glm::vec4 aerial_params{0.0f};  // distance km, raymarch steps, camera in space
+  glm::vec4 aerial_params{0.0f};  // distance km, raymarch steps, camera in space, raymarch light steps
+  glm::vec4 sky_view_params{0.0f};    // horizon zenith angle, beta, 1 / horizon zenith, 1 / beta
+  glm::vec4 sky_view_params_v{0.0f};  // unit v to texel-centred v: scale, offset
 };
-static_assert(sizeof(GpuUniforms) == 672, "GpuUniforms must match the std140 WelkinAtmosphere block");
+static_assert(sizeof(GpuUniforms) == 704, "GpuUniforms must match the std140 WelkinAtmosphere block");
 
 // The block for one frame. Sun and moon may be null (a default sun; no moon). Pure CPU.
 GpuUniforms make_uniforms(const Atmosphere& atmosphere, const Sun* sun, const Moon* moon,
@@ -72,10 +74,10 @@ struct AtmosphereGpu {
 void bind_for_materials(const AtmosphereGpu& gpu);
 
 // Render phase, before geometry (order -100): transmittance and multi-scattering LUTs when the
-// medium changed, the sky-view LUT, the aerial-perspective volume and sky irradiance.
+// medium changed, the sky-view LUT, the aerial-perspective volume, sky irradiance, then the sky and
+// its discs over the whole target (the geometry drawn after covers them).
 void lut_system(SystemContext& sc);
-// Render phase, after geometry (order 100): the sky where depth is at infinity, then aerial
-// perspective over the depth buffer.
+// Render phase, after geometry (order 100): aerial perspective over the depth buffer.
 void sky_system(SystemContext& sc);
 
 }  // namespace welkin::atmosphere

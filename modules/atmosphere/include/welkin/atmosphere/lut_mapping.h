@@ -28,23 +28,36 @@ inline RadiusMu transmittance_texel_r_mu(int x, int y, int width, int height, do
   return {r, std::clamp(mu, -1.0, 1.0)};
 }
 
+// The sky-view LUT's horizon seen from radius r: beta is its angle from the nadir, zenith_horizon
+// (pi - beta) its zenith angle.
+struct SkyViewMapping {
+  double beta;
+  double zenith_horizon;
+};
+
+inline SkyViewMapping sky_view_mapping(double r_km, double bottom_km) {
+  const double pi = 3.14159265358979323846;
+  double cos_beta = std::sqrt(std::max(0.0, (r_km - bottom_km) * (r_km + bottom_km))) / r_km;
+  double beta = std::acos(std::clamp(cos_beta, -1.0, 1.0));
+  return {beta, pi - beta};
+}
+
 struct ZenithAzimuth {
   double cos_zenith;
   double azimuth;  // radians from the sun's azimuth, in [-pi, pi]
 };
 
-// View direction of the texel centre (x, y) of a width x height sky-view LUT seen from radius r.
+// View direction of the texel centre (x, y) of a width x height sky-view LUT seen from radius r
+// (the inverse of common.glsl's atm_sky_view_uv_local: v through tan of half the angle from the
+// horizon, u through the pseudo-angle 1 - x / (|x| + |y|)).
 inline ZenithAzimuth sky_view_texel_direction(int x, int y, int width, int height, double r_km,
                                               double bottom_km) {
-  const double pi = 3.14159265358979323846;
-  double cos_beta = std::sqrt(std::max(0.0, (r_km - bottom_km) * (r_km + bottom_km))) / r_km;
-  double beta = std::acos(std::clamp(cos_beta, -1.0, 1.0));
-  double zenith_horizon = pi - beta;
-  double v = sub_uv_to_unit((y + 0.5) / height, height);
-  double zenith = v < 0.5 ? zenith_horizon * (1.0 - (1.0 - 2.0 * v) * (1.0 - 2.0 * v))
-                          : zenith_horizon + beta * (2.0 * v - 1.0) * (2.0 * v - 1.0);
+  const SkyViewMapping m = sky_view_mapping(r_km, bottom_km);
+  double c = 1.0 - 2.0 * sub_uv_to_unit((y + 0.5) / height, height);
+  double e = 2.0 * std::atan(c * std::abs(c) * std::tan(0.5 * (c >= 0.0 ? m.zenith_horizon : m.beta)));
   double s = 2.0 * (x + 0.5) / width - 1.0;
-  return {std::cos(zenith), (s < 0 ? -1.0 : 1.0) * s * s * pi};
+  double px = 1.0 - 2.0 * s * s;
+  return {std::cos(m.zenith_horizon - e), (s < 0 ? -1.0 : 1.0) * std::atan2(1.0 - std::abs(px), px)};
 }
 
 }  // namespace welkin::atmosphere

@@ -1,0 +1,149 @@
+// The atmosphere through the `welkin` program as a user runs it: bad parameters are one clear line
+// and exit code 3 (never a black image), `probe` prints any method's numbers, and `accuracy` writes
+// its report (a tiny smoke run; the real sweep is not part of ctest).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int code = -1;
+  std::string out;  // stdout and stderr together
+  bool signaled = false;
+};
+
+CliRun run(const std::string& args, bool with_stderr = true) {
+  std::string cmd = std::string(WELKIN_EXE) + " " + args + (with_stderr ? " 2>&1" : " 2>/dev/null");
+  CliRun r;
+  FILE* p = popen(cmd.c_str(), "r");
+  std::array<char, 4096> buf;
+  while (size_t n = fread(buf.data(), 1, buf.size(), p)) r.out.append(buf.data(), n);
+  int status = pclose(p);
+  r.signaled = WIFSIGNALED(status);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+fs::path tmp(const std::string& name) {
+  fs::path d = fs::temp_directory_path() / ("welkin-atmosphere-cli-" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  return d / name;
+}
+
+fs::path scene_with_atmosphere(const std::string& name, const std::string& atmosphere_fields) {
+  fs::path p = tmp(name);
+  std::ofstream(p) << R"({"welkin_scene": 1, "entities": [)"
+                   << R"({"name": "camera", "components": {"core.Camera": {"pitch_deg": 10}}},)"
+                   << R"({"name": "air", "components": {"atmosphere.Atmosphere": {)" << atmosphere_fields << "}}}]}";
+  return p;
+}
+
+void expect_one_line_error(const CliRun& r, const std::string& file, const std::string& path) {
+  EXPECT_FALSE(r.signaled) << "no crash";
+  EXPECT_EQ(r.code, 3) << r.out;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  EXPECT_NE(r.out.find(file), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(path), std::string::npos) << r.out;
+}
+
+TEST(AtmosphereCli, BadParametersAreOneClearLineNotABlackImage) {
+  const std::string at = "at /entities/1/components/atmosphere.Atmosphere/";
+  struct Case {
+    std::string name, fields, path;
+  } cases[] = {
+      {"negative.json", R"("rayleigh_scattering": [0.0058, -0.0135, 0.0331])", at + "rayleigh_scattering/1"},
+      {"top_below_bottom.json", R"("bottom_radius_km": 6360, "top_radius_km": 6300)", at + "top_radius_km"},
+      {"absorbing_mie.json", R"("mie_scattering": [0.004, 0.004, 0.004], "mie_extinction": [0.003, 0.004, 0.004])",
+       at + "mie_extinction/0"},
+      {"anisotropy.json", R"("mie_g": 1.5)", at + "mie_g"},
+      {"empty_shell.json", R"("bottom_radius_km": 6360, "top_radius_km": 6360)", at + "top_radius_km"},
+  };
+  for (const Case& c : cases) {
+    const fs::path scene = scene_with_atmosphere(c.name, c.fields);
+    const fs::path out = tmp(c.name + ".png");
+    CliRun r = run("render " + scene.string() + " --size 16x9 --out " + out.string());
+    expect_one_line_error(r, scene.string() + ": " + c.path, c.path);
+    EXPECT_FALSE(fs::exists(out)) << c.name;
+  }
+  // A number too large for a double is the JSON reader's error, still one line naming the file.
+  const fs::path overflow = scene_with_atmosphere("overflow.json", R"("mie_g": 1e999)");
+  expect_one_line_error(run("render " + overflow.string() + " --size 16x9 --out " + tmp("o.png").string()),
+                        overflow.string(), "1e999");
+  // NaN cannot be written in JSON; --set reaches the same checks with the field's full path.
+  const fs::path good = scene_with_atmosphere("good.json", "");
+  CliRun r = run("render " + good.string() + " --size 16x9 --set atmosphere.Atmosphere/mie_g=nan --out " +
+                 tmp("nan.png").string());
+  EXPECT_EQ(r.code, 3) << r.out;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  EXPECT_NE(r.out.find("atmosphere.Atmosphere/mie_g"), std::string::npos) << r.out;
+}
+
+TEST(AtmosphereCli, ProbePrintsEveryMethodAsJson) {
+  const std::string ray = "--altitude-km 1 --view-zenith-deg 80 --view-azimuth-deg 30 --sun-zenith-deg 60 "
+                          "--sun-azimuth-deg 0 --size 16x9 --json";
+  for (const char* method : {"reference", "lut", "raymarch"}) {
+    CliRun r = run(std::string("probe --method ") + method + " --orders 1 " + ray, false);
+    ASSERT_EQ(r.code, 0) << method << ": " << r.out;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["method"], method);
+    ASSERT_EQ(j["transmittance"].size(), 3u);
+    ASSERT_EQ(j["radiance"].size(), 3u);
+    EXPECT_TRUE(j["ms"].is_number());
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_GT(j["radiance"][c].get<double>(), 0.0) << method;
+      EXPECT_GT(j["transmittance"][c].get<double>(), 0.0) << method;
+      EXPECT_LT(j["transmittance"][c].get<double>(), 1.0) << method;
+    }
+  }
+  CliRun pt = run("probe --method pathtrace --orders all --samples 2048 " + ray, false);
+  ASSERT_EQ(pt.code, 0) << pt.out;
+  EXPECT_EQ(nlohmann::json::parse(pt.out)["samples"], 2048);
+}
+
+TEST(AtmosphereCli, ProbeSetTakesShortAndFullFieldPathsThroughTheRuntime) {
+  const std::string args = "probe --method reference --json --view-zenith-deg 70 ";
+  CliRun base = run(args, false), shorthand = run(args + "--set atmosphere.mie_g=0.76", false),
+         full = run(args + "--set atmosphere.Atmosphere/mie_g=0.76", false);
+  ASSERT_EQ(shorthand.code, 0) << shorthand.out;
+  ASSERT_EQ(full.code, 0) << full.out;
+  const auto radiance = [](const CliRun& r) { return nlohmann::json::parse(r.out)["radiance"]; };
+  EXPECT_EQ(radiance(shorthand), radiance(full));
+  EXPECT_NE(radiance(shorthand), radiance(base));
+  // Out of range and unknown fields: the runtime's one-line errors, naming the field.
+  CliRun bad = run(args + "--set atmosphere.mie_g=2");
+  EXPECT_EQ(bad.code, 3) << bad.out;
+  EXPECT_NE(bad.out.find("atmosphere.Atmosphere/mie_g"), std::string::npos) << bad.out;
+  CliRun unknown = run(args + "--set atmosphere.mie_gg=0.5");
+  EXPECT_EQ(unknown.code, 3) << unknown.out;
+  EXPECT_NE(unknown.out.find("mie_gg"), std::string::npos) << unknown.out;
+  CliRun single_only = run("probe --method reference --orders all");
+  EXPECT_EQ(single_only.code, 3) << single_only.out;
+  EXPECT_NE(single_only.out.find("--orders"), std::string::npos) << single_only.out;
+}
+
+TEST(AtmosphereCli, AccuracyWritesItsReport) {
+  const fs::path out = tmp("accuracy");
+  CliRun r = run("accuracy atmosphere --quick --methods lut --qualities low --size 32x18 --frames 1 --out " +
+                 out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  for (const char* f : {"accuracy-atmosphere.csv", "accuracy-atmosphere-rays.csv", "accuracy-atmosphere.png"})
+    EXPECT_GT(fs::file_size(out / f), 100u) << f;
+  std::ifstream csv(out / "accuracy-atmosphere.csv");
+  std::string header, row;
+  std::getline(csv, header);
+  std::getline(csv, row);
+  EXPECT_EQ(row.rfind("lut,low,", 0), 0u) << row;
+  EXPECT_NE(r.out.find("| lut | low |"), std::string::npos) << r.out;
+}
+
+}  // namespace

@@ -1,0 +1,470 @@
+// welkin accuracy atmosphere [--out DIR] [--cache FILE] [--size WxH] [--frames N] [--methods lut,raymarch]
+//                            [--qualities low,medium,high,ultra] [--threads N] [--quick] [--json]
+// The user's "error against run time" report: every method and quality preset evaluated on a fixed set
+// of view rays (validation/accuracy_set.h) against the path-traced reference (all orders) and the
+// quadrature (single scattering), next to the GPU time of a frame at a stated size. Writes a summary CSV,
+// a per-ray CSV and a log-log plot (PNG). Path-traced references are cached in a file (seeded, with
+// their sample count and confidence intervals), so reruns cost only the GPU work.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "commands.h"
+#include "session.h"
+#include "validation/accuracy_set.h"
+#include "validation/probe.h"
+#include "validation/reference_model.h"
+#include "welkin/atmosphere/components.h"
+#include "welkin/core/error.h"
+#include "welkin/gfx/gl_context.h"
+#include "welkin/gfx/image.h"
+#include "welkin/scene/scene_file.h"
+
+// Debian's stb: a tiny vector font, enough for axis labels (static functions, one translation unit).
+#include <stb/stb_easy_font.h>
+
+namespace welkin::cli {
+
+void add_accuracy_command(CLI::App& app, int& exit_code);
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace ref = welkin::atmosphere::reference;
+using atmosphere::Quality;
+using atmosphere::SkyMethod;
+
+struct AccuracyOptions {
+  std::string technique, out = "out/accuracy", cache, size = "640x360";
+  std::vector<std::string> methods{"lut", "raymarch"}, qualities{"low", "medium", "high", "ultra"};
+  int frames = 7, threads = 2;
+  bool quick = false, json = false;
+};
+
+// Rays are grouped by the sun's elevation: where the LUT method's approximations differ most.
+enum class Band { day, horizon, twilight };
+Band band_of(const ref::ProbeGeometry& g) {
+  const double sun_elevation = 90.0 - g.sun_zenith_deg;
+  return sun_elevation >= 3.0 ? Band::day : sun_elevation >= 0.0 ? Band::horizon : Band::twilight;
+}
+const char* band_name(Band b) { return b == Band::day ? "sun>=3" : b == Band::horizon ? "sun=0" : "sun=-6"; }
+
+// Below this radiance (1/sr for sun illuminance 1; a clear day's sky is 0.01 to 0.1) a channel is
+// black for every purpose, and a relative error there measures nothing.
+constexpr double kBlack = 1e-7;
+
+// Relative errors per channel, gathered for a root mean square and a maximum.
+struct ErrorStats {
+  double sum_sq = 0, max = 0;
+  int n = 0;
+  void add(const glm::dvec3& value, const glm::dvec3& reference) {
+    for (int c = 0; c < 3; ++c) {
+      if (!(reference[c] > kBlack)) continue;
+      const double e = (value[c] - reference[c]) / reference[c];
+      sum_sq += e * e;
+      max = std::max(max, std::abs(e));
+      ++n;
+    }
+  }
+  void add(const ErrorStats& o) {
+    sum_sq += o.sum_sq;
+    max = std::max(max, o.max);
+    n += o.n;
+  }
+  double rmse() const { return n ? std::sqrt(sum_sq / n) : 0.0; }
+};
+
+struct Config {
+  SkyMethod method;
+  Quality quality;
+  std::string name() const;
+};
+
+const char* quality_name(Quality q) {
+  switch (q) {
+    case Quality::low:
+      return "low";
+    case Quality::medium:
+      return "medium";
+    case Quality::high:
+      return "high";
+    case Quality::ultra:
+      return "ultra";
+    case Quality::custom:
+      return "custom";
+  }
+  return "?";
+}
+const char* method_name(SkyMethod m) { return m == SkyMethod::raymarch ? "raymarch" : "lut"; }
+std::string Config::name() const { return std::string(method_name(method)) + "/" + quality_name(quality); }
+
+struct ConfigResult {
+  Config config;
+  std::string steps;  // what the preset means for this method
+  std::map<Band, ErrorStats> all_orders, single;
+  ErrorStats all_orders_plotted;  // sun >= 0: what the plot shows
+  atmosphere::FrameCost cost;
+};
+
+// ---- A log-log plot drawn by hand --------------------------------------------------------------
+
+struct Canvas {
+  ImageU8 image;
+  Canvas(int w, int h) : image{w, h, std::vector<uint8_t>(size_t(w) * h * 4, 255)} {}
+  void pixel(int x, int y, glm::u8vec3 c) {
+    if (x < 0 || y < 0 || x >= image.width || y >= image.height) return;
+    uint8_t* p = &image.rgba[(size_t(y) * image.width + x) * 4];
+    p[0] = c.r, p[1] = c.g, p[2] = c.b, p[3] = 255;
+  }
+  void rect(int x0, int y0, int x1, int y1, glm::u8vec3 c) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) pixel(x, y, c);
+  }
+  void line(double x0, double y0, double x1, double y1, glm::u8vec3 c, int width = 1) {
+    const int n = int(std::max(std::abs(x1 - x0), std::abs(y1 - y0))) + 1;
+    for (int i = 0; i <= n; ++i) {
+      const double t = double(i) / n;
+      const int x = int(std::lround(x0 + (x1 - x0) * t)), y = int(std::lround(y0 + (y1 - y0) * t));
+      rect(x - width / 2, y - width / 2, x - width / 2 + width, y - width / 2 + width, c);
+    }
+  }
+  void disc(double cx, double cy, double r, glm::u8vec3 c) {
+    for (int y = int(cy - r); y <= int(cy + r) + 1; ++y)
+      for (int x = int(cx - r); x <= int(cx + r) + 1; ++x)
+        if ((x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r) pixel(x, y, c);
+  }
+  void square(double cx, double cy, double r, glm::u8vec3 c) {
+    line(cx - r, cy - r, cx + r, cy - r, c, 2);
+    line(cx + r, cy - r, cx + r, cy + r, c, 2);
+    line(cx + r, cy + r, cx - r, cy + r, c, 2);
+    line(cx - r, cy + r, cx - r, cy - r, c, 2);
+  }
+  // stb_easy_font emits quads (4 vertices of x, y, z, colour); each is an axis-aligned rectangle.
+  void text(double x, double y, const std::string& s, glm::u8vec3 c, int scale = 1) {
+    static char buffer[60000];
+    std::string copy = s;
+    unsigned char colour[4] = {c.r, c.g, c.b, 255};
+    const int quads = stb_easy_font_print(0, 0, copy.data(), colour, buffer, sizeof buffer);
+    const float* v = reinterpret_cast<const float*>(buffer);
+    for (int q = 0; q < quads; ++q, v += 16) {
+      const int x0 = int(x + v[0] * scale), y0 = int(y + v[1] * scale);
+      const int x1 = int(x + v[8] * scale), y1 = int(y + v[9] * scale);
+      rect(std::min(x0, x1), std::min(y0, y1), std::max(x0, x1), std::max(y0, y1), c);
+    }
+  }
+  static int text_width(const std::string& s, int scale = 1) {
+    std::string copy = s;
+    return stb_easy_font_width(copy.data()) * scale;
+  }
+};
+
+double floor_decade(double v) { return std::pow(10.0, std::floor(std::log10(v))); }
+double ceil_decade(double v) { return std::pow(10.0, std::ceil(std::log10(v))); }
+
+std::string tick_label(double v, bool percent) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, percent ? "%g%%" : "%g", percent ? v * 100.0 : v);
+  return buf;
+}
+
+void write_plot(const std::string& path, const std::vector<ConfigResult>& results, const std::string& size,
+                const std::string& renderer) {
+  const int W = 760, H = 520, left = 70, right = 180, top = 70, bottom = 60;
+  Canvas c(W, H);
+  double x_lo = 1e30, x_hi = 0, y_lo = 1e30, y_hi = 0;
+  for (const ConfigResult& r : results) {
+    x_lo = std::min(x_lo, r.cost.atmosphere_ms), x_hi = std::max(x_hi, r.cost.atmosphere_ms);
+    y_lo = std::min(y_lo, std::max(r.all_orders_plotted.rmse(), 1e-4));
+    y_hi = std::max(y_hi, std::max(r.all_orders_plotted.max, 1e-4));
+  }
+  x_lo = floor_decade(x_lo), x_hi = ceil_decade(x_hi * 1.0001), y_lo = floor_decade(y_lo),
+  y_hi = ceil_decade(y_hi * 1.0001);
+  auto px = [&](double x) { return left + (std::log10(x) - std::log10(x_lo)) / std::log10(x_hi / x_lo) * (W - left - right); };
+  auto py = [&](double y) { return H - bottom - (std::log10(y) - std::log10(y_lo)) / std::log10(y_hi / y_lo) * (H - top - bottom); };
+  const glm::u8vec3 grid(225, 225, 225), axis(60, 60, 60), ink(20, 20, 20);
+  for (double d = x_lo; d <= x_hi * 1.0001; d *= 10)
+    for (int k = 1; k < 10 && d * k <= x_hi * 1.0001; ++k) {
+      c.line(px(d * k), top, px(d * k), H - bottom, k == 1 ? glm::u8vec3(190, 190, 190) : grid);
+      if (k == 1 || (k == 2 || k == 5)) {
+        const std::string l = tick_label(d * k, false);
+        c.text(px(d * k) - Canvas::text_width(l) / 2.0, H - bottom + 6, l, ink);
+      }
+    }
+  for (double d = y_lo; d <= y_hi * 1.0001; d *= 10)
+    for (int k = 1; k < 10 && d * k <= y_hi * 1.0001; ++k) {
+      c.line(left, py(d * k), W - right, py(d * k), k == 1 ? glm::u8vec3(190, 190, 190) : grid);
+      if (k == 1 || k == 2 || k == 5) {
+        const std::string l = tick_label(d * k, true);
+        c.text(left - 6 - Canvas::text_width(l), py(d * k) - 3, l, ink);
+      }
+    }
+  c.line(left, H - bottom, W - right, H - bottom, axis, 2);
+  c.line(left, top, left, H - bottom, axis, 2);
+  c.text(left, 10, "welkin accuracy atmosphere: error against GPU time per frame", ink, 2);
+  c.text(left, 32, "path-traced reference, all orders, sun >= 0 deg; " + size + ", " + renderer, axis);
+  const std::string xl = "GPU ms per frame, atmosphere passes (log)";
+  c.text(left + (W - left - right - Canvas::text_width(xl)) / 2.0, H - 24, xl, ink);
+  c.text(6, top - 14, "relative error (log)", ink);
+
+  const std::map<SkyMethod, glm::u8vec3> colour{{SkyMethod::lut, {31, 119, 180}}, {SkyMethod::raymarch, {214, 39, 40}}};
+  for (SkyMethod m : {SkyMethod::lut, SkyMethod::raymarch}) {
+    const ConfigResult* prev = nullptr;
+    for (const ConfigResult& r : results) {
+      if (r.config.method != m) continue;
+      const double x = px(r.cost.atmosphere_ms), y = py(std::max(r.all_orders_plotted.rmse(), y_lo));
+      if (prev)
+        c.line(px(prev->cost.atmosphere_ms), py(std::max(prev->all_orders_plotted.rmse(), y_lo)), x, y,
+               colour.at(m));
+      prev = &r;
+    }
+    int k = 0;
+    for (const ConfigResult& r : results) {
+      if (r.config.method != m) continue;
+      const double x = px(r.cost.atmosphere_ms);
+      const double y = py(std::max(r.all_orders_plotted.rmse(), y_lo)), ym = py(std::max(r.all_orders_plotted.max, y_lo));
+      c.disc(x, y, 4.5, colour.at(m));
+      c.square(x, ym, 4, colour.at(m));
+      // Neighbouring presets alternate above and below their point, so close ones stay legible.
+      c.text(x + 6, (k++ % 2 == 0) ? y - 14 : y + 6, quality_name(r.config.quality), colour.at(m));
+    }
+  }
+  // Legend.
+  double ly = top + 10;
+  const double lx = W - right + 16;
+  for (SkyMethod m : {SkyMethod::lut, SkyMethod::raymarch}) {
+    c.disc(lx + 5, ly + 3, 4.5, colour.at(m));
+    c.text(lx + 16, ly, std::string(method_name(m)) + ": relative RMSE", ink);
+    ly += 16;
+    c.square(lx + 5, ly + 3, 4, colour.at(m));
+    c.text(lx + 16, ly, std::string(method_name(m)) + ": max error", ink);
+    ly += 22;
+  }
+  c.text(lx, ly, "labels: quality preset", axis);
+  write_png(path, c.image);
+}
+
+// ---- The sweep ---------------------------------------------------------------------------------
+
+std::string fmt(double v, const char* f = "%.4g") {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+std::string steps_of(const atmosphere::Atmosphere& a) {
+  const atmosphere::ResolvedQuality q = atmosphere::resolve_quality(a);
+  char buf[200];
+  if (a.method == SkyMethod::raymarch)
+    std::snprintf(buf, sizeof buf, "%d x %d steps per pixel", q.raymarch_steps, q.raymarch_light_steps);
+  else
+    std::snprintf(buf, sizeof buf, "sky-view %dx%d/%d, transmittance %dx%d/%d, multi-scattering %d/%d",
+                  q.sky_view_width, q.sky_view_height, q.sky_view_steps, q.transmittance_width,
+                  q.transmittance_height, q.transmittance_steps, q.multiscattering_size, q.multiscattering_steps);
+  return buf;
+}
+
+int run_accuracy(const AccuracyOptions& o) {
+  if (o.technique != "atmosphere")
+    throw Error(ErrorInfo{.path = "technique", .expected = "atmosphere", .found = "'" + o.technique + "'"});
+  int width = 0, height = 0;
+  parse_size(o.size, width, height);
+  std::vector<Config> configs;
+  for (const std::string& m : o.methods) {
+    if (m != "lut" && m != "raymarch")
+      throw Error(ErrorInfo{.path = "--methods", .expected = "lut or raymarch", .found = "'" + m + "'"});
+    for (const std::string& q : o.qualities) {
+      const std::map<std::string, Quality> names{
+          {"low", Quality::low}, {"medium", Quality::medium}, {"high", Quality::high}, {"ultra", Quality::ultra}};
+      if (!names.count(q))
+        throw Error(ErrorInfo{.path = "--qualities", .expected = "low, medium, high or ultra", .found = "'" + q + "'"});
+      configs.push_back({m == "raymarch" ? SkyMethod::raymarch : SkyMethod::lut, names.at(q)});
+    }
+  }
+  fs::create_directories(o.out);
+
+  // The default atmosphere (Earth), exactly as the module gives it to the GPU.
+  auto world = make_world();
+  world->modules().require_component("atmosphere.Atmosphere");
+  const atmosphere::Atmosphere earth;
+  const ref::AtmosphereModel model = atmosphere::to_reference(earth);
+  std::vector<ref::ProbeGeometry> rays = atmosphere::accuracy_rays();
+  if (o.quick) {
+    // A spread-out tenth of the set: a smoke test of the whole pipeline.
+    std::vector<ref::ProbeGeometry> some;
+    for (size_t i = 0; i < rays.size(); i += 10) some.push_back(rays[i]);
+    rays = some;
+  }
+
+  // Path-traced references: the cache beside the module's sources when there is one.
+  std::string cache_path = o.cache;
+  if (cache_path.empty()) {
+    const fs::path beside = world->modules().manifest("atmosphere")->data_dir / "validation/accuracy-references.json";
+    cache_path = fs::exists(beside) ? beside.string() : (fs::path(o.out) / "accuracy-references.json").string();
+  }
+  atmosphere::ReferenceCache cache(model, atmosphere::ReferenceSettings{});
+  const size_t cached = cache.load(cache_path);
+  size_t missing = 0;
+  for (const auto& g : rays) missing += cache.find(g) ? 0 : 1;
+  std::fprintf(stderr, "references: %zu cached in %s, %zu to path trace (%llu paths each)\n", cached,
+               cache_path.c_str(), missing, (unsigned long long)cache.settings().samples);
+  size_t done = 0;
+  for (const auto& g : rays) {
+    if (cache.find(g)) continue;
+    cache.put(g, atmosphere::path_trace_reference(model, g, cache.settings(), o.threads));
+    std::fprintf(stderr, "\rpath tracing %zu/%zu", ++done, missing);
+    if (done % 16 == 0 || done == missing) cache.save(cache_path);
+  }
+  if (missing) std::fprintf(stderr, "\n");
+  std::vector<atmosphere::ProbeValue> quadrature;
+  for (const auto& g : rays) quadrature.push_back(atmosphere::probe_reference(model, g));
+
+  auto context = create_headless_context();
+  const std::string renderer = context->info().renderer;
+  const ref::ProbeGeometry cost_view{.altitude_km = 0.0, .view_zenith_deg = 80.0, .sun_zenith_deg = 60.0};
+  std::vector<ConfigResult> results;
+  std::ofstream rays_csv(fs::path(o.out) / "accuracy-atmosphere-rays.csv");
+  rays_csv << "method,quality,orders,altitude_km,sun_elevation_deg,view_elevation_deg,view_azimuth_from_sun_deg,"
+              "reference_r,reference_g,reference_b,reference_ci95_r,reference_ci95_g,reference_ci95_b,value_r,"
+              "value_g,value_b,rel_error_r,rel_error_g,rel_error_b\n";
+  for (const Config& cfg : configs) {
+    atmosphere::Atmosphere a = earth;
+    a.method = cfg.method;
+    a.quality = cfg.quality;
+    ConfigResult r{.config = cfg, .steps = steps_of(a)};
+    for (bool single : {false, true}) {
+      atmosphere::GpuProbe probe(a, cfg.method, single);
+      for (size_t i = 0; i < rays.size(); ++i) {
+        const ref::ProbeGeometry& g = rays[i];
+        const atmosphere::ProbeValue v = probe.evaluate(g);
+        glm::dvec3 reference, ci;
+        if (single) {
+          reference = quadrature[i].radiance, ci = quadrature[i].radiance_ci95;
+          r.single[band_of(g)].add(v.radiance, reference);
+        } else {
+          const atmosphere::CachedReference c = *cache.find(g);
+          reference = c.radiance, ci = c.ci95;
+          r.all_orders[band_of(g)].add(v.radiance, reference);
+          if (band_of(g) != Band::twilight) r.all_orders_plotted.add(v.radiance, reference);
+        }
+        rays_csv << method_name(cfg.method) << "," << quality_name(cfg.quality) << "," << (single ? "1" : "all")
+                 << "," << g.altitude_km << "," << 90.0 - g.sun_zenith_deg << "," << 90.0 - g.view_zenith_deg
+                 << "," << g.view_azimuth_deg;
+        for (int c = 0; c < 3; ++c) rays_csv << "," << fmt(reference[c], "%.6g");
+        for (int c = 0; c < 3; ++c) rays_csv << "," << fmt(ci[c], "%.3g");
+        for (int c = 0; c < 3; ++c) rays_csv << "," << fmt(v.radiance[c], "%.6g");
+        for (int c = 0; c < 3; ++c)
+          rays_csv << "," << fmt(reference[c] > 0 ? (v.radiance[c] - reference[c]) / reference[c] : 0.0, "%.4g");
+        rays_csv << "\n";
+      }
+      if (!single) r.cost = probe.frame_cost(cost_view, width, height, o.frames);
+      std::fprintf(stderr, "\r%-16s orders %-3s done", cfg.name().c_str(), single ? "1" : "all");
+    }
+    results.push_back(r);
+  }
+  std::fprintf(stderr, "\n");
+
+  std::ofstream csv(fs::path(o.out) / "accuracy-atmosphere.csv");
+  csv << "method,quality,steps,frame_size,atmosphere_ms,sky_pass_ms,frame_ms,copy_ms,all_orders_rel_rmse_sun_ge_0,"
+         "all_orders_max_sun_ge_0,all_orders_rel_rmse_sun_ge_3,all_orders_max_sun_ge_3,all_orders_rel_rmse_sun_0,"
+         "all_orders_max_sun_0,all_orders_rel_rmse_sun_m6,all_orders_max_sun_m6,single_rel_rmse_sun_ge_3,"
+         "single_max_sun_ge_3,single_rel_rmse_sun_0,single_max_sun_0,single_rel_rmse_sun_m6,single_max_sun_m6\n";
+  for (ConfigResult& r : results) {
+    csv << method_name(r.config.method) << "," << quality_name(r.config.quality) << ",\"" << r.steps << "\","
+        << width << "x" << height << "," << fmt(r.cost.atmosphere_ms) << "," << fmt(r.cost.sky_ms) << ","
+        << fmt(r.cost.frame_ms) << "," << fmt(r.cost.copy_ms) << "," << fmt(r.all_orders_plotted.rmse()) << ","
+        << fmt(r.all_orders_plotted.max);
+    for (Band b : {Band::day, Band::horizon, Band::twilight})
+      csv << "," << fmt(r.all_orders[b].rmse()) << "," << fmt(r.all_orders[b].max);
+    for (Band b : {Band::day, Band::horizon, Band::twilight})
+      csv << "," << fmt(r.single[b].rmse()) << "," << fmt(r.single[b].max);
+    csv << "\n";
+  }
+  const std::string png = (fs::path(o.out) / "accuracy-atmosphere.png").string();
+  write_plot(png, results, std::to_string(width) + "x" + std::to_string(height), renderer);
+
+  if (o.json) {
+    nlohmann::json list = nlohmann::json::array();
+    for (ConfigResult& r : results) {
+      nlohmann::json bands_all, bands_single;
+      for (Band b : {Band::day, Band::horizon, Band::twilight}) {
+        bands_all[band_name(b)] = {{"rel_rmse", r.all_orders[b].rmse()}, {"max", r.all_orders[b].max}};
+        bands_single[band_name(b)] = {{"rel_rmse", r.single[b].rmse()}, {"max", r.single[b].max}};
+      }
+      list.push_back({{"method", method_name(r.config.method)},
+                      {"quality", quality_name(r.config.quality)},
+                      {"steps", r.steps},
+                      {"atmosphere_ms", r.cost.atmosphere_ms},
+                      {"sky_pass_ms", r.cost.sky_ms},
+                      {"frame_ms", r.cost.frame_ms},
+                      {"copy_ms", r.cost.copy_ms},
+                      {"all_orders_vs_pathtrace", bands_all},
+                      {"single_vs_quadrature", bands_single}});
+    }
+    std::printf("%s\n", nlohmann::json{{"rays", rays.size()},
+                                       {"frame_size", std::to_string(width) + "x" + std::to_string(height)},
+                                       {"renderer", renderer},
+                                       {"reference_samples", cache.settings().samples},
+                                       {"reference_seed", cache.settings().seed},
+                                       {"results", list},
+                                       {"csv", (fs::path(o.out) / "accuracy-atmosphere.csv").string()},
+                                       {"plot", png}}
+                            .dump(2)
+                            .c_str());
+    return kOk;
+  }
+  std::printf("%zu rays; reference: path tracing, %llu paths per ray (seed %llu), cached in %s\n", rays.size(),
+              (unsigned long long)cache.settings().samples, (unsigned long long)cache.settings().seed,
+              cache_path.c_str());
+  std::printf("GPU time: median of %d frames at %dx%d on %s, forced to completion; copy = full-screen copy\n",
+              o.frames, width, height, renderer.c_str());
+  std::printf("relative error of radiance: RMSE / max over rays and channels (channels darker than %g 1/sr "
+              "left out)\n\n",
+              kBlack);
+  std::printf("| method | quality | atmosphere ms | sky pass ms | copy ms | all orders sun>=0 | sun>=3 | sun=0 | "
+              "sun=-6 | single sun>=3 | single sun=0 |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+  auto pair = [](const ErrorStats& s) { return fmt(s.rmse() * 100, "%.1f") + "% / " + fmt(s.max * 100, "%.1f") + "%"; };
+  for (ConfigResult& r : results)
+    std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", method_name(r.config.method),
+                quality_name(r.config.quality), fmt(r.cost.atmosphere_ms, "%.2f").c_str(),
+                fmt(r.cost.sky_ms, "%.2f").c_str(), fmt(r.cost.copy_ms, "%.2f").c_str(),
+                pair(r.all_orders_plotted).c_str(), pair(r.all_orders[Band::day]).c_str(),
+                pair(r.all_orders[Band::horizon]).c_str(), pair(r.all_orders[Band::twilight]).c_str(),
+                pair(r.single[Band::day]).c_str(), pair(r.single[Band::horizon]).c_str());
+  std::printf("\nwrote %s, %s and %s\n", (fs::path(o.out) / "accuracy-atmosphere.csv").string().c_str(),
+              (fs::path(o.out) / "accuracy-atmosphere-rays.csv").string().c_str(), png.c_str());
+  return kOk;
+}
+
+}  // namespace
+
+void add_accuracy_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<AccuracyOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "accuracy", "Error against run time of every method and quality preset of a technique (CSV and plot)");
+  cmd->add_option("technique", o->technique, "The technique to measure: atmosphere")->required();
+  cmd->add_option("--out", o->out, "Folder for the CSVs and the plot")->capture_default_str();
+  cmd->add_option("--cache", o->cache,
+                  "Path-traced reference cache (default: the atmosphere module's validation/ folder, else --out)");
+  cmd->add_option("-s,--size", o->size, "Frame size WxH for GPU time")->capture_default_str();
+  cmd->add_option("-n,--frames", o->frames, "Frames per GPU time (median)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--methods", o->methods, "Methods: lut, raymarch")->delimiter(',')->capture_default_str();
+  cmd->add_option("--qualities", o->qualities, "Quality presets: low, medium, high, ultra")
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--threads", o->threads, "Threads for path tracing missing references")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
+  cmd->add_flag("--quick", o->quick, "Every tenth ray only (a smoke test)");
+  cmd->add_flag("--json", o->json, "Machine-readable summary");
+  cmd->callback([o, &exit_code] { exit_code = run_accuracy(*o); });
+}
+
+}  // namespace welkin::cli
