@@ -85,6 +85,15 @@ struct Placed {
   size_t triangles = 0;
 };
 
+// Where a terrain sits relative to the camera, for terrain.vert (view and shadow passes alike).
+void bind_placement(const Program& prog, const Placed& p, const FrameView& view) {
+  prog.set("u_anchor_relative", glm::vec3(p.anchor_m - view.camera_position_m));
+  prog.set("u_anchor_xy", glm::vec2(p.anchor_m));
+  prog.set("u_rotation", p.rotation);
+  prog.set("u_inverse_two_radius", p.inverse_two_radius);
+  glBindVertexArray(p.gpu->vao.id());
+}
+
 bool outside_view(const glm::mat4& view_projection, const glm::vec3& lo, const glm::vec3& hi) {
   int out[6] = {0, 0, 0, 0, 0, 0};
   for (int i = 0; i < 8; ++i) {
@@ -198,11 +207,7 @@ void terrain_system(SystemContext& sc) {
         const glm::mat4& light_vp = (**cascades).light_view_projection[size_t(i)];
         prog.set("u_view_projection", light_vp);
         for (const Placed& p : *placed) {
-          prog.set("u_anchor_relative", glm::vec3(p.anchor_m - rc.view.camera_position_m));
-          prog.set("u_anchor_xy", glm::vec2(p.anchor_m));
-          prog.set("u_rotation", p.rotation);
-          prog.set("u_inverse_two_radius", p.inverse_two_radius);
-          glBindVertexArray(p.gpu->vao.id());
+          bind_placement(prog, p, rc.view);
           for (const Draw& d : p.shadow_draws)
             if (!outside_view(light_vp, d.lo, d.hi))
               glDrawElements(GL_TRIANGLES, GLsizei(d.count), GL_UNSIGNED_INT, reinterpret_cast<const void*>(uintptr_t(d.first) * 4));
@@ -241,11 +246,7 @@ void terrain_system(SystemContext& sc) {
       }
     }
     for (const Placed& p : *placed) {
-      prog.set("u_anchor_relative", glm::vec3(p.anchor_m - rc.view.camera_position_m));
-      prog.set("u_anchor_xy", glm::vec2(p.anchor_m));
-      prog.set("u_rotation", p.rotation);
-      prog.set("u_inverse_two_radius", p.inverse_two_radius);
-      glBindVertexArray(p.gpu->vao.id());
+      bind_placement(prog, p, rc.view);
       int bound = -2;
       for (const Draw& d : p.draws) {
         if (d.material != bound) {
