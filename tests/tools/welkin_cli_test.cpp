@@ -1,5 +1,7 @@
 // The `welkin` program as a user runs it: exit codes, one-line errors, outputs.
 #include <gtest/gtest.h>
+
+#include "cli_run.h"
 #include <sys/wait.h>
 
 #include <array>
@@ -14,29 +16,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int code = -1;
-  std::string out;  // stdout and stderr together
-  bool signaled = false;
-};
+using welkin::testing::CliRun;
 
-CliRun run(const std::string& args) {
-  std::string cmd = std::string(WELKIN_EXE) + " " + args + " 2>&1";
-  CliRun r;
-  FILE* p = popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf;
-  while (size_t n = fread(buf.data(), 1, buf.size(), p)) r.out.append(buf.data(), n);
-  int status = pclose(p);
-  r.signaled = WIFSIGNALED(status);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+CliRun run(const std::string& args, bool with_stderr = true) { return welkin::testing::run_welkin(args, with_stderr); }
 
-fs::path tmp(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("welkin-cli-" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d / name;
-}
+fs::path tmp(const std::string& name) { return welkin::testing::scratch_path("welkin-cli", name); }
 
 TEST(WelkinCli, RenderWritesARealImage) {
   fs::path out = tmp("debug.png");

@@ -2,6 +2,8 @@
 // and exit code 3 (never a black image), `probe` prints any method's numbers, and `accuracy` writes
 // its report (a tiny smoke run; the real sweep is not part of ctest).
 #include <gtest/gtest.h>
+
+#include "cli_run.h"
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -16,29 +18,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int code = -1;
-  std::string out;  // stdout and stderr together
-  bool signaled = false;
-};
+using welkin::testing::CliRun;
 
-CliRun run(const std::string& args, bool with_stderr = true) {
-  std::string cmd = std::string(WELKIN_EXE) + " " + args + (with_stderr ? " 2>&1" : " 2>/dev/null");
-  CliRun r;
-  FILE* p = popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf;
-  while (size_t n = fread(buf.data(), 1, buf.size(), p)) r.out.append(buf.data(), n);
-  int status = pclose(p);
-  r.signaled = WIFSIGNALED(status);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+CliRun run(const std::string& args, bool with_stderr = true) { return welkin::testing::run_welkin(args, with_stderr); }
 
-fs::path tmp(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("welkin-atmosphere-cli-" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d / name;
-}
+fs::path tmp(const std::string& name) { return welkin::testing::scratch_path("welkin-atmosphere-cli", name); }
 
 fs::path scene_with_atmosphere(const std::string& name, const std::string& atmosphere_fields) {
   fs::path p = tmp(name);
