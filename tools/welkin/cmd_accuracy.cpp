@@ -53,7 +53,9 @@ Band band_of(const ref::ProbeGeometry& g) {
   const double sun_elevation = 90.0 - g.sun_zenith_deg;
   return sun_elevation >= 3.0 ? Band::day : sun_elevation >= 0.0 ? Band::horizon : Band::twilight;
 }
-const char* band_name(Band b) { return b == Band::day ? "sun>=3" : b == Band::horizon ? "sun=0" : "sun=-6"; }
+const char* band_name(Band b) {
+  return b == Band::day ? "sun>=3" : b == Band::horizon ? "sun=0" : "sun=-6";
+}
 
 // Below this radiance (1/sr for sun illuminance 1; a clear day's sky is 0.01 to 0.1) a channel is
 // black for every purpose, and a relative error there measures nothing.
@@ -101,8 +103,12 @@ const char* quality_name(Quality q) {
   }
   return "?";
 }
-const char* method_name(SkyMethod m) { return m == SkyMethod::raymarch ? "raymarch" : "lut"; }
-std::string Config::name() const { return std::string(method_name(method)) + "/" + quality_name(quality); }
+const char* method_name(SkyMethod m) {
+  return m == SkyMethod::raymarch ? "raymarch" : "lut";
+}
+std::string Config::name() const {
+  return std::string(method_name(method)) + "/" + quality_name(quality);
+}
 
 struct ConfigResult {
   Config config;
@@ -164,8 +170,12 @@ struct Canvas {
   }
 };
 
-double floor_decade(double v) { return std::pow(10.0, std::floor(std::log10(v))); }
-double ceil_decade(double v) { return std::pow(10.0, std::ceil(std::log10(v))); }
+double floor_decade(double v) {
+  return std::pow(10.0, std::floor(std::log10(v)));
+}
+double ceil_decade(double v) {
+  return std::pow(10.0, std::ceil(std::log10(v)));
+}
 
 std::string tick_label(double v, bool percent) {
   char buf[32];
@@ -185,8 +195,12 @@ void write_plot(const std::string& path, const std::vector<ConfigResult>& result
   }
   x_lo = floor_decade(x_lo), x_hi = ceil_decade(x_hi * 1.0001), y_lo = floor_decade(y_lo),
   y_hi = ceil_decade(y_hi * 1.0001);
-  auto px = [&](double x) { return left + (std::log10(x) - std::log10(x_lo)) / std::log10(x_hi / x_lo) * (W - left - right); };
-  auto py = [&](double y) { return H - bottom - (std::log10(y) - std::log10(y_lo)) / std::log10(y_hi / y_lo) * (H - top - bottom); };
+  auto px = [&](double x) {
+    return left + (std::log10(x) - std::log10(x_lo)) / std::log10(x_hi / x_lo) * (W - left - right);
+  };
+  auto py = [&](double y) {
+    return H - bottom - (std::log10(y) - std::log10(y_lo)) / std::log10(y_hi / y_lo) * (H - top - bottom);
+  };
   const glm::u8vec3 grid(225, 225, 225), axis(60, 60, 60), ink(20, 20, 20);
   for (double d = x_lo; d <= x_hi * 1.0001; d *= 10)
     for (int k = 1; k < 10 && d * k <= x_hi * 1.0001; ++k) {
@@ -212,7 +226,8 @@ void write_plot(const std::string& path, const std::vector<ConfigResult>& result
   c.text(left + (W - left - right - Canvas::text_width(xl)) / 2.0, H - 24, xl, ink);
   c.text(6, top - 14, "relative error (log)", ink);
 
-  const std::map<SkyMethod, glm::u8vec3> colour{{SkyMethod::lut, {31, 119, 180}}, {SkyMethod::raymarch, {214, 39, 40}}};
+  const std::map<SkyMethod, glm::u8vec3> colour{{SkyMethod::lut, {31, 119, 180}},
+                                                {SkyMethod::raymarch, {214, 39, 40}}};
   for (SkyMethod m : {SkyMethod::lut, SkyMethod::raymarch}) {
     const ConfigResult* prev = nullptr;
     for (const ConfigResult& r : results) {
@@ -227,7 +242,8 @@ void write_plot(const std::string& path, const std::vector<ConfigResult>& result
     for (const ConfigResult& r : results) {
       if (r.config.method != m) continue;
       const double x = px(r.cost.atmosphere_ms);
-      const double y = py(std::max(r.all_orders_plotted.rmse(), y_lo)), ym = py(std::max(r.all_orders_plotted.max, y_lo));
+      const double y = py(std::max(r.all_orders_plotted.rmse(), y_lo)),
+                   ym = py(std::max(r.all_orders_plotted.max, y_lo));
       c.disc(x, y, 4.5, colour.at(m));
       c.square(x, ym, 4, colour.at(m));
       // Neighbouring presets alternate above and below their point, so close ones stay legible.
@@ -265,7 +281,8 @@ std::string steps_of(const atmosphere::Atmosphere& a) {
   else
     std::snprintf(buf, sizeof buf, "sky-view %dx%d/%d, transmittance %dx%d/%d, multi-scattering %d/%d",
                   q.sky_view_width, q.sky_view_height, q.sky_view_steps, q.transmittance_width,
-                  q.transmittance_height, q.transmittance_steps, q.multiscattering_size, q.multiscattering_steps);
+                  q.transmittance_height, q.transmittance_steps, q.multiscattering_size,
+                  q.multiscattering_steps);
   return buf;
 }
 
@@ -279,10 +296,13 @@ int run_accuracy(const AccuracyOptions& o) {
     if (m != "lut" && m != "raymarch")
       throw Error(ErrorInfo{.path = "--methods", .expected = "lut or raymarch", .found = "'" + m + "'"});
     for (const std::string& q : o.qualities) {
-      const std::map<std::string, Quality> names{
-          {"low", Quality::low}, {"medium", Quality::medium}, {"high", Quality::high}, {"ultra", Quality::ultra}};
+      const std::map<std::string, Quality> names{{"low", Quality::low},
+                                                 {"medium", Quality::medium},
+                                                 {"high", Quality::high},
+                                                 {"ultra", Quality::ultra}};
       if (!names.count(q))
-        throw Error(ErrorInfo{.path = "--qualities", .expected = "low, medium, high or ultra", .found = "'" + q + "'"});
+        throw Error(ErrorInfo{
+            .path = "--qualities", .expected = "low, medium, high or ultra", .found = "'" + q + "'"});
       configs.push_back({m == "raymarch" ? SkyMethod::raymarch : SkyMethod::lut, names.at(q)});
     }
   }
@@ -304,8 +324,10 @@ int run_accuracy(const AccuracyOptions& o) {
   // Path-traced references: the cache beside the module's sources when there is one.
   std::string cache_path = o.cache;
   if (cache_path.empty()) {
-    const fs::path beside = world->modules().manifest("atmosphere")->data_dir / "validation/accuracy-references.json";
-    cache_path = fs::exists(beside) ? beside.string() : (fs::path(o.out) / "accuracy-references.json").string();
+    const fs::path beside =
+        world->modules().manifest("atmosphere")->data_dir / "validation/accuracy-references.json";
+    cache_path =
+        fs::exists(beside) ? beside.string() : (fs::path(o.out) / "accuracy-references.json").string();
   }
   atmosphere::ReferenceCache cache(model, atmosphere::ReferenceSettings{});
   const size_t cached = cache.load(cache_path);
@@ -329,9 +351,10 @@ int run_accuracy(const AccuracyOptions& o) {
   const ref::ProbeGeometry cost_view{.altitude_km = 0.0, .view_zenith_deg = 80.0, .sun_zenith_deg = 60.0};
   std::vector<ConfigResult> results;
   std::ofstream rays_csv(fs::path(o.out) / "accuracy-atmosphere-rays.csv");
-  rays_csv << "method,quality,orders,altitude_km,sun_elevation_deg,view_elevation_deg,view_azimuth_from_sun_deg,"
-              "reference_r,reference_g,reference_b,reference_ci95_r,reference_ci95_g,reference_ci95_b,value_r,"
-              "value_g,value_b,rel_error_r,rel_error_g,rel_error_b\n";
+  rays_csv
+      << "method,quality,orders,altitude_km,sun_elevation_deg,view_elevation_deg,view_azimuth_from_sun_deg,"
+         "reference_r,reference_g,reference_b,reference_ci95_r,reference_ci95_g,reference_ci95_b,value_r,"
+         "value_g,value_b,rel_error_r,rel_error_g,rel_error_b\n";
   for (const Config& cfg : configs) {
     atmosphere::Atmosphere a = earth;
     a.method = cfg.method;
@@ -352,14 +375,15 @@ int run_accuracy(const AccuracyOptions& o) {
           r.all_orders[band_of(g)].add(v.radiance, reference);
           if (band_of(g) != Band::twilight) r.all_orders_plotted.add(v.radiance, reference);
         }
-        rays_csv << method_name(cfg.method) << "," << quality_name(cfg.quality) << "," << (single ? "1" : "all")
-                 << "," << g.altitude_km << "," << 90.0 - g.sun_zenith_deg << "," << 90.0 - g.view_zenith_deg
-                 << "," << g.view_azimuth_deg;
+        rays_csv << method_name(cfg.method) << "," << quality_name(cfg.quality) << ","
+                 << (single ? "1" : "all") << "," << g.altitude_km << "," << 90.0 - g.sun_zenith_deg << ","
+                 << 90.0 - g.view_zenith_deg << "," << g.view_azimuth_deg;
         for (int c = 0; c < 3; ++c) rays_csv << "," << fmt(reference[c], "%.6g");
         for (int c = 0; c < 3; ++c) rays_csv << "," << fmt(ci[c], "%.3g");
         for (int c = 0; c < 3; ++c) rays_csv << "," << fmt(v.radiance[c], "%.6g");
         for (int c = 0; c < 3; ++c)
-          rays_csv << "," << fmt(reference[c] > 0 ? (v.radiance[c] - reference[c]) / reference[c] : 0.0, "%.4g");
+          rays_csv << ","
+                   << fmt(reference[c] > 0 ? (v.radiance[c] - reference[c]) / reference[c] : 0.0, "%.4g");
         rays_csv << "\n";
       }
       if (!single) r.cost = probe.frame_cost(cost_view, width, height, o.frames);
@@ -370,15 +394,18 @@ int run_accuracy(const AccuracyOptions& o) {
   std::fprintf(stderr, "\n");
 
   std::ofstream csv(fs::path(o.out) / "accuracy-atmosphere.csv");
-  csv << "method,quality,steps,frame_size,atmosphere_ms,sky_pass_ms,frame_ms,copy_ms,all_orders_rel_rmse_sun_ge_0,"
-         "all_orders_max_sun_ge_0,all_orders_rel_rmse_sun_ge_3,all_orders_max_sun_ge_3,all_orders_rel_rmse_sun_0,"
+  csv << "method,quality,steps,frame_size,atmosphere_ms,sky_pass_ms,frame_ms,copy_ms,all_orders_rel_rmse_sun_"
+         "ge_0,"
+         "all_orders_max_sun_ge_0,all_orders_rel_rmse_sun_ge_3,all_orders_max_sun_ge_3,all_orders_rel_rmse_"
+         "sun_0,"
          "all_orders_max_sun_0,all_orders_rel_rmse_sun_m6,all_orders_max_sun_m6,single_rel_rmse_sun_ge_3,"
-         "single_max_sun_ge_3,single_rel_rmse_sun_0,single_max_sun_0,single_rel_rmse_sun_m6,single_max_sun_m6\n";
+         "single_max_sun_ge_3,single_rel_rmse_sun_0,single_max_sun_0,single_rel_rmse_sun_m6,single_max_sun_"
+         "m6\n";
   for (ConfigResult& r : results) {
     csv << method_name(r.config.method) << "," << quality_name(r.config.quality) << ",\"" << r.steps << "\","
         << width << "x" << height << "," << fmt(r.cost.atmosphere_ms) << "," << fmt(r.cost.sky_ms) << ","
-        << fmt(r.cost.frame_ms) << "," << fmt(r.cost.copy_ms) << "," << fmt(r.all_orders_plotted.rmse()) << ","
-        << fmt(r.all_orders_plotted.max);
+        << fmt(r.cost.frame_ms) << "," << fmt(r.cost.copy_ms) << "," << fmt(r.all_orders_plotted.rmse())
+        << "," << fmt(r.all_orders_plotted.max);
     for (Band b : {Band::day, Band::horizon, Band::twilight})
       csv << "," << fmt(r.all_orders[b].rmse()) << "," << fmt(r.all_orders[b].max);
     for (Band b : {Band::day, Band::horizon, Band::twilight})
@@ -418,17 +445,21 @@ int run_accuracy(const AccuracyOptions& o) {
                             .c_str());
     return kOk;
   }
-  std::printf("%zu rays; reference: path tracing, %llu paths per ray (seed %llu), cached in %s\n", rays.size(),
-              (unsigned long long)cache.settings().samples, (unsigned long long)cache.settings().seed,
-              cache_path.c_str());
+  std::printf("%zu rays; reference: path tracing, %llu paths per ray (seed %llu), cached in %s\n",
+              rays.size(), (unsigned long long)cache.settings().samples,
+              (unsigned long long)cache.settings().seed, cache_path.c_str());
   std::printf("GPU time: median of %d frames at %dx%d on %s, forced to completion; copy = full-screen copy\n",
               o.frames, width, height, renderer.c_str());
-  std::printf("relative error of radiance: RMSE / max over rays and channels (channels darker than %g 1/sr "
-              "left out)\n\n",
-              kBlack);
-  std::printf("| method | quality | atmosphere ms | sky pass ms | copy ms | all orders sun>=0 | sun>=3 | sun=0 | "
-              "sun=-6 | single sun>=3 | single sun=0 |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
-  auto pair = [](const ErrorStats& s) { return fmt(s.rmse() * 100, "%.1f") + "% / " + fmt(s.max * 100, "%.1f") + "%"; };
+  std::printf(
+      "relative error of radiance: RMSE / max over rays and channels (channels darker than %g 1/sr "
+      "left out)\n\n",
+      kBlack);
+  std::printf(
+      "| method | quality | atmosphere ms | sky pass ms | copy ms | all orders sun>=0 | sun>=3 | sun=0 | "
+      "sun=-6 | single sun>=3 | single sun=0 |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+  auto pair = [](const ErrorStats& s) {
+    return fmt(s.rmse() * 100, "%.1f") + "% / " + fmt(s.max * 100, "%.1f") + "%";
+  };
   for (ConfigResult& r : results)
     std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", method_name(r.config.method),
                 quality_name(r.config.quality), fmt(r.cost.atmosphere_ms, "%.2f").c_str(),
@@ -449,8 +480,9 @@ void add_accuracy_command(CLI::App& app, int& exit_code) {
       "accuracy", "Error against run time of every method and quality preset of a technique (CSV and plot)");
   cmd->add_option("technique", o->technique, "The technique to measure: atmosphere")->required();
   cmd->add_option("--out", o->out, "Folder for the CSVs and the plot")->capture_default_str();
-  cmd->add_option("--cache", o->cache,
-                  "Path-traced reference cache (default: the atmosphere module's validation/ folder, else --out)");
+  cmd->add_option(
+      "--cache", o->cache,
+      "Path-traced reference cache (default: the atmosphere module's validation/ folder, else --out)");
   cmd->add_option("-s,--size", o->size, "Frame size WxH for GPU time")->capture_default_str();
   cmd->add_option("-n,--frames", o->frames, "Frames per GPU time (median)")
       ->check(CLI::Range(1, 1000))

@@ -30,9 +30,9 @@ void add_probe_command(CLI::App& app, int& exit_code);
 
 namespace {
 
-using nlohmann::json;
 using atmosphere::ProbeMethod;
 using atmosphere::ProbeValue;
+using nlohmann::json;
 namespace ref = welkin::atmosphere::reference;
 
 struct ProbeOptions {
@@ -86,21 +86,26 @@ atmosphere::Atmosphere probe_atmosphere(const ProbeOptions& o) {
     *static_cast<atmosphere::Atmosphere*>(reg.emplace(reg.create(), *info.type)) = a;
   }
   if (reg.first<atmosphere::Atmosphere>().is_null())
-    throw Error(ErrorInfo{
-        .file = o.scene, .path = "/entities", .expected = "an entity with atmosphere.Atmosphere", .found = "none"});
+    throw Error(ErrorInfo{.file = o.scene,
+                          .path = "/entities",
+                          .expected = "an entity with atmosphere.Atmosphere",
+                          .found = "none"});
   for (const std::string& s : o.sets) {
     const std::string full = full_assignment(*world, s);
     if (full.rfind("atmosphere.Atmosphere/", 0) != 0 && full.find('/') != std::string::npos &&
         full.find('/') < full.find('='))
-      throw Error(ErrorInfo{.path = "--set " + s,
-                            .expected = "a field of atmosphere.Atmosphere (the probe's sun comes from --sun-*)",
-                            .found = "'" + full.substr(0, full.find('/')) + "'"});
+      throw Error(
+          ErrorInfo{.path = "--set " + s,
+                    .expected = "a field of atmosphere.Atmosphere (the probe's sun comes from --sun-*)",
+                    .found = "'" + full.substr(0, full.find('/')) + "'"});
     apply_assignment(*world, full);
   }
   return *reg.get<atmosphere::Atmosphere>(reg.first<atmosphere::Atmosphere>());
 }
 
-json rgb(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
+json rgb(const glm::dvec3& v) {
+  return json::array({v.x, v.y, v.z});
+}
 
 double max_rel(const glm::dvec3& a, const glm::dvec3& b) {
   double e = 0.0;
@@ -115,8 +120,8 @@ struct Evaluated {
   std::optional<atmosphere::FrameCost> cost;  // GPU methods: per frame at --size
 };
 
-Evaluated evaluate(ProbeMethod method, bool single, const atmosphere::Atmosphere& atm, const ref::ProbeGeometry& g,
-                   const ProbeOptions& o, int width, int height) {
+Evaluated evaluate(ProbeMethod method, bool single, const atmosphere::Atmosphere& atm,
+                   const ref::ProbeGeometry& g, const ProbeOptions& o, int width, int height) {
   Evaluated e{.method = method, .single = single};
   const ref::AtmosphereModel model = atmosphere::to_reference(atm);
   switch (method) {
@@ -171,7 +176,8 @@ std::string cost_text(const Evaluated& e) {
     std::snprintf(buf, sizeof buf, "%.2f ms GPU per %dx%d frame (sky pass %.2f ms, copy %.2f ms)", e.value.ms,
                   e.cost->width, e.cost->height, e.cost->sky_ms, e.cost->copy_ms);
   else if (e.method == ProbeMethod::pathtrace)
-    std::snprintf(buf, sizeof buf, "%.0f ms CPU, %llu paths", e.value.ms, (unsigned long long)e.value.samples);
+    std::snprintf(buf, sizeof buf, "%.0f ms CPU, %llu paths", e.value.ms,
+                  (unsigned long long)e.value.samples);
   else
     std::snprintf(buf, sizeof buf, "%.1f ms CPU", e.value.ms);
   return buf;
@@ -181,14 +187,16 @@ int run_probe(const ProbeOptions& o) {
   if (!o.scene.empty() && !o.preset.empty())
     throw Error(ErrorInfo{.path = "--preset", .expected = "either --scene or --preset", .found = "both"});
   const bool all = o.method == "all";
-  const std::optional<ProbeMethod> method = all ? std::nullopt : atmosphere::parse_probe_method(o.method);
-  if (!all && !method)
-    throw Error(ErrorInfo{
-        .path = "--method", .expected = "reference, pathtrace, lut, raymarch or all", .found = "'" + o.method + "'"});
+  const std::optional<ProbeMethod> parsed = atmosphere::parse_probe_method(o.method);
+  if (!all && !parsed)
+    throw Error(ErrorInfo{.path = "--method",
+                          .expected = "reference, pathtrace, lut, raymarch or all",
+                          .found = "'" + o.method + "'"});
   if (!o.orders.empty() && o.orders != "1" && o.orders != "all")
     throw Error(ErrorInfo{.path = "--orders", .expected = "1 or all", .found = "'" + o.orders + "'"});
   // The quadrature is single scattering only; it is the default there, and asking for more is an error.
-  const bool is_reference = method.has_value() && *method == ProbeMethod::reference;
+  const ProbeMethod method = parsed.value_or(ProbeMethod::lut);
+  const bool is_reference = !all && method == ProbeMethod::reference;
   const bool single = o.orders == "1" || (o.orders.empty() && is_reference);
   if (is_reference && !single)
     throw Error(ErrorInfo{.path = "--orders",
@@ -211,11 +219,12 @@ int run_probe(const ProbeOptions& o) {
                                    ProbeMethod::raymarch}
                      : std::vector{ProbeMethod::pathtrace, ProbeMethod::lut, ProbeMethod::raymarch};
   } else {
-    methods = {*method};
+    methods = {method};
   }
   std::unique_ptr<GlContext> context;
   for (ProbeMethod m : methods)
-    if (!context && (m == ProbeMethod::lut || m == ProbeMethod::raymarch)) context = create_headless_context();
+    if (!context && (m == ProbeMethod::lut || m == ProbeMethod::raymarch))
+      context = create_headless_context();
   std::vector<Evaluated> results;
   for (ProbeMethod m : methods) results.push_back(evaluate(m, single, atm, g, o, width, height));
 
@@ -233,7 +242,8 @@ int run_probe(const ProbeOptions& o) {
       for (const Evaluated& e : results) {
         json m = to_json(e);
         m["radiance_max_relative_error"] = max_rel(e.value.radiance, results[0].value.radiance);
-        m["transmittance_max_relative_error"] = max_rel(e.value.transmittance, results[0].value.transmittance);
+        m["transmittance_max_relative_error"] =
+            max_rel(e.value.transmittance, results[0].value.transmittance);
         list.push_back(m);
       }
       j = {{"methods", list}, {"baseline", atmosphere::probe_method_name(results[0].method)}};
@@ -243,9 +253,10 @@ int run_probe(const ProbeOptions& o) {
     std::printf("%s\n", j.dump(2).c_str());
     return kOk;
   }
-  std::printf("probe: altitude %g km, view zenith %g deg azimuth %g deg, sun zenith %g deg azimuth %g deg, %s\n",
-              o.altitude_km, o.view_zenith, o.view_azimuth, o.sun_zenith, o.sun_azimuth,
-              single ? "single scattering (orders 1)" : "all orders");
+  std::printf(
+      "probe: altitude %g km, view zenith %g deg azimuth %g deg, sun zenith %g deg azimuth %g deg, %s\n",
+      o.altitude_km, o.view_zenith, o.view_azimuth, o.sun_zenith, o.sun_azimuth,
+      single ? "single scattering (orders 1)" : "all orders");
   std::printf("%-26s %12s %12s %12s\n", "", "R", "G", "B");
   auto row = [](const std::string& what, const glm::dvec3& v, const std::string& extra) {
     std::printf("%-26s %12.6g %12.6g %12.6g  %s\n", what.c_str(), v.x, v.y, v.z, extra.c_str());
@@ -255,17 +266,21 @@ int run_probe(const ProbeOptions& o) {
     std::string t_extra, l_extra = cost_text(e);
     if (all && &e != &results[0]) {
       char buf[96];
-      std::snprintf(buf, sizeof buf, "max rel. error %.3g", max_rel(e.value.transmittance, results[0].value.transmittance));
+      std::snprintf(buf, sizeof buf, "max rel. error %.3g",
+                    max_rel(e.value.transmittance, results[0].value.transmittance));
       t_extra = buf;
-      std::snprintf(buf, sizeof buf, "max rel. error %.3g; ", max_rel(e.value.radiance, results[0].value.radiance));
+      std::snprintf(buf, sizeof buf, "max rel. error %.3g; ",
+                    max_rel(e.value.radiance, results[0].value.radiance));
       l_extra = buf + l_extra;
     }
     row(name + "  transmittance", e.value.transmittance, t_extra);
     row(name + "  radiance", e.value.radiance, l_extra);
     if (e.method == ProbeMethod::pathtrace) row("  95% half-width", e.value.radiance_ci95, "");
   }
-  std::printf("radiance in 1/sr (cd/m^2 per lux of sun)%s\n",
-              all ? (std::string("; errors against ") + atmosphere::probe_method_name(results[0].method)).c_str() : "");
+  std::printf(
+      "radiance in 1/sr (cd/m^2 per lux of sun)%s\n",
+      all ? (std::string("; errors against ") + atmosphere::probe_method_name(results[0].method)).c_str()
+          : "");
   return kOk;
 }
 
@@ -312,11 +327,14 @@ void add_probe_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "Seed for pathtrace (same seed and samples: the same result)")
       ->capture_default_str();
-  cmd->add_option("--threads", o->threads, "Threads for pathtrace")->check(CLI::Range(1, 1024))->capture_default_str();
+  cmd->add_option("--threads", o->threads, "Threads for pathtrace")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
   cmd->add_option("--size", o->size, "Frame size WxH at which GPU methods' cost (ms) is measured")
       ->capture_default_str();
-  cmd->add_flag("--json", o->json,
-                "Machine-readable output: {\"transmittance\":[r,g,b],\"radiance\":[r,g,b],\"method\":...,\"ms\":...}");
+  cmd->add_flag(
+      "--json", o->json,
+      "Machine-readable output: {\"transmittance\":[r,g,b],\"radiance\":[r,g,b],\"method\":...,\"ms\":...}");
   cmd->callback([o, &exit_code] { exit_code = run_probe(*o); });
 }
 

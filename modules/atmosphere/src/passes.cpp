@@ -6,8 +6,8 @@
 #include "welkin/atmosphere/gpu.h"
 #include "welkin/core/error.h"
 #include "welkin/core/world.h"
-#include "welkin/scene/json_fields.h"
 #include "welkin/gfx/renderer.h"
+#include "welkin/scene/json_fields.h"
 
 namespace welkin::atmosphere {
 
@@ -29,17 +29,21 @@ void dispatch(const Program& p, int x, int y, int z = 1) {
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
-int groups(int n, int size) { return (n + size - 1) / size; }
-
+int groups(int n, int size) {
+  return (n + size - 1) / size;
+}
 
 // Shader permutations of one frame: software rasterisers run both sides of every branch, so
 // features a frame does not use are compiled out rather than branched around.
 ShaderDefines moon_defines(const GpuUniforms& u) {
-  const bool moon_lights_sky = u.flags.w > 0.5f && glm::any(glm::greaterThan(glm::vec3(u.moon_illuminance), glm::vec3(0.0f)));
+  const bool moon_lights_sky =
+      u.flags.w > 0.5f && glm::any(glm::greaterThan(glm::vec3(u.moon_illuminance), glm::vec3(0.0f)));
   return {{"ATM_MOON_LIGHT", moon_lights_sky ? "1" : "0"}};
 }
 
-bool in_space(const GpuUniforms& u) { return u.aerial_params.z > 0.5f; }
+bool in_space(const GpuUniforms& u) {
+  return u.aerial_params.z > 0.5f;
+}
 
 void bind_image(GLuint unit, const Texture& t) {
   glBindImageTexture(unit, t.id(), 0, t.is_3d() ? GL_TRUE : GL_FALSE, 0, GL_WRITE_ONLY,
@@ -89,8 +93,10 @@ void lut_system(SystemContext& sc) {
   bool resized = ensure_texture(
       gpu.transmittance,
       {.width = q.transmittance_width, .height = q.transmittance_height, .format = TextureFormat::rgba32f});
-  resized |= ensure_texture(gpu.multiscattering,
-                            {.width = q.multiscattering_size, .height = q.multiscattering_size});
+  // Four layers side by side, each with a one-texel gutter either side (multiscattering_lut.comp).
+  const TextureDesc ms_desc{.width = 4 * (q.multiscattering_size + 2), .height = q.multiscattering_size};
+  resized |= ensure_texture(gpu.multiscattering, ms_desc);
+  if (q.multiscattering_iterations > 0) ensure_texture(gpu.multiscattering_scratch, ms_desc);
   if (ensure_texture(gpu.sky_view, {.width = q.sky_view_width, .height = q.sky_view_height}))
     glTextureParameteri(gpu.sky_view->id(), GL_TEXTURE_WRAP_S, GL_REPEAT);  // azimuth is periodic
   const TextureDesc froxels{.width = q.aerial_perspective_width,
@@ -152,9 +158,21 @@ void lut_system(SystemContext& sc) {
         },
         [gp, rcp, q, u](PassContext&) {
           bind_for_materials(*gp);
-          bind_image(0, *gp->multiscattering);
-          dispatch(rcp->shaders.compute("atmosphere/multiscattering_lut.comp"), q.multiscattering_size,
-                   q.multiscattering_size);
+          // Hillaire's estimate, then passes that each read the last one's output and write the
+          // other texture, ordered so that the final pass writes the LUT every reader binds.
+          const int n = q.multiscattering_iterations;
+          Texture* target[2] = {gp->multiscattering.get(), gp->multiscattering_scratch.get()};
+          bind_image(0, *target[n % 2]);
+          dispatch(rcp->shaders.compute("atmosphere/multiscattering_lut.comp", {{"ATM_MS_ITERATE", "0"}}),
+                   q.multiscattering_size, q.multiscattering_size);
+          const Program& iterate =
+              rcp->shaders.compute("atmosphere/multiscattering_lut.comp", {{"ATM_MS_ITERATE", "1"}});
+          for (int k = n - 1; k >= 0; --k) {
+            glBindTextureUnit(kMultiscatteringUnit, target[(k + 1) % 2]->id());
+            bind_image(0, *target[k % 2]);
+            dispatch(iterate, q.multiscattering_size, q.multiscattering_size);
+          }
+          glBindTextureUnit(kMultiscatteringUnit, gp->multiscattering->id());
           gp->lut_uniforms = u;
           gp->luts_valid = true;
           ++gp->lut_builds;
@@ -173,8 +191,8 @@ void lut_system(SystemContext& sc) {
         [gp, rcp, q, moon_defs](PassContext&) {
           bind_for_materials(*gp);
           bind_image(0, *gp->sky_view);
-          dispatch(rcp->shaders.compute("atmosphere/sky_view_lut.comp", moon_defs), groups(q.sky_view_width, 8),
-                   groups(q.sky_view_height, 8));
+          dispatch(rcp->shaders.compute("atmosphere/sky_view_lut.comp", moon_defs),
+                   groups(q.sky_view_width, 8), groups(q.sky_view_height, 8));
         });
   }
   if (!space) {

@@ -11,8 +11,8 @@ void register_atmosphere(ModuleContext& ctx) {
   ctx.component<Atmosphere>();
   ctx.component<Sun>();
   ctx.component<Moon>();
-  // LUTs first, so every material drawn this frame reads this frame's tables; the sky and the
-  // aerial perspective over the depth buffer last, once the geometry is in.
+  // LUTs and the sky first, so every material drawn this frame reads this frame's tables and covers
+  // the sky; the aerial perspective over the depth buffer last, once the geometry is in.
   ctx.system({.name = "atmosphere.luts",
               .phase = Phase::render,
               .order = -100,

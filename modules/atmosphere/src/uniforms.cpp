@@ -56,6 +56,8 @@ GpuUniforms make_uniforms(const Atmosphere& a, const Sun* sun_in, const Moon* mo
   pack_profile(a.rayleigh_density, &u.density[0]);
   pack_profile(a.mie_density, &u.density[4]);
   pack_profile(a.absorption_density, &u.density[8]);
+  const glm::dvec2 moments = mie_legendre_moments(a.mie_phase, a.mie_g);
+  u.mie_moments = glm::vec4(float(moments.x), float(moments.y), 0.0f, 0.0f);
 
   // Camera relative to the planet in double, rounded to float only once: stable at any distance.
   glm::dvec3 cam = (view.camera_position_m - planet_center_m(a)) * 1e-3;
@@ -97,7 +99,7 @@ GpuUniforms make_uniforms(const Atmosphere& a, const Sun* sun_in, const Moon* mo
                           glm::vec4(0, 0, 0, 1));
 
   u.transmittance_size = {q.transmittance_width, q.transmittance_height, q.transmittance_steps, 0};
-  u.multiscattering_size = {q.multiscattering_size, q.multiscattering_steps, 0, 0};
+  u.multiscattering_size = {q.multiscattering_size, q.multiscattering_steps, q.multiscattering_iterations, 0};
   u.sky_view_size = {q.sky_view_width, q.sky_view_height, q.sky_view_steps, 0};
   u.aerial_size = {q.aerial_perspective_width, q.aerial_perspective_height, q.aerial_perspective_slices,
                    q.aerial_perspective_steps_per_slice};
@@ -109,7 +111,8 @@ GpuUniforms make_uniforms(const Atmosphere& a, const Sun* sun_in, const Moon* mo
   const double n = q.sky_view_height;
   u.sky_view_params = {float(std::sin(sv.beta)), float(std::cos(sv.beta)),
                        float(1.0 / std::tan(0.5 * sv.zenith_horizon)), float(1.0 / std::tan(0.5 * sv.beta))};
-  u.sky_view_params_v = {float(n / (n + 1.0)), float(0.5 / (n + 1.0)), float(sv.zenith_horizon), float(sv.beta)};
+  u.sky_view_params_v = {float(n / (n + 1.0)), float(0.5 / (n + 1.0)), float(sv.zenith_horizon),
+                         float(sv.beta)};
   return u;
 }
 

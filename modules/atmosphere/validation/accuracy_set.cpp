@@ -1,12 +1,13 @@
 #include "validation/accuracy_set.h"
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
-#include <unistd.h>
 
 #include "reference/path_tracer.h"
 
@@ -19,13 +20,17 @@ namespace ref = reference;
 
 std::string key(const ref::ProbeGeometry& g) {
   char buf[160];
-  std::snprintf(buf, sizeof buf, "%.9g/%.9g/%.9g/%.9g/%.9g", g.altitude_km, g.view_zenith_deg, g.view_azimuth_deg,
-                g.sun_zenith_deg, g.sun_azimuth_deg);
+  std::snprintf(buf, sizeof buf, "%.9g/%.9g/%.9g/%.9g/%.9g", g.altitude_km, g.view_zenith_deg,
+                g.view_azimuth_deg, g.sun_zenith_deg, g.sun_azimuth_deg);
   return buf;
 }
 
-json rgb(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
-glm::dvec3 rgb(const json& j) { return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
+json rgb(const glm::dvec3& v) {
+  return json::array({v.x, v.y, v.z});
+}
+glm::dvec3 rgb(const json& j) {
+  return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
+}
 
 json profile(const ref::DensityProfile& p) {
   json layers = json::array();
@@ -36,18 +41,19 @@ json profile(const ref::DensityProfile& p) {
 
 // Everything the path tracer reads of the model, at full precision.
 std::string model_key(const ref::AtmosphereModel& m) {
-  json j{{"bottom_radius_km", m.bottom_radius_km},
-         {"top_radius_km", m.top_radius_km},
-         {"rayleigh_scattering", rgb(m.rayleigh_scattering)},
-         {"rayleigh_density", profile(m.rayleigh_density)},
-         {"mie_scattering", rgb(m.mie_scattering)},
-         {"mie_extinction", rgb(m.mie_extinction)},
-         {"mie_density", profile(m.mie_density)},
-         {"mie_phase", m.mie_phase == ref::MiePhase::cornette_shanks ? "cornette_shanks" : "henyey_greenstein"},
-         {"mie_g", m.mie_g},
-         {"absorption_extinction", rgb(m.absorption_extinction)},
-         {"absorption_density", profile(m.absorption_density)},
-         {"ground_albedo", rgb(m.ground_albedo)}};
+  json j{
+      {"bottom_radius_km", m.bottom_radius_km},
+      {"top_radius_km", m.top_radius_km},
+      {"rayleigh_scattering", rgb(m.rayleigh_scattering)},
+      {"rayleigh_density", profile(m.rayleigh_density)},
+      {"mie_scattering", rgb(m.mie_scattering)},
+      {"mie_extinction", rgb(m.mie_extinction)},
+      {"mie_density", profile(m.mie_density)},
+      {"mie_phase", m.mie_phase == ref::MiePhase::cornette_shanks ? "cornette_shanks" : "henyey_greenstein"},
+      {"mie_g", m.mie_g},
+      {"absorption_extinction", rgb(m.absorption_extinction)},
+      {"absorption_density", profile(m.absorption_density)},
+      {"ground_albedo", rgb(m.ground_albedo)}};
   return j.dump();
 }
 
@@ -111,15 +117,16 @@ void ReferenceCache::save(const std::string& path) const {
                     {"radiance", rgb(v.radiance)},
                     {"ci95", rgb(v.ci95)}});
   }
-  const json j{{"format", 1},
-               {"what",
-                "Path-traced all-orders radiance (1/sr, sun illuminance 1, the lit ground seen where a ray meets "
-                "it) of welkin accuracy's rays; ci95 is the 95% confidence half-width"},
-               {"model", json::parse(model_key_)},
-               {"samples", settings_.samples},
-               {"seed", settings_.seed},
-               {"chunk_size", settings_.chunk_size},
-               {"rays", rays}};
+  const json j{
+      {"format", 1},
+      {"what",
+       "Path-traced all-orders radiance (1/sr, sun illuminance 1, the lit ground seen where a ray meets "
+       "it) of welkin accuracy's rays; ci95 is the 95% confidence half-width"},
+      {"model", json::parse(model_key_)},
+      {"samples", settings_.samples},
+      {"seed", settings_.seed},
+      {"chunk_size", settings_.chunk_size},
+      {"rays", rays}};
   const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
   {
     std::ofstream out(tmp);

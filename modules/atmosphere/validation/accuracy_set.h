@@ -52,7 +52,8 @@ class ReferenceCache {
 };
 
 // All-orders radiance of one ray as the cache stores it (camera sees the lit ground).
-CachedReference path_trace_reference(const reference::AtmosphereModel& model, const reference::ProbeGeometry& g,
-                                     const ReferenceSettings& settings, int threads);
+CachedReference path_trace_reference(const reference::AtmosphereModel& model,
+                                     const reference::ProbeGeometry& g, const ReferenceSettings& settings,
+                                     int threads);
 
 }  // namespace welkin::atmosphere

@@ -31,7 +31,9 @@ double elapsed_ms(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-glm::dvec3 vec(const double v[3]) { return {v[0], v[1], v[2]}; }
+glm::dvec3 vec(const double v[3]) {
+  return {v[0], v[1], v[2]};
+}
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
@@ -55,7 +57,8 @@ glm::dvec3 lit_ground(const ref::AtmosphereModel& model, const ref::ProbeRay& ra
 }  // namespace
 
 std::optional<ProbeMethod> parse_probe_method(std::string_view name) {
-  for (ProbeMethod m : {ProbeMethod::reference, ProbeMethod::pathtrace, ProbeMethod::lut, ProbeMethod::raymarch})
+  for (ProbeMethod m :
+       {ProbeMethod::reference, ProbeMethod::pathtrace, ProbeMethod::lut, ProbeMethod::raymarch})
     if (name == probe_method_name(m)) return m;
   return std::nullopt;
 }
@@ -85,8 +88,8 @@ ProbeValue probe_reference(const ref::AtmosphereModel& model, const ref::ProbeGe
   return v;
 }
 
-ProbeValue probe_pathtrace(const ref::AtmosphereModel& model, const ref::ProbeGeometry& g, bool single_scattering,
-                           const PathTraceOptions& o) {
+ProbeValue probe_pathtrace(const ref::AtmosphereModel& model, const ref::ProbeGeometry& g,
+                           bool single_scattering, const PathTraceOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   const ref::PathTraceSettings s{.samples = o.samples,
                                  .seed = o.seed,
@@ -109,14 +112,15 @@ GpuProbe::GpuProbe(const Atmosphere& atmosphere, SkyMethod method, bool single_s
   // The probe's camera is placed by altitude above the ground straight below the origin.
   atm["planet_center_below_origin"] = true;
   if (single_scattering) atm["multiple_scattering_factor"] = 0.0;
-  const nlohmann::json sun = {{"illuminance_lux", 1.0}, {"color", {1, 1, 1}}, {"visible_fraction", 1.0},
-                              {"disc", false}};
+  const nlohmann::json sun = {
+      {"illuminance_lux", 1.0}, {"color", {1, 1, 1}}, {"visible_fraction", 1.0}, {"disc", false}};
   const nlohmann::json camera = {{"vertical_fov_deg", 1.0}, {"near_m", 1.0}};
   const nlohmann::json doc = {
       {"welkin_scene", 1},
       {"entities",
        {{{"name", "probe"},
-         {"components", {{"core.Camera", camera}, {"atmosphere.Atmosphere", atm}, {"atmosphere.Sun", sun}}}}}}};
+         {"components",
+          {{"core.Camera", camera}, {"atmosphere.Atmosphere", atm}, {"atmosphere.Sun", sun}}}}}}};
   world_ = std::make_unique<World>();
   world_->modules().add_static(welkin::modules::atmosphere_module());
   load_scene(*world_, doc, "probe");
@@ -173,7 +177,8 @@ FrameCost GpuProbe::frame_cost(const ref::ProbeGeometry& g, int width, int heigh
   std::vector<double> atmosphere, sky, frame;
   for (int i = 0; i < frames; ++i) {
     FrameResult r;
-    frame.push_back(finished_ms([&] { r = renderer_->render_frame(FrameInfo{.index = frame_++}, width, height); }));
+    frame.push_back(
+        finished_ms([&] { r = renderer_->render_frame(FrameInfo{.index = frame_++}, width, height); }));
     double a = 0.0, s = 0.0;
     for (const PassTiming& t : r.timings) {
       if (t.name.rfind("atmosphere.", 0) == 0) a += t.gpu_ms;

@@ -16,14 +16,18 @@ void main() {
   AtmLight sun = atm_sun_light(), moon = atm_moon_light_source();
   AtmMarch m = atm_march_start();
   int slices = atm_aerial_size.z;
-  float t_prev = 0.0;
-  for (int k = 0; k < slices; ++k) {
+  // The ground does not stop the march: geometry seen there (terrain below the ideal sphere) is in
+  // front of it, and its air is ground-level air (atm_medium clamps the altitude). Each slice goes on
+  // from the sample where the previous one ended.
+  float w0 = 0.5 / float(slices);
+  atm_march_segment(m, origin, dir, 0.0, atm_aerial_params.x * w0 * w0, atm_aerial_size.w, false, sun, moon,
+                    atm_ms_factor());
+  imageStore(o_inscattering, ivec3(column, 0), vec4(atm_fit_half(m.luminance), 1.0));
+  imageStore(o_transmittance, ivec3(column, 0), vec4(m.transmittance, 1.0));
+  for (int k = 1; k < slices; ++k) {
     float w = (float(k) + 0.5) / float(slices);
-    float t = atm_aerial_params.x * w * w;
-    // The ground does not stop the march: geometry seen there (terrain below the ideal sphere) is
-    // in front of it, and its air is ground-level air (atm_medium clamps the altitude).
-    atm_march_segment(m, origin, dir, t_prev, t, atm_aerial_size.w, false, sun, moon, atm_ms_factor());
-    t_prev = t;
+    atm_march_segment_resume(m, origin, dir, atm_aerial_params.x * w * w, atm_aerial_size.w, sun, moon,
+                             atm_ms_factor());
     imageStore(o_inscattering, ivec3(column, k), vec4(atm_fit_half(m.luminance), 1.0));
     imageStore(o_transmittance, ivec3(column, k), vec4(m.transmittance, 1.0));
   }

@@ -12,6 +12,7 @@ layout(std140, binding = 7) uniform WelkinAtmosphere {
   vec4 atm_ground_albedo;          // rgb; w: lift keeping samples above the ground (km)
   vec4 atm_radii;                  // bottom, top, sqrt(top^2 - bottom^2), top - bottom
   vec4 atm_density[12];            // Rayleigh, Mie, ozone: per layer (width, exp, scale, linear), (constant)
+  vec4 atm_mie_moments;            // Legendre moments of the Mie phase, l = 1 and 2 (Funk-Hecke)
   vec4 atm_camera_km;              // planet-centred camera; w: its radius
   vec4 atm_sun_direction;          // w: cos of the angular radius
   vec4 atm_sun_illuminance;        // lux outside the atmosphere; w: angular radius (rad)
@@ -23,7 +24,7 @@ layout(std140, binding = 7) uniform WelkinAtmosphere {
   mat4 atm_view_projection;
   mat4 atm_sky_frame;              // sky-view LUT frame: x towards the sun's azimuth, z up at the camera
   ivec4 atm_transmittance_size;    // width, height, steps
-  ivec4 atm_multiscattering_size;  // size, steps
+  ivec4 atm_multiscattering_size;  // size, steps, iterations
   ivec4 atm_sky_view_size;         // width, height, steps
   ivec4 atm_aerial_size;           // width, height, slices, steps per slice
   vec4 atm_aerial_params;          // distance (km), raymarch steps, 1 when in space, raymarch light steps
@@ -60,6 +61,7 @@ struct AtmParams {
   float ms_factor;
   vec2 transmittance_size;
   float multiscattering_size;
+  vec2 mie_moments;
 };
 
 AtmProfileParams atm_profile_params(int p) {
@@ -72,7 +74,7 @@ AtmParams atm_params() {
                    atm_rayleigh_scattering.rgb, atm_mie_scattering.rgb, atm_mie_extinction.rgb,
                    atm_absorption_extinction.rgb, atm_radii.x, atm_radii.y, atm_radii.z, atm_radii.w,
                    atm_ground_albedo.w, atm_absorption_extinction.w, vec2(atm_transmittance_size.xy),
-                   float(atm_multiscattering_size.x));
+                   float(atm_multiscattering_size.x), atm_mie_moments.xy);
 }
 
 // ---- Medium ------------------------------------------------------------------------------------
@@ -211,22 +213,56 @@ vec3 atm_transmittance_to_light(float r, float mu_l, float angular_radius) {
   return atm_transmittance_to_light(atm_params(), r, mu_l, angular_radius);
 }
 
-// Multi-scattering LUT: u = mu_s, v = altitude, both linear (Hillaire 2020, section 5.5).
+// Multi-scattering LUT: v = altitude, linear as in Hillaire 2020 (section 5.5); u = mu_s under a
+// signed square root, texels crowded towards the horizon. Across the terminator the light falls by
+// orders of magnitude within a few hundredths of mu_s, which Hillaire's linear u spreads over one
+// texel: bilinear interpolation of that fall made a setting sun's horizon up to 22% too blue
+// against the path tracer at 32 texels. The square root puts the first texel beside mu_s = 0 at
+// 1/n^2 of it instead of 2/n.
+float atm_multiscattering_mu_s_to_unit(float mu_s) {
+  return 0.5 + 0.5 * sign(mu_s) * sqrt(min(abs(mu_s), 1.0));
+}
+float atm_multiscattering_unit_to_mu_s(float x) {
+  float s = 2.0 * x - 1.0;
+  return sign(s) * s * s;
+}
+
 vec2 atm_multiscattering_uv(AtmParams P, float r, float mu_s) {
   float n = P.multiscattering_size;
-  return vec2(atm_unit_to_sub_uv(clamp(mu_s * 0.5 + 0.5, 0.0, 1.0), n),
+  return vec2(atm_unit_to_sub_uv(atm_multiscattering_mu_s_to_unit(mu_s), n),
               atm_unit_to_sub_uv(clamp((r - P.bottom) / P.thickness, 0.0, 1.0), n));
 }
 
-vec3 atm_multiscattering(AtmParams P, float r, float mu_s) {
-  return texture(atm_multiscattering_lut, atm_multiscattering_uv(P, r, mu_s)).rgb;
+// The LUT holds four square layers side by side (multiscattering_lut.comp): the scattered light
+// arriving at a point as Legendre moments about the local vertical, L(w) = c0 + c1 P1(w.up) +
+// c2 P2(w.up) (w towards where the light comes from), and the irradiance / pi it gives a horizontal
+// surface. Each layer has a one-texel gutter on either side holding copies of its edge texels:
+// texture units blend with 8-bit weights, so even a tap at a texel's centre takes up to 1/256 of its
+// neighbour, and the next layer's edge may be another quantity of another sign.
+vec3 atm_multiscattering_layer(AtmParams P, vec2 uv, float layer) {
+  float n = P.multiscattering_size;
+  float x = layer * (n + 2.0) + 1.0 + uv.x * n;
+  return texture(atm_multiscattering_lut, vec2(x / (4.0 * (n + 2.0)), uv.y)).rgb;
 }
 
-// Sky light of the higher orders on the ground, as irradiance / pi for an illuminance of 1
-// (multiscattering_lut.comp keeps the upper hemisphere's share in alpha).
+// Scattered light of every order, in-scattered towards the march direction d (mu_v = d.up) by the
+// medium, per unit illuminance. By Funk-Hecke a phase function with Legendre moments lambda_l turns
+// the field's moment c_l into lambda_l c_l P_l(mu_v): Rayleigh's are (1, 0, 1/10), Mie's come from
+// the block. The truncated series can dip below zero looking away from a bright hemisphere through a
+// forward-peaked phase; the clamp keeps the source physical there.
+vec3 atm_multiscattering_source(AtmParams P, float r, float mu_s, float mu_v, AtmMedium med) {
+  vec2 uv = atm_multiscattering_uv(P, r, mu_s);
+  vec3 c0 = atm_multiscattering_layer(P, uv, 0.0), c1 = atm_multiscattering_layer(P, uv, 1.0);
+  vec3 c2 = atm_multiscattering_layer(P, uv, 2.0);
+  float p2 = 1.5 * mu_v * mu_v - 0.5;
+  vec3 rayleigh = c0 + 0.1 * p2 * c2;
+  vec3 mie = c0 + P.mie_moments.x * mu_v * c1 + P.mie_moments.y * p2 * c2;
+  return max(med.rayleigh * rayleigh + med.mie * mie, vec3(0.0));
+}
+
+// Sky light of the scattered orders on the ground, as irradiance / pi for an illuminance of 1.
 vec3 atm_multiscattering_ground(AtmParams P, float mu_s) {
-  vec4 ms = texture(atm_multiscattering_lut, atm_multiscattering_uv(P, P.bottom + P.lift, mu_s));
-  return ms.rgb * ms.a;
+  return atm_multiscattering_layer(P, atm_multiscattering_uv(P, P.bottom + P.lift, mu_s), 3.0);
 }
 
 // Sky-view LUT (Hillaire 2020's layout: horizon at v = 0.5, texels crowded towards it from both

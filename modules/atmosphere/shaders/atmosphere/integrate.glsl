@@ -26,7 +26,7 @@ bool atm_light_on(AtmLight l) { return true; }
 #endif
 
 // What a march accumulates, and the sample at the end of its last segment, which the next segment of
-// the same ray starts from (aerial-perspective slices), so a step costs one sample.
+// the same ray can start from (atm_march_segment_resume).
 struct AtmSample {
   vec3 source;      // light scattered towards the camera per km, before the camera's transmittance
   vec3 extinction;  // 1/km
@@ -64,17 +64,18 @@ float atm_ms_factor() { return atm_absorption_extinction.w; }
 // Light of `l` reaching radius r and scattered towards the camera: single scattering through the
 // transmittance LUT and the planet's shadow, higher orders through the multi-scattering LUT.
 vec3 atm_light_source(AtmParams P, AtmLight l, vec3 up, float r, AtmMedium med, float rayleigh_phase,
-                      float mie_phase, float ms_weight) {
+                      float mie_phase, float mu_v, float ms_weight) {
   float mu = dot(up, l.direction);
   vec3 phase_scattering = med.rayleigh * rayleigh_phase + med.mie * mie_phase;
   vec3 s = atm_transmittance_to_light(P, r, mu, l.angular_radius) * phase_scattering;
   // A branch, not a product: the LUT's first build must not read the texture it is writing.
-  if (ms_weight > 0.0) s += ms_weight * atm_multiscattering(P, r, mu) * (med.rayleigh + med.mie);
+  if (ms_weight > 0.0) s += ms_weight * atm_multiscattering_source(P, r, mu, mu_v, med);
   return l.illuminance * s;
 }
 
 // Phase functions of one ray and its lights, and the sample of the medium and its light at a point.
 struct AtmRayLights {
+  vec3 dir;
   AtmLight l0, l1;
   float pr0, pm0, pr1, pm1;  // Rayleigh and Mie phase of each light for this ray
   float ms_weight;
@@ -82,7 +83,7 @@ struct AtmRayLights {
 
 AtmRayLights atm_ray_lights(vec3 dir, AtmLight l0, AtmLight l1, float ms_weight) {
   float c0 = dot(dir, l0.direction), c1 = dot(dir, l1.direction);
-  return AtmRayLights(l0, l1, atm_rayleigh_phase(c0), atm_mie_phase(c0), atm_rayleigh_phase(c1),
+  return AtmRayLights(dir, l0, l1, atm_rayleigh_phase(c0), atm_mie_phase(c0), atm_rayleigh_phase(c1),
                       atm_mie_phase(c1), ms_weight);
 }
 
@@ -91,23 +92,20 @@ AtmSample atm_sample(AtmParams P, AtmRayLights L, vec3 p) {
   float r = max(len, P.bottom + P.lift);
   vec3 up = p / max(len, 1e-20);
   AtmMedium med = atm_medium(P, r - P.bottom);
-  vec3 s = atm_light_source(P, L.l0, up, r, med, L.pr0, L.pm0, L.ms_weight);
+  float mu_v = dot(L.dir, up);
+  vec3 s = atm_light_source(P, L.l0, up, r, med, L.pr0, L.pm0, mu_v, L.ms_weight);
 #if ATM_MOON_LIGHT
-  if (atm_light_on(L.l1)) s += atm_light_source(P, L.l1, up, r, med, L.pr1, L.pm1, L.ms_weight);
+  if (atm_light_on(L.l1)) s += atm_light_source(P, L.l1, up, r, med, L.pr1, L.pm1, mu_v, L.ms_weight);
 #endif
   return AtmSample(s, med.extinction, med.rayleigh + med.mie);
 }
 
-// Accumulates [t0, t1] of the ray in `steps` steps, spaced uniformly or quadratically (dense near
-// t0, where a camera inside the air sees most of its detail). The medium and its light are sampled
-// at the step ends and averaged as exponentials (atm_log_mean); within a step the source is
-// integrated against the step's own extinction, S (1 - exp(-sigma_t dt)) / sigma_t.
-void atm_march_segment(inout AtmMarch m, vec3 origin, vec3 dir, float t0, float t1, int steps, bool quadratic,
-                       AtmLight l0, AtmLight l1, float ms_weight) {
-  if (!(t1 > t0) || steps < 1) return;
-  AtmParams P = atm_params();
-  AtmRayLights L = atm_ray_lights(dir, l0, l1, ms_weight);
-  AtmSample a = m.end_t == t0 ? m.end : atm_sample(P, L, origin + dir * t0);
+// Accumulates [t0, t1] of the ray in `steps` steps from the sample `a` at t0, spaced uniformly or
+// quadratically (dense near t0, where a camera inside the air sees most of its detail). The medium
+// and its light are sampled at the step ends and averaged as exponentials (atm_log_mean); within a
+// step the source is integrated against the step's own extinction, S (1 - exp(-sigma_t dt)) / sigma_t.
+void atm_march_steps(inout AtmMarch m, AtmParams P, AtmRayLights L, AtmSample a, vec3 origin, vec3 dir,
+                     float t0, float t1, int steps, bool quadratic) {
   float n = float(steps), ta = t0;
   for (int i = 0; i < steps; ++i) {
     float f = float(i + 1) / n;
@@ -125,6 +123,25 @@ void atm_march_segment(inout AtmMarch m, vec3 origin, vec3 dir, float t0, float 
   }
   m.end = a;
   m.end_t = t1;
+}
+
+void atm_march_segment(inout AtmMarch m, vec3 origin, vec3 dir, float t0, float t1, int steps, bool quadratic,
+                       AtmLight l0, AtmLight l1, float ms_weight) {
+  if (!(t1 > t0) || steps < 1) return;
+  AtmParams P = atm_params();
+  AtmRayLights L = atm_ray_lights(dir, l0, l1, ms_weight);
+  atm_march_steps(m, P, L, atm_sample(P, L, origin + dir * t0), origin, dir, t0, t1, steps, quadratic);
+}
+
+// The next segment [end of the last one, t1] of the same ray, from the sample the last one ended
+// with (aerial-perspective slices), so that a step costs one sample. A separate function rather than
+// a test: software rasterisers would take the sample anyway.
+void atm_march_segment_resume(inout AtmMarch m, vec3 origin, vec3 dir, float t1, int steps, AtmLight l0,
+                              AtmLight l1, float ms_weight) {
+  if (!(t1 > m.end_t) || steps < 1) return;
+  AtmParams P = atm_params();
+  AtmRayLights L = atm_ray_lights(dir, l0, l1, ms_weight);
+  atm_march_steps(m, P, L, m.end, origin, dir, m.end_t, t1, steps, false);
 }
 
 // Lambertian ground at planet-centred point p, lit directly by the lights (Hillaire 2020's ground).

@@ -1,26 +1,42 @@
-// Multi-scattering LUT (Hillaire 2020, section 5.5): for each (sun zenith, altitude), psi_ms, the
-// light of second and higher orders at a point as an isotropic source (sigma_s psi_ms is what the
-// point scatters towards any direction), for an illuminance of 1: psi_ms = L2 / (1 - f_ms), L2 the
-// mean over the sphere of the single-scattered light arriving at the point and f_ms the fraction of
-// a uniform radiance field that comes back to it. 64 directions, one invocation each.
-// Two departures from the paper, each measured against the path tracer (`welkin accuracy`, high
-// quality, sun >= 3 degrees, all orders): L2 scatters the sun with the true phase functions rather
-// than an isotropic one (it is exactly the second order's source), and f_ms counts the ground, which
-// returns albedo L of a uniform field L as the air returns T sigma_s. As published: relative RMSE
-// 5.8%, worst ray 25% (the blue of a low sun's horizon); with both: 3.2% and 13.5%. What remains is
-// the isotropic treatment of the later orders itself.
+// Multi-scattering LUT (Hillaire 2020, section 5.5): for each (sun zenith, altitude), the scattered
+// light of all orders arriving at a point, for an illuminance of 1, which every march scatters again
+// towards its own direction (common.glsl, atm_multiscattering_source). 64 directions, one invocation
+// each. Hillaire keeps only its mean psi_ms and scatters it isotropically; this LUT also keeps the
+// first two Legendre moments about the vertical, because the light coming up from a sunlit ground and
+// down from the sky is far from isotropic, and Mie (forward) and Rayleigh (forward and backward)
+// scatter it differently: as an isotropic source the ground's light made a high sun's red up to 6%
+// too bright and its blue 3% too dark against the path tracer. Layers, side by side: the moments
+// c0 (= psi_ms), c1, c2, and the irradiance / pi from the upper hemisphere (the ground's sky light),
+// each with a one-texel gutter either side (common.glsl, atm_multiscattering_layer).
+//
+// ATM_MS_ITERATE 0, Hillaire's estimate: psi_ms = L2 / (1 - f_ms), L2 the mean of the single-scattered
+// light arriving at the point and f_ms the fraction of a uniform radiance field that comes back to
+// it. Two departures from the paper: L2 scatters the sun with the true phase functions (it is exactly
+// the second order's source), and f_ms counts the ground, which returns albedo L of a uniform field L.
+//
+// ATM_MS_ITERATE 1, one pass of the fixed point psi = L2 + A psi: the same march, now also scattering
+// the previous LUT's psi at every point it passes (and the ground's sky light from it), so each pass
+// adds one order exactly where the geometric series assumed every point around to see the same
+// light. That assumption fails where light changes fastest, near the terminator and the ground: with
+// the estimate alone a low sun's horizon comes out up to 13.5% too blue-dark against the path tracer.
+// The passes converge geometrically from the estimate (each one multiplies the remaining error by
+// about f_ms < 1), so a few suffice; `multiscattering_iterations` sets how many.
+#ifndef ATM_MS_ITERATE
+#define ATM_MS_ITERATE 0
+#endif
 #include "atmosphere/integrate.glsl"
 layout(local_size_x = 64) in;
 layout(rgba16f, binding = 0) uniform writeonly image2D o_lut;
-shared vec3 s_luminance[64];
+shared vec3 s_moment[3][64];
 shared vec3 s_transfer[64];
 shared vec3 s_upper[64];
 
 void main() {
   ivec2 texel = ivec2(gl_WorkGroupID.xy);
-  float n = float(atm_multiscattering_size.x);
+  int size = atm_multiscattering_size.x;
+  float n = float(size);
   vec2 uv = (vec2(texel) + 0.5) / n;
-  float mu_s = clamp(atm_sub_uv_to_unit(uv.x, n) * 2.0 - 1.0, -1.0, 1.0);
+  float mu_s = clamp(atm_multiscattering_unit_to_mu_s(atm_sub_uv_to_unit(uv.x, n)), -1.0, 1.0);
   float r = atm_bottom() + atm_ground_albedo.w + clamp(atm_sub_uv_to_unit(uv.y, n), 0.0, 1.0) *
                                                (atm_radii.w - atm_ground_albedo.w);
   vec3 origin = vec3(0.0, 0.0, r);
@@ -34,29 +50,46 @@ void main() {
   float sin_theta = sqrt(max(0.0, 1.0 - cos_theta * cos_theta));
   vec3 dir = vec3(cos(phi) * sin_theta, sin(phi) * sin_theta, cos_theta);
 
-  // No multi-scattering term (weight 0): this pass writes the LUT it would read.
-  AtmMarch m = atm_march_ray(origin, dir, 1e30, atm_multiscattering_size.y, false, true, sun, none, 0.0);
-  s_luminance[i] = m.luminance;
+  // Weight 0 while estimating: the pass writes the LUT it would read. Weight 1 while iterating:
+  // the LUT bound for reading is the previous pass's output, never this one's.
+  AtmMarch m = atm_march_ray(origin, dir, 1e30, atm_multiscattering_size.y, false, true, sun, none,
+                             float(ATM_MS_ITERATE));
+  // The march's direction is where its light comes from: the moments (2l + 1) mean(L P_l(cos theta)).
+  s_moment[0][i] = m.luminance;
+  s_moment[1][i] = m.luminance * (3.0 * cos_theta);
+  s_moment[2][i] = m.luminance * (5.0 * (1.5 * cos_theta * cos_theta - 0.5));
   s_transfer[i] = m.ms_transfer;
   // Irradiance / pi from the upper hemisphere: 4 cos theta per direction of a uniform 4 pi grid.
   s_upper[i] = m.luminance * 4.0 * max(cos_theta, 0.0);
   barrier();
   for (uint stride = 32u; stride > 0u; stride >>= 1) {
     if (i < stride) {
-      s_luminance[i] += s_luminance[i + stride];
+      for (int l = 0; l < 3; ++l) s_moment[l][i] += s_moment[l][i + stride];
       s_transfer[i] += s_transfer[i + stride];
       s_upper[i] += s_upper[i + stride];
     }
     barrier();
   }
   if (i == 0u) {
-    // Means over the sphere: the isotropic phase of the last scattering is the 1 / (4 pi).
-    vec3 l2 = s_luminance[0] / 64.0;
-    vec3 f_ms = clamp(s_transfer[0] / 64.0, vec3(0.0), vec3(0.999));  // bounded geometric series
-    // Alpha: what a horizontal surface here receives of psi_ms (the sky above it, not the whole
-    // sphere, whose lower half at the ground is the sun-lit ground itself), for the ground's sky light.
-    float lum = dot(l2, vec3(1.0 / 3.0));
-    float upper = lum > 0.0 ? dot(s_upper[0] / 64.0, vec3(1.0 / 3.0)) / lum : 1.0;
-    imageStore(o_lut, texel, vec4(atm_fit_half(l2 / (1.0 - f_ms)), upper));
+#if ATM_MS_ITERATE
+    vec3 scale = vec3(1.0 / 64.0);
+#else
+    // Hillaire's geometric series over the later orders, applied to every moment.
+    vec3 f_ms = clamp(s_transfer[0] / 64.0, vec3(0.0), vec3(0.999));  // bounded
+    vec3 scale = 1.0 / (64.0 * (1.0 - f_ms));
+#endif
+    vec3 layer[4] = vec3[4](s_moment[0][0] * scale, s_moment[1][0] * scale, s_moment[2][0] * scale,
+                            s_upper[0] * scale);
+    // One factor for all four keeps their ratios where half floats would overflow (|c_l| <= (2l+1) c0).
+    float peak = max(layer[0].r, max(layer[0].g, layer[0].b)) * 5.0;
+    float fit = peak > 65504.0 ? 65504.0 / peak : 1.0;
+    for (int l = 0; l < 4; ++l) {
+      // Layer l's texels start at l (size + 2) + 1; its edge texels are copied into its gutters.
+      int x0 = l * (size + 2) + 1;
+      vec4 value = vec4(layer[l] * fit, 1.0);
+      imageStore(o_lut, ivec2(x0 + texel.x, texel.y), value);
+      if (texel.x == 0) imageStore(o_lut, ivec2(x0 - 1, texel.y), value);
+      if (texel.x == size - 1) imageStore(o_lut, ivec2(x0 + size, texel.y), value);
+    }
   }
 }

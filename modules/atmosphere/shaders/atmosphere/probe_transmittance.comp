@@ -23,8 +23,8 @@ vec3 lut_transmittance(vec3 origin, vec3 dir) {
 void main() {
   vec3 dir = normalize(u_direction);
 #if ATM_SKY_MODE == 2
-  vec3 t = atm_raymarch(atm_camera(), dir, int(atm_aerial_params.y), int(atm_aerial_params.w), atm_sun_light(),
-                        atm_moon_light_source()).transmittance;
+  vec3 t = atm_raymarch(atm_camera(), dir, int(atm_aerial_params.y), int(atm_aerial_params.w),
+                        atm_sun_light(), atm_moon_light_source()).transmittance;
 #else
   vec3 t = lut_transmittance(atm_camera(), dir);
 #endif

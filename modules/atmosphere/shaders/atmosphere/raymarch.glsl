@@ -2,7 +2,8 @@
 // Method raymarch: the sky as it was rendered before LUTs (and as the seeds did), a march along
 // every pixel's ray with, at each sample, a second march towards each light for its transmittance.
 // Single scattering, the lit ground where the ray ends, and Hillaire's multiple-scattering term from
-// the multi-scattering LUT (scaled by the multiple-scattering factor, so 0 gives single scattering).
+// the multi-scattering LUT, in the air and as sky light on that ground (scaled by the
+// multiple-scattering factor, so 0 gives single scattering).
 // It shares the medium, the phase functions and the per-step integral with the LUT path, so the two
 // differ only in what the LUTs replace: the nested march and its step counts.
 #include "atmosphere/integrate.glsl"
@@ -23,11 +24,11 @@ vec3 atm_light_march_transmittance(AtmParams P, float r, float mu, float angular
 }
 
 vec3 atm_raymarch_light(AtmParams P, AtmLight l, vec3 up, float r, AtmMedium med, float rayleigh_phase,
-                        float mie_phase, int light_steps) {
+                        float mie_phase, float mu_v, int light_steps) {
   float mu = dot(up, l.direction);
   vec3 t = atm_light_march_transmittance(P, r, mu, l.angular_radius, light_steps);
   vec3 s = t * (med.rayleigh * rayleigh_phase + med.mie * mie_phase);
-  s += P.ms_factor * atm_multiscattering(P, r, mu) * (med.rayleigh + med.mie);
+  s += P.ms_factor * atm_multiscattering_source(P, r, mu, mu_v, med);
   return l.illuminance * s;
 }
 
@@ -51,9 +52,10 @@ AtmMarch atm_raymarch(vec3 origin, vec3 dir, int steps, int light_steps, AtmLigh
     float r = max(len, P.bottom + P.lift);
     vec3 up = p / max(len, 1e-20);
     AtmMedium med = atm_medium(P, r - P.bottom);
-    vec3 s = atm_raymarch_light(P, l0, up, r, med, pr0, pm0, light_steps);
+    float mu_v = dot(dir, up);
+    vec3 s = atm_raymarch_light(P, l0, up, r, med, pr0, pm0, mu_v, light_steps);
 #if ATM_MOON_LIGHT
-    if (atm_light_on(l1)) s += atm_raymarch_light(P, l1, up, r, med, pr1, pm1, light_steps);
+    if (atm_light_on(l1)) s += atm_raymarch_light(P, l1, up, r, med, pr1, pm1, mu_v, light_steps);
 #endif
     vec3 x = med.extinction * dt;
     m.luminance += m.transmittance * s * (dt * atm_one_minus_exp_over_x(x));
@@ -72,7 +74,8 @@ AtmMarch atm_raymarch(vec3 origin, vec3 dir, int steps, int light_steps, AtmLigh
       e += l1.illuminance * atm_light_march_transmittance(P, r, mu1, l1.angular_radius, light_steps) *
            max(mu1, 0.0);
 #endif
-    m.luminance += m.transmittance * (atm_ground_albedo.rgb / ATM_PI * e + P.ms_factor * atm_ground_sky_light(g, l0, l1));
+    vec3 ground = atm_ground_albedo.rgb / ATM_PI * e + P.ms_factor * atm_ground_sky_light(g, l0, l1);
+    m.luminance += m.transmittance * ground;
   }
   return m;
 }

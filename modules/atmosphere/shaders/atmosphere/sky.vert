@@ -24,7 +24,8 @@ void main() {
   float half_size = tan(min(radius + 2.0 * u_pixel_angle, radians(80.0)));
   vec3 t = normalize(cross(d, abs(d.z) < 0.9 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0)));
   vec3 b = cross(d, t);
-  const vec2 corners[6] = vec2[6](vec2(-1, -1), vec2(1, -1), vec2(1, 1), vec2(-1, -1), vec2(1, 1), vec2(-1, 1));
+  const vec2 corners[6] =
+      vec2[6](vec2(-1, -1), vec2(1, -1), vec2(1, 1), vec2(-1, -1), vec2(1, 1), vec2(-1, 1));
   vec2 c = corners[gl_VertexID % 6];
   vec3 dir = d + (c.x * t + c.y * b) * half_size;
   v_dir = dir;

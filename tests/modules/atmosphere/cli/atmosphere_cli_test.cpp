@@ -28,7 +28,8 @@ fs::path scene_with_atmosphere(const std::string& name, const std::string& atmos
   fs::path p = tmp(name);
   std::ofstream(p) << R"({"welkin_scene": 1, "entities": [)"
                    << R"({"name": "camera", "components": {"core.Camera": {"pitch_deg": 10}}},)"
-                   << R"({"name": "air", "components": {"atmosphere.Atmosphere": {)" << atmosphere_fields << "}}}]}";
+                   << R"({"name": "air", "components": {"atmosphere.Atmosphere": {)" << atmosphere_fields
+                   << "}}}]}";
   return p;
 }
 
@@ -47,7 +48,8 @@ TEST(AtmosphereCli, BadParametersAreOneClearLineNotABlackImage) {
   } cases[] = {
       {"negative.json", R"("rayleigh_scattering": [0.0058, -0.0135, 0.0331])", at + "rayleigh_scattering/1"},
       {"top_below_bottom.json", R"("bottom_radius_km": 6360, "top_radius_km": 6300)", at + "top_radius_km"},
-      {"absorbing_mie.json", R"("mie_scattering": [0.004, 0.004, 0.004], "mie_extinction": [0.003, 0.004, 0.004])",
+      {"absorbing_mie.json",
+       R"("mie_scattering": [0.004, 0.004, 0.004], "mie_extinction": [0.003, 0.004, 0.004])",
        at + "mie_extinction/0"},
       {"anisotropy.json", R"("mie_g": 1.5)", at + "mie_g"},
       {"empty_shell.json", R"("bottom_radius_km": 6360, "top_radius_km": 6360)", at + "top_radius_km"},
@@ -73,8 +75,9 @@ TEST(AtmosphereCli, BadParametersAreOneClearLineNotABlackImage) {
 }
 
 TEST(AtmosphereCli, ProbePrintsEveryMethodAsJson) {
-  const std::string ray = "--altitude-km 1 --view-zenith-deg 80 --view-azimuth-deg 30 --sun-zenith-deg 60 "
-                          "--sun-azimuth-deg 0 --size 16x9 --json";
+  const std::string ray =
+      "--altitude-km 1 --view-zenith-deg 80 --view-azimuth-deg 30 --sun-zenith-deg 60 "
+      "--sun-azimuth-deg 0 --size 16x9 --json";
   for (const char* method : {"reference", "lut", "raymarch"}) {
     CliRun r = run(std::string("probe --method ") + method + " --orders 1 " + ray, false);
     ASSERT_EQ(r.code, 0) << method << ": " << r.out;

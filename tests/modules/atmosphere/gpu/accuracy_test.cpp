@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <memory>
 
+#include "reference/atmosphere_model.h"
+#include "reference/gauss_kronrod.h"
 #include "validation/accuracy_set.h"
 #include "validation/probe.h"
 #include "validation/reference_model.h"
@@ -39,8 +41,8 @@ double max_rel(const glm::dvec3& value, const glm::dvec3& reference) {
 
 std::string describe(const ref::ProbeGeometry& g) {
   char buf[160];
-  std::snprintf(buf, sizeof buf, "altitude %g km, sun elevation %g, view elevation %g, azimuth %g", g.altitude_km,
-                90.0 - g.sun_zenith_deg, 90.0 - g.view_zenith_deg, g.view_azimuth_deg);
+  std::snprintf(buf, sizeof buf, "altitude %g km, sun elevation %g, view elevation %g, azimuth %g",
+                g.altitude_km, 90.0 - g.sun_zenith_deg, 90.0 - g.view_zenith_deg, g.view_azimuth_deg);
   return buf;
 }
 
@@ -69,7 +71,8 @@ TEST(AtmosphereAccuracy, AllOrdersAgainstCachedPathTracedReferences) {
   GpuProbe probe(earth, SkyMethod::lut, /*single_scattering=*/false);
   const ref::AtmosphereModel model = to_reference(probe.atmosphere());
   ReferenceCache cache(model, ReferenceSettings{});
-  const auto file = std::filesystem::path(WELKIN_SOURCE_DIR) / "modules/atmosphere/validation/accuracy-references.json";
+  const auto file =
+      std::filesystem::path(WELKIN_SOURCE_DIR) / "modules/atmosphere/validation/accuracy-references.json";
   // A cache made for another planet or other settings is ignored; here that would be a stale file.
   ASSERT_GT(cache.load(file.string()), 0u) << file << " does not match the default atmosphere: regenerate it "
                                            << "with `welkin accuracy atmosphere --cache` (README)";
@@ -80,18 +83,91 @@ TEST(AtmosphereAccuracy, AllOrdersAgainstCachedPathTracedReferences) {
     ASSERT_TRUE(pt) << describe(g);
     const ProbeValue gpu = probe.evaluate(g);
     const double e = max_rel(gpu.radiance, pt->radiance);
-    std::printf("all orders, %s: max relative error %.4f (reference 95%% half-width %.4f)\n", describe(g).c_str(), e,
-                max_rel(pt->radiance + pt->ci95, pt->radiance));
-    for (int c = 0; c < 3; ++c) sum_sq += std::pow((gpu.radiance[c] - pt->radiance[c]) / pt->radiance[c], 2), ++n;
-    // Hillaire's isotropic multiple scattering: 5% is met in daylight from a sun at 10 degrees up,
-    // not at a low sun's horizon (blue up to 13.5% low) nor a high sun's red (up to 9% high). The
-    // bounds are the sweep's measured worst cases (README, `welkin accuracy atmosphere`).
-    const double sun_elevation = 90.0 - g.sun_zenith_deg;
-    EXPECT_LT(e, sun_elevation >= 10.0 && sun_elevation <= 30.0 ? 0.05 : 0.14) << describe(g);
+    std::printf("all orders, %s: max relative error %.4f (reference 95%% half-width %.4f)\n",
+                describe(g).c_str(), e, max_rel(pt->radiance + pt->ci95, pt->radiance));
+    for (int c = 0; c < 3; ++c)
+      sum_sq += std::pow((gpu.radiance[c] - pt->radiance[c]) / pt->radiance[c], 2), ++n;
+    // The bound, for a sun 3 degrees up or higher (the sweep: 4.6% worst; README).
+    EXPECT_LT(e, 0.05) << describe(g);
   }
   const double rmse = std::sqrt(sum_sq / n);
   std::printf("all orders: relative RMSE %.4f over %d channels\n", rmse, n);
-  EXPECT_LT(rmse, 0.05);
+  EXPECT_LT(rmse, 0.03);
+}
+
+TEST(AtmosphereAccuracy, AllOrdersWithinFivePercentOverTheSweep) {
+  // Every daylight ray of `welkin accuracy atmosphere` at the default quality: within 5% of the path
+  // tracer for a sun 3 degrees up or higher; the sun on the horizon is stated (README) and bounded
+  // here by its measured worst case with a margin. Twilight (sun below) is reported, not asserted:
+  // the references' own 95% intervals reach 15% there.
+  gl().make_current();
+  const Atmosphere earth;
+  GpuProbe probe(earth, SkyMethod::lut, /*single_scattering=*/false);
+  ReferenceCache cache(to_reference(probe.atmosphere()), ReferenceSettings{});
+  ASSERT_GT(cache.load((std::filesystem::path(WELKIN_SOURCE_DIR) /
+                        "modules/atmosphere/validation/accuracy-references.json")
+                           .string()),
+            0u);
+  double worst_day = 0.0, worst_horizon = 0.0;
+  int rays = 0;
+  for (const ref::ProbeGeometry& g : accuracy_rays()) {
+    const double sun_elevation = 90.0 - g.sun_zenith_deg;
+    if (sun_elevation < 0.0) continue;
+    const std::optional<CachedReference> pt = cache.find(g);
+    ASSERT_TRUE(pt) << describe(g);
+    const double e = max_rel(probe.evaluate(g).radiance, pt->radiance);
+    double& worst = sun_elevation >= 3.0 ? worst_day : worst_horizon;
+    worst = std::max(worst, e);
+    EXPECT_LT(e, sun_elevation >= 3.0 ? 0.05 : 0.08) << describe(g);
+    ++rays;
+  }
+  std::printf("%d rays: worst relative error %.4f (sun >= 3 degrees), %.4f (sun on the horizon)\n", rays,
+              worst_day, worst_horizon);
+}
+
+TEST(AtmosphereAccuracy, MieLegendreMomentsMatchQuadrature) {
+  // The closed forms the multi-scattering source uses (components.h) against 2 pi times the
+  // integral of the reference's phase functions times P_l.
+  for (MiePhase phase : {MiePhase::cornette_shanks, MiePhase::henyey_greenstein})
+    for (double g : {-0.9, 0.0, 0.3, 0.76, 0.8, 0.95}) {
+      auto p = [&](double c) {
+        return phase == MiePhase::henyey_greenstein ? ref::henyey_greenstein_phase(g, c)
+                                                    : ref::cornette_shanks_phase(g, c);
+      };
+      // Breakpoints crowd towards the forward peak, where the integrand varies fastest.
+      const double breakpoints[] = {-1.0, 0.0, 0.9, 0.99, 0.999, 1.0};
+      const ref::QuadratureResult q = ref::integrate_gauss_kronrod(
+          [&](double c) {
+            const double p2 = 1.5 * c * c - 0.5;
+            return glm::dvec3(p(c), p(c) * c, p(c) * p2) * (2.0 * M_PI);
+          },
+          breakpoints, ref::QuadratureSettings{.relative_tolerance = 1e-11});
+      ASSERT_TRUE(q.converged);
+      EXPECT_NEAR(q.value.x, 1.0, 1e-8) << "normalisation, g " << g;
+      const glm::dvec2 m = mie_legendre_moments(phase, g);
+      EXPECT_NEAR(m.x, q.value.y, 1e-8) << "lambda_1, g " << g << (phase == MiePhase::cornette_shanks ? " CS" : " HG");
+      EXPECT_NEAR(m.y, q.value.z, 1e-8) << "lambda_2, g " << g << (phase == MiePhase::cornette_shanks ? " CS" : " HG");
+    }
+  // Cornette-Shanks at g = 0 is Rayleigh's phase: moments 0 and 1/10, the constants of common.glsl.
+  EXPECT_NEAR(mie_legendre_moments(MiePhase::cornette_shanks, 0.0).y, 0.1, 1e-15);
+}
+
+TEST(AtmosphereAccuracy, RaymarchConvergesAsStepsGrow) {
+  gl().make_current();
+  const ref::ProbeGeometry g = ray(0, 30, 10, 90);
+  double previous = INFINITY;
+  for (int steps : {4, 16, 64}) {
+    Atmosphere a;
+    a.quality = Quality::custom;
+    a.raymarch_steps = steps;
+    a.raymarch_light_steps = steps / 4 + 1;
+    GpuProbe probe(a, SkyMethod::raymarch, /*single_scattering=*/true);
+    const double e = max_rel(probe.evaluate(g).radiance, probe_reference(to_reference(a), g).radiance);
+    std::printf("raymarch %d x %d steps: max relative error %.4f\n", steps, steps / 4 + 1, e);
+    EXPECT_LT(e, previous) << steps;
+    previous = e;
+  }
+  EXPECT_LT(previous, 0.02);
 }
 
 TEST(AtmosphereAccuracy, CachedReferenceIsWhatThePathTracerGives) {

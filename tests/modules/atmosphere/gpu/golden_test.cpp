@@ -1,12 +1,13 @@
 // The atmosphere scenes (assets/scenes/atmosphere-*.json) rendered headless at 96x54 against golden
 // images: noon, sunset, civil twilight (sun at -6 degrees) and the planet from 400 km. Each scene is
 // checked to be what its name says before its image is compared.
+#include "golden.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <memory>
 
-#include "golden.h"
 #include "welkin/atmosphere/components.h"
 #include "welkin/core/module.h"
 #include "welkin/core/world.h"
@@ -38,7 +39,8 @@ Scene load(const std::string& name) {
   gl().make_current();
   Scene s{std::make_unique<World>(), nullptr};
   s.world->modules().add_static(welkin::modules::atmosphere_module());
-  load_scene_file(*s.world, (std::filesystem::path(WELKIN_SOURCE_DIR) / "assets/scenes" / (name + ".json")).string());
+  load_scene_file(*s.world,
+                  (std::filesystem::path(WELKIN_SOURCE_DIR) / "assets/scenes" / (name + ".json")).string());
   s.renderer = std::make_unique<Renderer>(*s.world);
   return s;
 }
@@ -51,7 +53,8 @@ void expect_golden(Scene& s, const std::string& name) {
   s.renderer->render_frame(FrameInfo{}, 96, 54);
   // The helper writes failures to golden-output/<name>.*.png without creating the subfolder.
   std::filesystem::create_directories(std::filesystem::path(WELKIN_BINARY_DIR) / "golden-output/atmosphere");
-  const testing::GoldenResult r = testing::compare_with_golden(s.renderer->read_output(), "atmosphere/" + name, kTolerance);
+  const testing::GoldenResult r =
+      testing::compare_with_golden(s.renderer->read_output(), "atmosphere/" + name, kTolerance);
   EXPECT_TRUE(r.passed) << r.message;
 }
 

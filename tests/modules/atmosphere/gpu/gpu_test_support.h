@@ -98,5 +98,4 @@ inline ImageStats stats(const Texture& t) {
   return all;
 }
 
-
 }  // namespace welkin::atmosphere::test

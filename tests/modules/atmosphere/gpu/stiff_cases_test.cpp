@@ -97,6 +97,22 @@ std::vector<StiffCase> cases() {
       {"minimal_luts_and_steps", cam(2), minimal_quality(), sun_at(20)},
       {"minimal_luts_from_space", cam(400000, -30), minimal_quality(), sun_at(20)},
   };
+  // Method raymarch: its own nested march (the light steps), on the cases that stress a march most.
+  auto raymarch = [](json a) {
+    a["method"] = "raymarch";
+    return a;
+  };
+  json minimal_raymarch = raymarch(minimal_quality());
+  minimal_raymarch["raymarch_light_steps"] = 1;
+  const std::vector<StiffCase> marched = {
+      {"raymarch_noon", cam(2), raymarch(earth), sun_at(60)},
+      {"raymarch_sun_just_below", cam(2), raymarch(earth), sun_at(-0.3)},
+      {"raymarch_density_x1000", cam(2), raymarch(density_scaled(1000.0f)), sun_at(30)},
+      {"raymarch_from_low_orbit", cam(400000, -19.7), raymarch(earth), sun_at(5)},
+      {"raymarch_planet_1_km", cam(0.5), raymarch(scaled_earth(1.0)), sun_at(20)},
+      {"raymarch_minimal_steps", cam(2), minimal_raymarch, sun_at(20)},
+  };
+  c.insert(c.end(), marched.begin(), marched.end());
   return c;
 }
 
@@ -118,7 +134,6 @@ TEST_P(StiffCases, EverythingFiniteNonNegativeBounded) {
   };
   const float half_max = 65504.0f;
   std::vector<Check> checks = {{"transmittance LUT", g.transmittance.get(), 1.0f},
-                               {"multi-scattering LUT", g.multiscattering.get(), half_max},
                                {"sky-view LUT", g.sky_view.get(), half_max},
                                {"aerial in-scattering", g.aerial_inscattering.get(), half_max},
                                {"aerial transmittance", g.aerial_transmittance.get(), 1.0f},
@@ -131,6 +146,27 @@ TEST_P(StiffCases, EverythingFiniteNonNegativeBounded) {
     EXPECT_GE(s.min, 0.0f) << c.name << ": " << k.what;
     EXPECT_LE(s.max, k.max * (1.0f + 1e-3f)) << c.name << ": " << k.what;
   }
+  // Multi-scattering LUT: the moments c0, c1, c2 of a non-negative field, and its irradiance / pi,
+  // side by side with a one-texel gutter either side. c0 and the irradiance are non-negative and
+  // |c_l| <= (2l + 1) c0 (|P_l| <= 1).
+  const ImageF ms = read_texture_float(*g.multiscattering);
+  const int n = ms.width / 4 - 2;
+  ASSERT_EQ(n, ms.height);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x)
+      for (int ch = 0; ch < 3; ++ch) {
+        auto at = [&](int layer) { return ms.pixel(layer * (n + 2) + 1 + x, y)[ch]; };
+        const float c0 = at(0), c1 = at(1), c2 = at(2), upper = at(3);
+        ASSERT_TRUE(std::isfinite(c0) && std::isfinite(c1) && std::isfinite(c2) && std::isfinite(upper))
+            << c.name << ": multi-scattering LUT texel " << x << "," << y;
+        EXPECT_GE(c0, 0.0f) << c.name << ": multi-scattering LUT c0 at " << x << "," << y;
+        EXPECT_GE(upper, 0.0f) << c.name << ": multi-scattering LUT irradiance at " << x << "," << y;
+        EXPECT_LE(c0, half_max) << c.name;
+        // Half floats round each moment on its own: a relative slack of a few ulps.
+        const float slack = 1e-3f * c0 + 1e-6f;
+        EXPECT_LE(std::abs(c1), 3.0f * c0 + slack) << c.name << ": c1 at " << x << "," << y;
+        EXPECT_LE(std::abs(c2), 5.0f * c0 + slack) << c.name << ": c2 at " << x << "," << y;
+      }
 }
 
 INSTANTIATE_TEST_SUITE_P(Atmosphere, StiffCases, ::testing::ValuesIn(cases()),

@@ -64,6 +64,8 @@ struct Atmosphere {
   Quality quality = Quality::high;
   int transmittance_width = 256, transmittance_height = 64, transmittance_steps = 40;
   int multiscattering_size = 32, multiscattering_steps = 20;
+  // Orders solved on the LUT after Hillaire's estimate (0: the paper's geometric series alone).
+  int multiscattering_iterations = 4;
   int sky_view_width = 192, sky_view_height = 108, sky_view_steps = 30;
   int aerial_perspective_width = 32, aerial_perspective_height = 32, aerial_perspective_slices = 32;
   int aerial_perspective_steps_per_slice = 2;
@@ -106,7 +108,7 @@ void describe(TypeBuilder<Moon>& t);
 // LUT sizes and step counts after applying `quality` (custom keeps the explicit fields).
 struct ResolvedQuality {
   int transmittance_width, transmittance_height, transmittance_steps;
-  int multiscattering_size, multiscattering_steps;
+  int multiscattering_size, multiscattering_steps, multiscattering_iterations;
   int sky_view_width, sky_view_height, sky_view_steps;
   int aerial_perspective_width, aerial_perspective_height, aerial_perspective_slices;
   int aerial_perspective_steps_per_slice;
@@ -114,6 +116,11 @@ struct ResolvedQuality {
   int raymarch_light_steps;
 };
 ResolvedQuality resolve_quality(const Atmosphere& a);
+
+// Legendre moments lambda_1 and lambda_2 of the Mie phase function (2 pi times the integral of
+// p(c) P_l(c) over c): Henyey-Greenstein's are g^l; Cornette-Shanks, HG times 3 (1 + c^2) /
+// (2 (2 + g^2)), follows from HG's through c^2 P_l = sums of P_(l-2), P_l, P_(l+2).
+glm::dvec2 mie_legendre_moments(MiePhase phase, double g);
 
 // Planet centre in the scene frame (metres), honouring planet_center_below_origin.
 glm::dvec3 planet_center_m(const Atmosphere& a);

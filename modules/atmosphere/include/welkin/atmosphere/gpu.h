@@ -31,6 +31,7 @@ struct GpuUniforms {
   glm::vec4 ground_albedo{0.0f};          // w: lift above the ground (km)
   glm::vec4 radii{0.0f};                  // bottom, top, sqrt(top^2 - bottom^2), top - bottom
   glm::vec4 density[12]{};
+  glm::vec4 mie_moments{0.0f};  // Legendre moments of the Mie phase: l = 1, 2
   glm::vec4 camera_km{0.0f};
   glm::vec4 sun_direction{0.0f};
   glm::vec4 sun_illuminance{0.0f};
@@ -42,14 +43,14 @@ struct GpuUniforms {
   glm::mat4 view_projection{1.0f};
   glm::mat4 sky_frame{1.0f};
   glm::ivec4 transmittance_size{0};
-  glm::ivec4 multiscattering_size{0};
+  glm::ivec4 multiscattering_size{0};  // size, steps, iterations
   glm::ivec4 sky_view_size{0};
   glm::ivec4 aerial_size{0};
   glm::vec4 aerial_params{0.0f};  // distance km, raymarch steps, camera in space, raymarch light steps
   glm::vec4 sky_view_params{0.0f};    // horizon zenith angle, beta, 1 / horizon zenith, 1 / beta
   glm::vec4 sky_view_params_v{0.0f};  // unit v to texel-centred v: scale, offset
 };
-static_assert(sizeof(GpuUniforms) == 704, "GpuUniforms must match the std140 WelkinAtmosphere block");
+static_assert(sizeof(GpuUniforms) == 720, "GpuUniforms must match the std140 WelkinAtmosphere block");
 
 // The block for one frame. Sun and moon may be null (a default sun; no moon). Pure CPU.
 GpuUniforms make_uniforms(const Atmosphere& atmosphere, const Sun* sun, const Moon* moon,
@@ -62,6 +63,7 @@ struct AtmosphereGpu {
   static constexpr std::string_view kTypeName = "atmosphere.Gpu";
   std::unique_ptr<Texture> transmittance, multiscattering, sky_view, aerial_inscattering,
       aerial_transmittance, sky_irradiance;
+  std::unique_ptr<Texture> multiscattering_scratch;  // the other half of the LUT's iteration
   std::unique_ptr<Buffer> uniform_buffer;
   GpuUniforms uniforms;      // as last uploaded
   GpuUniforms lut_uniforms;  // what the persistent LUTs were built from

@@ -12,8 +12,12 @@ struct RadiusMu {
 };
 
 // Texel centres at the ends of [0, 1] (the LUT holds its domain's boundary values exactly).
-inline double unit_to_sub_uv(double u, double size) { return (u + 0.5 / size) * (size / (size + 1.0)); }
-inline double sub_uv_to_unit(double u, double size) { return (u - 0.5 / size) * (size / (size - 1.0)); }
+inline double unit_to_sub_uv(double u, double size) {
+  return (u + 0.5 / size) * (size / (size + 1.0));
+}
+inline double sub_uv_to_unit(double u, double size) {
+  return (u - 0.5 / size) * (size / (size - 1.0));
+}
 
 // (r, mu) of the texel centre (x, y) of a width x height transmittance LUT.
 inline RadiusMu transmittance_texel_r_mu(int x, int y, int width, int height, double bottom_km,
