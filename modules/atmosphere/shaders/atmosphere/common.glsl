@@ -233,16 +233,17 @@ vec2 atm_multiscattering_uv(AtmParams P, float r, float mu_s) {
               atm_unit_to_sub_uv(clamp((r - P.bottom) / P.thickness, 0.0, 1.0), n));
 }
 
-// The LUT holds four square layers side by side (multiscattering_lut.comp): the scattered light
+// The LUT holds three square layers side by side (multiscattering_lut.comp): the scattered light
 // arriving at a point as Legendre moments about the local vertical, L(w) = c0 + c1 P1(w.up) +
-// c2 P2(w.up) (w towards where the light comes from), and the irradiance / pi it gives a horizontal
-// surface. Each layer has a one-texel gutter on either side holding copies of its edge texels:
-// texture units blend with 8-bit weights, so even a tap at a texel's centre takes up to 1/256 of its
-// neighbour, and the next layer's edge may be another quantity of another sign.
-vec3 atm_multiscattering_layer(AtmParams P, vec2 uv, float layer) {
+// c2 P2(w.up) (w towards where the light comes from), in (c0, k2) and (c1) with c2 = k2 c0 (one
+// ratio for all channels: two fetches per sample instead of three, at 0.2% more worst-case error),
+// and the irradiance / pi it gives a horizontal surface. Each layer has a one-texel gutter on either
+// side holding copies of its edge texels: texture units blend with 8-bit weights, so even a tap at a
+// texel's centre takes up to 1/256 of its neighbour, and the next layer's edge is another quantity.
+vec4 atm_multiscattering_layer(AtmParams P, vec2 uv, float layer) {
   float n = P.multiscattering_size;
   float x = layer * (n + 2.0) + 1.0 + uv.x * n;
-  return texture(atm_multiscattering_lut, vec2(x / (4.0 * (n + 2.0)), uv.y)).rgb;
+  return texture(atm_multiscattering_lut, vec2(x / (3.0 * (n + 2.0)), uv.y));
 }
 
 // Scattered light of every order, in-scattered towards the march direction d (mu_v = d.up) by the
@@ -252,17 +253,17 @@ vec3 atm_multiscattering_layer(AtmParams P, vec2 uv, float layer) {
 // forward-peaked phase; the clamp keeps the source physical there.
 vec3 atm_multiscattering_source(AtmParams P, float r, float mu_s, float mu_v, AtmMedium med) {
   vec2 uv = atm_multiscattering_uv(P, r, mu_s);
-  vec3 c0 = atm_multiscattering_layer(P, uv, 0.0), c1 = atm_multiscattering_layer(P, uv, 1.0);
-  vec3 c2 = atm_multiscattering_layer(P, uv, 2.0);
+  vec4 c0_k2 = atm_multiscattering_layer(P, uv, 0.0);
+  vec3 c0 = c0_k2.rgb, c1 = atm_multiscattering_layer(P, uv, 1.0).rgb;
   float p2 = 1.5 * mu_v * mu_v - 0.5;
-  vec3 rayleigh = c0 + 0.1 * p2 * c2;
-  vec3 mie = c0 + P.mie_moments.x * mu_v * c1 + P.mie_moments.y * p2 * c2;
+  vec3 rayleigh = c0 * (1.0 + 0.1 * p2 * c0_k2.a);
+  vec3 mie = c0 * (1.0 + P.mie_moments.y * p2 * c0_k2.a) + P.mie_moments.x * mu_v * c1;
   return max(med.rayleigh * rayleigh + med.mie * mie, vec3(0.0));
 }
 
 // Sky light of the scattered orders on the ground, as irradiance / pi for an illuminance of 1.
 vec3 atm_multiscattering_ground(AtmParams P, float mu_s) {
-  return atm_multiscattering_layer(P, atm_multiscattering_uv(P, P.bottom + P.lift, mu_s), 3.0);
+  return atm_multiscattering_layer(P, atm_multiscattering_uv(P, P.bottom + P.lift, mu_s), 2.0).rgb;
 }
 
 // Sky-view LUT (Hillaire 2020's layout: horizon at v = 0.5, texels crowded towards it from both

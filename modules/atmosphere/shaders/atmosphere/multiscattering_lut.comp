@@ -5,9 +5,10 @@
 // first two Legendre moments about the vertical, because the light coming up from a sunlit ground and
 // down from the sky is far from isotropic, and Mie (forward) and Rayleigh (forward and backward)
 // scatter it differently: as an isotropic source the ground's light made a high sun's red up to 6%
-// too bright and its blue 3% too dark against the path tracer. Layers, side by side: the moments
-// c0 (= psi_ms), c1, c2, and the irradiance / pi from the upper hemisphere (the ground's sky light),
-// each with a one-texel gutter either side (common.glsl, atm_multiscattering_layer).
+// too bright and its blue 3% too dark against the path tracer. Layers, side by side, each with a
+// one-texel gutter either side (common.glsl, atm_multiscattering_layer): the moment c0 (= psi_ms)
+// with k2 = c2 / c0 (summed over channels) in alpha, c1, and the irradiance / pi from the upper
+// hemisphere (the ground's sky light).
 //
 // ATM_MS_ITERATE 0, Hillaire's estimate: psi_ms = L2 / (1 - f_ms), L2 the mean of the single-scattered
 // light arriving at the point and f_ms the fraction of a uniform radiance field that comes back to
@@ -78,15 +79,18 @@ void main() {
     vec3 f_ms = clamp(s_transfer[0] / 64.0, vec3(0.0), vec3(0.999));  // bounded
     vec3 scale = 1.0 / (64.0 * (1.0 - f_ms));
 #endif
-    vec3 layer[4] = vec3[4](s_moment[0][0] * scale, s_moment[1][0] * scale, s_moment[2][0] * scale,
-                            s_upper[0] * scale);
-    // One factor for all four keeps their ratios where half floats would overflow (|c_l| <= (2l+1) c0).
-    float peak = max(layer[0].r, max(layer[0].g, layer[0].b)) * 5.0;
+    vec3 c0 = s_moment[0][0] * scale;
+    float sum_c0 = dot(c0, vec3(1.0));
+    float k2 = sum_c0 > 0.0 ? dot(s_moment[2][0] * scale, vec3(1.0)) / sum_c0 : 0.0;
+    // One factor for all keeps their ratios where half floats would overflow (|c1| <= 3 c0).
+    float peak = max(c0.r, max(c0.g, c0.b)) * 3.0;
     float fit = peak > 65504.0 ? 65504.0 / peak : 1.0;
-    for (int l = 0; l < 4; ++l) {
+    vec4 layer[3] = vec4[3](vec4(c0 * fit, k2), vec4(s_moment[1][0] * scale * fit, 1.0),
+                            vec4(s_upper[0] * scale * fit, 1.0));
+    for (int l = 0; l < 3; ++l) {
       // Layer l's texels start at l (size + 2) + 1; its edge texels are copied into its gutters.
       int x0 = l * (size + 2) + 1;
-      vec4 value = vec4(layer[l] * fit, 1.0);
+      vec4 value = layer[l];
       imageStore(o_lut, ivec2(x0 + texel.x, texel.y), value);
       if (texel.x == 0) imageStore(o_lut, ivec2(x0 - 1, texel.y), value);
       if (texel.x == size - 1) imageStore(o_lut, ivec2(x0 + size, texel.y), value);
