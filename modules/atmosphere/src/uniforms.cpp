@@ -92,6 +92,16 @@ GpuUniforms make_uniforms(const Atmosphere& a, const Sun* sun_in, const Moon* mo
   // Sky-view frame at the camera: z up, x towards the sun's azimuth (any horizontal axis when the
   // sun is at the zenith or nadir).
   const glm::dvec3 up = cam / r;
+  // Moonlight scatters in the air only where it can show. With the sun above the horizon of a camera
+  // inside the atmosphere the sky it lights is thousands of times brighter than anything a moon of at
+  // most 1/1000 of the sun's illuminance adds, and the second light doubles the cost of every march
+  // (a shader permutation without it, passes.cpp), so it is left out.
+  if (moon && u.flags.w > 0.5f && r < top && glm::dot(sun_dir, up) > 0.0) {
+    const glm::vec3 sc = sun.color, mc = moon->color;
+    const double sun_lux = double(sun.illuminance_lux) * sun.visible_fraction * std::min({sc.r, sc.g, sc.b});
+    const double moon_lux = double(moon->illuminance_lux) * std::max({mc.r, mc.g, mc.b});
+    if (moon_lux <= 1e-3 * sun_lux) u.flags.w = 0.0f;
+  }
   glm::dvec3 x = sun_dir - up * glm::dot(sun_dir, up);
   x = glm::length(x) > 1e-9 ? glm::normalize(x) : any_perpendicular(up);
   const glm::dvec3 y = glm::cross(up, x);

@@ -230,3 +230,55 @@ TEST(AtmosphereFrame, SkyBehavesPhysically) {
 
 }  // namespace
 }  // namespace welkin::atmosphere
+
+namespace welkin::atmosphere {
+namespace {
+
+TEST(AtmosphereUniforms, MoonLightsTheSkyOnlyWhereItCanShow) {
+  Atmosphere a;
+  Camera c;
+  c.position_m = {0, 0, 2};
+  const FrameView view = make_frame_view(c, 16, 16);
+  Sun sun;
+  Moon moon;
+  sun.elevation_deg = -20.0f;
+  EXPECT_EQ(make_uniforms(a, &sun, &moon, view).flags.w, 1.0f) << "night";
+  sun.elevation_deg = 0.5f;
+  EXPECT_EQ(make_uniforms(a, &sun, &moon, view).flags.w, 0.0f) << "day";
+  // A moon bright against its sun (another planet's, or an artist's) keeps its light.
+  sun.illuminance_lux = 10000.0f;
+  moon.illuminance_lux = 100.0f;
+  EXPECT_EQ(make_uniforms(a, &sun, &moon, view).flags.w, 1.0f) << "bright moon";
+  // From space the planet's night side is in view whatever the sun does.
+  sun.illuminance_lux = 120000.0f;
+  moon.illuminance_lux = 0.25f;
+  c.position_m = {0, 0, 400000};
+  EXPECT_EQ(make_uniforms(a, &sun, &moon, make_frame_view(c, 16, 16)).flags.w, 1.0f) << "space";
+}
+
+TEST(AtmosphereFrame, DaylightDrownsTheFullMoonsSky) {
+  // The premise of leaving moonlight out by day: at the lowest sun that does so (just above the
+  // horizon), the sky a full moon high in the sky lights is below 1/1000 of the sun's, everywhere.
+  auto sky = [](double sun_elevation, const json* moon) {
+    auto r = test::render(
+        test::scene({{"pitch_deg", 0}, {"vertical_fov_deg", 150}, {"heading_deg", 180}}, json::object(),
+                    {{"elevation_deg", sun_elevation}, {"azimuth_deg", 0}, {"disc", false}}, moon),
+        9, 33);
+    return r.renderer->read_hdr();
+  };
+  const json full_moon = {{"elevation_deg", 60}, {"azimuth_deg", 180}, {"illuminance_lux", 0.3}, {"disc", false}};
+  const ImageF by_sun = sky(0.1, nullptr), by_moon = sky(-90, &full_moon);
+  double worst = 0.0;
+  for (int y = 0; y < 17; ++y)  // the sky rows, zenith-ward of the horizon
+    for (int x = 0; x < 9; ++x)
+      for (int ch = 0; ch < 3; ++ch) {
+        ASSERT_GT(by_sun.pixel(x, y)[ch], 0.0f);
+        worst = std::max(worst, double(by_moon.pixel(x, y)[ch]) / by_sun.pixel(x, y)[ch]);
+      }
+  std::printf("moonlit sky / sunlit sky, worst pixel: %.2e\n", worst);
+  EXPECT_GT(worst, 0.0);
+  EXPECT_LT(worst, 1e-3);
+}
+
+}  // namespace
+}  // namespace welkin::atmosphere
