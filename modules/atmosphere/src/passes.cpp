@@ -94,7 +94,9 @@ void lut_system(SystemContext& sc) {
       gpu.transmittance,
       {.width = q.transmittance_width, .height = q.transmittance_height, .format = TextureFormat::rgba32f});
   // Three layers side by side, each with a one-texel gutter either side (multiscattering_lut.comp).
-  const TextureDesc ms_desc{.width = 3 * (q.multiscattering_size + 2), .height = q.multiscattering_size};
+  const TextureDesc ms_desc{.width = 3 * (q.multiscattering_size + 2),
+                            .height = q.multiscattering_size,
+                            .format = TextureFormat::rgba32f};
   resized |= ensure_texture(gpu.multiscattering, ms_desc);
   if (q.multiscattering_iterations > 0) ensure_texture(gpu.multiscattering_scratch, ms_desc);
   if (ensure_texture(gpu.sky_view, {.width = q.sky_view_width, .height = q.sky_view_height}))

@@ -235,11 +235,13 @@ vec2 atm_multiscattering_uv(AtmParams P, float r, float mu_s) {
 
 // The LUT holds three square layers side by side (multiscattering_lut.comp): the scattered light
 // arriving at a point as Legendre moments about the local vertical, L(w) = c0 + c1 P1(w.up) +
-// c2 P2(w.up) (w towards where the light comes from), in (c0, k2) and (c1) with c2 = k2 c0 (one
-// ratio for all channels: two fetches per sample instead of three, at 0.2% more worst-case error),
-// and the irradiance / pi it gives a horizontal surface. Each layer has a one-texel gutter on either
-// side holding copies of its edge texels: texture units blend with 8-bit weights, so even a tap at a
-// texel's centre takes up to 1/256 of its neighbour, and the next layer's edge is another quantity.
+// c2 P2(w.up) (w towards where the light comes from), and the irradiance / pi it gives a horizontal
+// surface. Layer 0 holds log c0 and k2 = c2 / c0 (one ratio for all channels: two fetches per sample
+// instead of three, at 0.2% more worst-case error), layer 1 c1 / c0, layer 2 the irradiance over c0.
+// Interpolating log c0 is exact where light falls exponentially, as it does into the planet's shadow;
+// interpolated linearly, a dusk sky's multiple scattering came out 29% RMSE off instead of 10%. Each
+// layer has a one-texel gutter on either side holding copies of its edge texels: texture units blend
+// with 8-bit weights, so even a tap at a texel's centre takes up to 1/256 of its neighbour.
 vec4 atm_multiscattering_layer(AtmParams P, vec2 uv, float layer) {
   float n = P.multiscattering_size;
   float x = layer * (n + 2.0) + 1.0 + uv.x * n;
@@ -253,17 +255,18 @@ vec4 atm_multiscattering_layer(AtmParams P, vec2 uv, float layer) {
 // forward-peaked phase; the clamp keeps the source physical there.
 vec3 atm_multiscattering_source(AtmParams P, float r, float mu_s, float mu_v, AtmMedium med) {
   vec2 uv = atm_multiscattering_uv(P, r, mu_s);
-  vec4 c0_k2 = atm_multiscattering_layer(P, uv, 0.0);
-  vec3 c0 = c0_k2.rgb, c1 = atm_multiscattering_layer(P, uv, 1.0).rgb;
+  vec4 log_c0_k2 = atm_multiscattering_layer(P, uv, 0.0);
+  vec3 c1_over_c0 = atm_multiscattering_layer(P, uv, 1.0).rgb;
   float p2 = 1.5 * mu_v * mu_v - 0.5;
-  vec3 rayleigh = c0 * (1.0 + 0.1 * p2 * c0_k2.a);
-  vec3 mie = c0 * (1.0 + P.mie_moments.y * p2 * c0_k2.a) + P.mie_moments.x * mu_v * c1;
-  return max(med.rayleigh * rayleigh + med.mie * mie, vec3(0.0));
+  vec3 rayleigh = vec3(1.0 + 0.1 * p2 * log_c0_k2.a);
+  vec3 mie = 1.0 + P.mie_moments.y * p2 * log_c0_k2.a + P.mie_moments.x * mu_v * c1_over_c0;
+  return exp(log_c0_k2.rgb) * max(med.rayleigh * rayleigh + med.mie * mie, vec3(0.0));
 }
 
 // Sky light of the scattered orders on the ground, as irradiance / pi for an illuminance of 1.
 vec3 atm_multiscattering_ground(AtmParams P, float mu_s) {
-  return atm_multiscattering_layer(P, atm_multiscattering_uv(P, P.bottom + P.lift, mu_s), 2.0).rgb;
+  vec2 uv = atm_multiscattering_uv(P, P.bottom + P.lift, mu_s);
+  return exp(atm_multiscattering_layer(P, uv, 0.0).rgb) * atm_multiscattering_layer(P, uv, 2.0).rgb;
 }
 
 // Sky-view LUT (Hillaire 2020's layout: horizon at v = 0.5, texels crowded towards it from both

@@ -1,14 +1,17 @@
 // Multi-scattering LUT (Hillaire 2020, section 5.5): for each (sun zenith, altitude), the scattered
 // light of all orders arriving at a point, for an illuminance of 1, which every march scatters again
-// towards its own direction (common.glsl, atm_multiscattering_source). 64 directions, one invocation
-// each. Hillaire keeps only its mean psi_ms and scatters it isotropically; this LUT also keeps the
+// towards its own direction (common.glsl, atm_multiscattering_source). 256 directions, one invocation
+// each: Hillaire's 64 put the directions nearest the horizon 7 degrees off it, and a point in the
+// planet's shadow at dusk is lit by a bright arch just above its horizon, which they missed (a dusk
+// sky's red 39% too dark; the worst daylight ray 4.8% -> 3.5%). Hillaire keeps only the mean psi_ms
+// and scatters it isotropically; this LUT also keeps the
 // first two Legendre moments about the vertical, because the light coming up from a sunlit ground and
 // down from the sky is far from isotropic, and Mie (forward) and Rayleigh (forward and backward)
 // scatter it differently: as an isotropic source the ground's light made a high sun's red up to 6%
 // too bright and its blue 3% too dark against the path tracer. Layers, side by side, each with a
-// one-texel gutter either side (common.glsl, atm_multiscattering_layer): the moment c0 (= psi_ms)
-// with k2 = c2 / c0 (summed over channels) in alpha, c1, and the irradiance / pi from the upper
-// hemisphere (the ground's sky light).
+// one-texel gutter either side (common.glsl, atm_multiscattering_layer), in floats: log c0 (c0 =
+// psi_ms) with k2 = c2 / c0 (summed over channels) in alpha, c1 / c0, and the irradiance / pi from
+// the upper hemisphere (the ground's sky light) over c0.
 //
 // ATM_MS_ITERATE 0, Hillaire's estimate: psi_ms = L2 / (1 - f_ms), L2 the mean of the single-scattered
 // light arriving at the point and f_ms the fraction of a uniform radiance field that comes back to
@@ -26,11 +29,13 @@
 #define ATM_MS_ITERATE 0
 #endif
 #include "atmosphere/integrate.glsl"
-layout(local_size_x = 64) in;
-layout(rgba16f, binding = 0) uniform writeonly image2D o_lut;
-shared vec3 s_moment[3][64];
-shared vec3 s_transfer[64];
-shared vec3 s_upper[64];
+#define MS_N 16u             // directions per side of the stratified grid
+#define MS_D (MS_N * MS_N)  // directions, one invocation each
+layout(local_size_x = 256) in;
+layout(rgba32f, binding = 0) uniform writeonly image2D o_lut;
+shared vec3 s_moment[3][MS_D];
+shared vec3 s_transfer[MS_D];
+shared vec3 s_upper[MS_D];
 
 void main() {
   ivec2 texel = ivec2(gl_WorkGroupID.xy);
@@ -44,9 +49,9 @@ void main() {
   AtmLight sun = AtmLight(vec3(0.0, sqrt(max(0.0, 1.0 - mu_s * mu_s)), mu_s), vec3(1.0), 0.0);
   AtmLight none = AtmLight(vec3(0.0, 0.0, 1.0), vec3(0.0), 0.0);
 
-  // A stratified 8x8 grid, uniform in solid angle.
+  // A stratified grid, uniform in solid angle.
   uint i = gl_LocalInvocationIndex;
-  float a = (float(i / 8u) + 0.5) / 8.0, b = (float(i % 8u) + 0.5) / 8.0;
+  float a = (float(i / MS_N) + 0.5) / float(MS_N), b = (float(i % MS_N) + 0.5) / float(MS_N);
   float phi = 2.0 * ATM_PI * a, cos_theta = 1.0 - 2.0 * b;
   float sin_theta = sqrt(max(0.0, 1.0 - cos_theta * cos_theta));
   vec3 dir = vec3(cos(phi) * sin_theta, sin(phi) * sin_theta, cos_theta);
@@ -63,7 +68,7 @@ void main() {
   // Irradiance / pi from the upper hemisphere: 4 cos theta per direction of a uniform 4 pi grid.
   s_upper[i] = m.luminance * 4.0 * max(cos_theta, 0.0);
   barrier();
-  for (uint stride = 32u; stride > 0u; stride >>= 1) {
+  for (uint stride = MS_D / 2u; stride > 0u; stride >>= 1) {
     if (i < stride) {
       for (int l = 0; l < 3; ++l) s_moment[l][i] += s_moment[l][i + stride];
       s_transfer[i] += s_transfer[i + stride];
@@ -73,20 +78,17 @@ void main() {
   }
   if (i == 0u) {
 #if ATM_MS_ITERATE
-    vec3 scale = vec3(1.0 / 64.0);
+    vec3 scale = vec3(1.0 / float(MS_D));
 #else
     // Hillaire's geometric series over the later orders, applied to every moment.
-    vec3 f_ms = clamp(s_transfer[0] / 64.0, vec3(0.0), vec3(0.999));  // bounded
-    vec3 scale = 1.0 / (64.0 * (1.0 - f_ms));
+    vec3 f_ms = clamp(s_transfer[0] / float(MS_D), vec3(0.0), vec3(0.999));  // bounded
+    vec3 scale = 1.0 / (float(MS_D) * (1.0 - f_ms));
 #endif
-    vec3 c0 = s_moment[0][0] * scale;
-    float sum_c0 = dot(c0, vec3(1.0));
-    float k2 = sum_c0 > 0.0 ? dot(s_moment[2][0] * scale, vec3(1.0)) / sum_c0 : 0.0;
-    // One factor for all keeps their ratios where half floats would overflow (|c1| <= 3 c0).
-    float peak = max(c0.r, max(c0.g, c0.b)) * 3.0;
-    float fit = peak > 65504.0 ? 65504.0 / peak : 1.0;
-    vec4 layer[3] = vec4[3](vec4(c0 * fit, k2), vec4(s_moment[1][0] * scale * fit, 1.0),
-                            vec4(s_upper[0] * scale * fit, 1.0));
+    // A floor keeps the log finite where no light arrives at all (the ratios are then 0).
+    vec3 c0 = max(s_moment[0][0] * scale, vec3(1e-30));
+    float k2 = dot(s_moment[2][0] * scale, vec3(1.0)) / dot(c0, vec3(1.0));
+    vec4 layer[3] = vec4[3](vec4(log(c0), k2), vec4(s_moment[1][0] * scale / c0, 1.0),
+                            vec4(s_upper[0] * scale / c0, 1.0));
     for (int l = 0; l < 3; ++l) {
       // Layer l's texels start at l (size + 2) + 1; its edge texels are copied into its gutters.
       int x0 = l * (size + 2) + 1;

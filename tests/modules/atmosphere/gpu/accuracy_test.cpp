@@ -87,7 +87,7 @@ TEST(AtmosphereAccuracy, AllOrdersAgainstCachedPathTracedReferences) {
                 describe(g).c_str(), e, max_rel(pt->radiance + pt->ci95, pt->radiance));
     for (int c = 0; c < 3; ++c)
       sum_sq += std::pow((gpu.radiance[c] - pt->radiance[c]) / pt->radiance[c], 2), ++n;
-    // The bound, for a sun 3 degrees up or higher (the sweep: 4.6% worst; README).
+    // The bound, for a sun 3 degrees up or higher (the sweep: 3.4% worst; README).
     EXPECT_LT(e, 0.05) << describe(g);
   }
   const double rmse = std::sqrt(sum_sq / n);
@@ -95,11 +95,11 @@ TEST(AtmosphereAccuracy, AllOrdersAgainstCachedPathTracedReferences) {
   EXPECT_LT(rmse, 0.03);
 }
 
-TEST(AtmosphereAccuracy, AllOrdersWithinFivePercentOverTheSweep) {
-  // Every daylight ray of `welkin accuracy atmosphere` at the default quality: within 5% of the path
-  // tracer for a sun 3 degrees up or higher; the sun on the horizon is stated (README) and bounded
-  // here by its measured worst case with a margin. Twilight (sun below) is reported, not asserted:
-  // the references' own 95% intervals reach 15% there.
+TEST(AtmosphereAccuracy, AllOrdersOverTheSweep) {
+  // Every ray of `welkin accuracy atmosphere` at the default quality: within 5% of the path tracer
+  // for a sun 3 degrees up or higher (measured 3.4%); the sun on the horizon (5.1%) and twilight
+  // (RMSE 10%, worst 40%, where the references' own 95% intervals reach 15%) are bounded by their
+  // measured figures (README) with a margin, so that a regression shows.
   gl().make_current();
   const Atmosphere earth;
   GpuProbe probe(earth, SkyMethod::lut, /*single_scattering=*/false);
@@ -108,21 +108,31 @@ TEST(AtmosphereAccuracy, AllOrdersWithinFivePercentOverTheSweep) {
                         "modules/atmosphere/validation/accuracy-references.json")
                            .string()),
             0u);
-  double worst_day = 0.0, worst_horizon = 0.0;
-  int rays = 0;
+  double worst_day = 0.0, worst_horizon = 0.0, worst_twilight = 0.0, twilight_sum_sq = 0.0;
+  int rays = 0, twilight_channels = 0;
   for (const ref::ProbeGeometry& g : accuracy_rays()) {
     const double sun_elevation = 90.0 - g.sun_zenith_deg;
-    if (sun_elevation < 0.0) continue;
     const std::optional<CachedReference> pt = cache.find(g);
     ASSERT_TRUE(pt) << describe(g);
-    const double e = max_rel(probe.evaluate(g).radiance, pt->radiance);
+    const glm::dvec3 value = probe.evaluate(g).radiance;
+    const double e = max_rel(value, pt->radiance);
+    ++rays;
+    if (sun_elevation < 0.0) {
+      worst_twilight = std::max(worst_twilight, e);
+      for (int c = 0; c < 3; ++c)
+        twilight_sum_sq += std::pow((value[c] - pt->radiance[c]) / pt->radiance[c], 2), ++twilight_channels;
+      EXPECT_LT(e, 0.5) << describe(g);
+      continue;
+    }
     double& worst = sun_elevation >= 3.0 ? worst_day : worst_horizon;
     worst = std::max(worst, e);
-    EXPECT_LT(e, sun_elevation >= 3.0 ? 0.05 : 0.08) << describe(g);
-    ++rays;
+    EXPECT_LT(e, sun_elevation >= 3.0 ? 0.05 : 0.065) << describe(g);
   }
-  std::printf("%d rays: worst relative error %.4f (sun >= 3 degrees), %.4f (sun on the horizon)\n", rays,
-              worst_day, worst_horizon);
+  const double twilight_rmse = std::sqrt(twilight_sum_sq / twilight_channels);
+  std::printf("%d rays: worst relative error %.4f (sun >= 3 degrees), %.4f (sun on the horizon); "
+              "twilight RMSE %.4f, worst %.4f\n",
+              rays, worst_day, worst_horizon, twilight_rmse, worst_twilight);
+  EXPECT_LT(twilight_rmse, 0.13);
 }
 
 TEST(AtmosphereAccuracy, MieLegendreMomentsMatchQuadrature) {
