@@ -3,7 +3,7 @@
 // towards its own direction (common.glsl, atm_multiscattering_source). 256 directions, one invocation
 // each: Hillaire's 64 put the directions nearest the horizon 7 degrees off it, and a point in the
 // planet's shadow at dusk is lit by a bright arch just above its horizon, which they missed (a dusk
-// sky's red 39% too dark; the worst daylight ray 4.8% -> 3.5%). Hillaire keeps only the mean psi_ms
+// sky's red 39% too dark; the worst daylight ray 4.8% -> 3.4%). Hillaire keeps only the mean psi_ms
 // and scatters it isotropically; this LUT also keeps the
 // first two Legendre moments about the vertical, because the light coming up from a sunlit ground and
 // down from the sky is far from isotropic, and Mie (forward) and Rayleigh (forward and backward)
