@@ -65,7 +65,7 @@ struct Atmosphere {
   int transmittance_width = 256, transmittance_height = 64, transmittance_steps = 40;
   int multiscattering_size = 32, multiscattering_steps = 20;
   // Orders solved on the LUT after Hillaire's estimate (0: the paper's geometric series alone).
-  int multiscattering_iterations = 4;
+  int multiscattering_iterations = 2;
   int sky_view_width = 192, sky_view_height = 108, sky_view_steps = 30;
   int aerial_perspective_width = 32, aerial_perspective_height = 32, aerial_perspective_slices = 32;
   int aerial_perspective_steps_per_slice = 2;
