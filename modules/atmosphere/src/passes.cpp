@@ -50,6 +50,50 @@ void bind_image(GLuint unit, const Texture& t) {
                      gl_internal_format(t.desc().format));
 }
 
+// What the star pass needs of a frame, prepared outside the pass (the catalogue is rebuilt only when
+// the field's parameters change).
+struct StarsDraw {
+  glm::mat3 celestial_to_world{1.0f};
+  glm::vec2 viewport{1.0f};
+  float focal_px = 1.0f;
+  int count = 0;
+};
+
+bool same_catalogue(const Stars& a, const Stars& b) {
+  return a.count == b.count && a.seed == b.seed && a.faintest_magnitude == b.faintest_magnitude &&
+         a.brightness == b.brightness;
+}
+
+StarsDraw prepare_stars(AtmosphereGpu& gpu, const Stars& stars, const FrameView& view) {
+  if (!gpu.stars || !same_catalogue(gpu.stars_built_from, stars)) {
+    const std::vector<Star> catalogue = make_star_catalogue(stars);
+    gpu.stars = std::make_unique<Buffer>(catalogue.size() * sizeof(Star), catalogue.data());
+    gpu.stars_built_from = stars;
+  }
+  return {.celestial_to_world =
+              glm::mat3(celestial_to_local(stars.local_sidereal_time_deg, stars.latitude_deg)),
+          .viewport = glm::vec2(float(view.width), float(view.height)),
+          .focal_px = float(view.height) / (2.0f * std::tan(0.5f * view.vertical_fov_rad)),
+          .count = stars.count};
+}
+
+// Additive points over the sky (stars.vert), before the geometry that covers them.
+void draw_star_points(RenderContext& rc, const AtmosphereGpu& gpu, const StarsDraw& s) {
+  const Program& p = rc.shaders.graphics("atmosphere/stars.vert", "atmosphere/stars.frag");
+  p.use();
+  p.set("u_celestial_to_world", s.celestial_to_world);
+  p.set("u_viewport", s.viewport);
+  p.set("u_focal_px", s.focal_px);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, gpu.stars->id());
+  glEnable(GL_PROGRAM_POINT_SIZE);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE);
+  glBindVertexArray(rc.empty_vao.id());
+  glDrawArrays(GL_POINTS, 0, s.count);
+  glDisable(GL_BLEND);
+  glDisable(GL_PROGRAM_POINT_SIZE);
+}
+
 }  // namespace
 
 void bind_for_materials(const AtmosphereGpu& gpu) {
@@ -68,9 +112,10 @@ void bind_for_materials(const AtmosphereGpu& gpu) {
 void lut_system(SystemContext& sc) {
   Registry& reg = sc.world.registry();
   const Atmosphere atm = *reg.get<Atmosphere>(reg.first<Atmosphere>());
-  const Entity sun_e = reg.first<Sun>(), moon_e = reg.first<Moon>();
+  const Entity sun_e = reg.first<Sun>(), moon_e = reg.first<Moon>(), stars_e = reg.first<Stars>();
   const Sun* sun = sun_e.is_null() ? nullptr : reg.get<Sun>(sun_e);
   const Moon* moon = moon_e.is_null() ? nullptr : reg.get<Moon>(moon_e);
+  const Stars* stars = stars_e.is_null() ? nullptr : reg.get<Stars>(stars_e);
   // Values set in code or by other systems never passed the loaders' checks; a bad one is an error
   // naming the field, not a black image.
   auto check = [](const TypeDesc& type, const void* object) {
@@ -83,6 +128,7 @@ void lut_system(SystemContext& sc) {
   check(type_desc<Atmosphere>(), &atm);
   if (sun) check(type_desc<Sun>(), sun);
   if (moon) check(type_desc<Moon>(), moon);
+  if (stars) check(type_desc<Stars>(), stars);
 
   auto& rc = sc.world.resource<RenderContext>();
   auto& gpu = sc.world.resource<AtmosphereGpu>();
@@ -238,6 +284,13 @@ void lut_system(SystemContext& sc) {
   ShaderDefines discs = sky;
   discs["ATM_SKY_DISCS"] = "1";
   const bool any_disc = u.flags.x > 0.5f || u.flags.z > 0.5f;
+  // Stars only while the sun is below the camera's horizon, or from space: in daylight the sky
+  // outshines them, and the pass would cost every frame for nothing.
+  const glm::vec3 camera_up = glm::vec3(u.camera_km) / std::max(u.camera_km.w, 1e-6f);
+  const bool draw_stars = stars && stars->count > 0 &&
+                          (space || glm::dot(glm::vec3(u.sun_direction), camera_up) < 0.0f);
+  StarsDraw stars_draw;
+  if (draw_stars) stars_draw = prepare_stars(gpu, *stars, rc.view);
   g.add_pass(
       "atmosphere.sky",
       [&](PassBuilder& b) {
@@ -247,7 +300,7 @@ void lut_system(SystemContext& sc) {
         b.read(t.color);
         b.write(t.color);
       },
-      [gp, rcp, t, pixel_angle, sky, discs, any_disc](PassContext& pc) {
+      [gp, rcp, t, pixel_angle, sky, discs, any_disc, draw_stars, stars_draw](PassContext& pc) {
         Framebuffer fb(&pc.texture(t.color), nullptr);
         fb.bind();
         glDisable(GL_DEPTH_TEST);
@@ -264,6 +317,7 @@ void lut_system(SystemContext& sc) {
           glBindVertexArray(rcp->empty_vao.id());
           glDrawArraysInstanced(GL_TRIANGLES, 0, 6, 2);
         }
+        if (draw_stars) draw_star_points(*rcp, *gp, stars_draw);
       });
 }
 

@@ -11,13 +11,14 @@ void register_atmosphere(ModuleContext& ctx) {
   ctx.component<Atmosphere>();
   ctx.component<Sun>();
   ctx.component<Moon>();
+  ctx.component<Stars>();
   // LUTs and the sky first, so every material drawn this frame reads this frame's tables and covers
   // the sky; the aerial perspective over the depth buffer last, once the geometry is in.
   ctx.system({.name = "atmosphere.luts",
               .phase = Phase::render,
               .order = -100,
               .reads = {type_id<Atmosphere>()},
-              .optional_reads = {type_id<Sun>(), type_id<Moon>()},
+              .optional_reads = {type_id<Sun>(), type_id<Moon>(), type_id<Stars>()},
               .run = lut_system});
   ctx.system({.name = "atmosphere.sky",
               .phase = Phase::render,

@@ -1,4 +1,4 @@
-// The time-of-day system: advances the clock and writes the sun and moon into the scene's lights.
+// The time-of-day system: advances the clock and writes the sun, the moon and the stars into the scene.
 #include <cmath>
 #include <stdexcept>
 
@@ -6,6 +6,7 @@
 #include "welkin/core/error.h"
 #include "welkin/core/world.h"
 #include "welkin/scene/field_path.h"
+#include "welkin/timeofday/earth_orientation.h"
 #include "welkin/timeofday/sky.h"
 
 namespace welkin::timeofday {
@@ -77,6 +78,10 @@ void time_of_day_system(SystemContext& sc) {
     set_if_present(w, "atmosphere.Moon", "illuminance_lux", sky.moon.illuminance_lux);
     set_if_present(w, "atmosphere.Moon", "angular_radius_deg", sky.moon.angular_radius_deg);
     set_if_present(w, "atmosphere.Moon", "illuminated_fraction", sky.moon.illuminated_fraction);
+    // The stars turn with the local (mean) sidereal time.
+    const double lst = std::fmod(mean_sidereal_time_deg(sky.julian_day) + tod.longitude_deg + 720.0, 360.0);
+    set_if_present(w, "atmosphere.Stars", "local_sidereal_time_deg", lst);
+    set_if_present(w, "atmosphere.Stars", "latitude_deg", tod.latitude_deg);
     // Without an atmosphere, the built-in light follows the sun (dimmed by eclipses, off at night).
     set_if_present(w, "core.DirectionalLight", "azimuth_deg", sky.sun.azimuth_deg);
     set_if_present(w, "core.DirectionalLight", "elevation_deg", sky.sun.elevation_deg);

@@ -205,6 +205,18 @@ float atm_light_visibility(AtmParams P, float r, float mu_l, float angular_radiu
   return smoothstep(-w, w, mu_l - cos_h);
 }
 
+// Transmittance from planet-centred `origin` along unit v out of the atmosphere (from where the ray
+// enters it, for an origin in space); 0 when the planet is in the way. For what lies beyond the air:
+// discs and stars.
+vec3 atm_transmittance_to_space(vec3 origin, vec3 v) {
+  if (atm_ray_sphere(origin, v, atm_bottom()).y > 0.0) return vec3(0.0);
+  vec2 top = atm_ray_sphere(origin, v, atm_top());
+  if (!(top.y > 0.0)) return vec3(1.0);
+  vec3 p = origin + v * max(top.x, 0.0);
+  float r = length(p);
+  return atm_transmittance(r, dot(p, v) / r);
+}
+
 // Direct light reaching radius r from a light at zenith cosine mu_l, shadowed by the planet.
 vec3 atm_transmittance_to_light(AtmParams P, float r, float mu_l, float angular_radius) {
   return atm_transmittance(P, r, mu_l) * atm_light_visibility(P, r, mu_l, angular_radius);

@@ -36,18 +36,8 @@ void main() {
   vec3 luminance = sky_luminance(v);
 #if ATM_SKY_DISCS
   // Discs behind the air: transmittance from where the ray enters the atmosphere (or the camera).
-  vec3 origin = atm_camera();
   vec3 discs = atm_sun_disc(v, u_pixel_angle) + atm_moon_disc(v, u_pixel_angle);
-  if (!(atm_ray_sphere(origin, v, atm_bottom()).y > 0.0)) {
-    vec3 t = vec3(1.0);
-    vec2 top = atm_ray_sphere(origin, v, atm_top());
-    if (top.y > 0.0) {
-      vec3 p = origin + v * max(top.x, 0.0);
-      float r = length(p);
-      t = atm_transmittance(r, dot(p, v) / r);
-    }
-    luminance += t * discs;
-  }
+  luminance += atm_transmittance_to_space(atm_camera(), v) * discs;
 #endif
   o_color = vec4(atm_fit_half(luminance), 1.0);
 #endif

@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "welkin/atmosphere/components.h"
+#include "welkin/atmosphere/stars.h"
 #include "welkin/gfx/camera.h"
 #include "welkin/gfx/gl_objects.h"
 
@@ -64,6 +65,8 @@ struct AtmosphereGpu {
   std::unique_ptr<Texture> transmittance, multiscattering, sky_view, aerial_inscattering,
       aerial_transmittance, sky_irradiance;
   std::unique_ptr<Texture> multiscattering_scratch;  // the other half of the LUT's iteration
+  std::unique_ptr<Buffer> stars;                     // the star catalogue (stars.h), when drawn
+  Stars stars_built_from;                            // what `stars` was made from
   std::unique_ptr<Buffer> uniform_buffer;
   GpuUniforms uniforms;      // as last uploaded
   GpuUniforms lut_uniforms;  // what the persistent LUTs were built from
