@@ -333,8 +333,9 @@ int run_accuracy(const AccuracyOptions& o) {
   const size_t cached = cache.load(cache_path);
   size_t missing = 0;
   for (const auto& g : rays) missing += cache.find(g) ? 0 : 1;
-  std::fprintf(stderr, "references: %zu cached in %s, %zu to path trace (%llu paths each)\n", cached,
-               cache_path.c_str(), missing, (unsigned long long)cache.settings().samples);
+  std::fprintf(stderr, "references: %zu cached in %s, %zu to path trace (%llu paths each, %llu with the sun below the horizon)\n", cached,
+               cache_path.c_str(), missing, (unsigned long long)cache.settings().samples,
+               (unsigned long long)cache.settings().samples_sun_below_horizon);
   size_t done = 0;
   for (const auto& g : rays) {
     if (cache.find(g)) continue;
@@ -437,6 +438,8 @@ int run_accuracy(const AccuracyOptions& o) {
                                        {"frame_size", std::to_string(width) + "x" + std::to_string(height)},
                                        {"renderer", renderer},
                                        {"reference_samples", cache.settings().samples},
+                                       {"reference_samples_sun_below_horizon",
+                                        cache.settings().samples_sun_below_horizon},
                                        {"reference_seed", cache.settings().seed},
                                        {"results", list},
                                        {"csv", (fs::path(o.out) / "accuracy-atmosphere.csv").string()},
@@ -445,8 +448,10 @@ int run_accuracy(const AccuracyOptions& o) {
                             .c_str());
     return kOk;
   }
-  std::printf("%zu rays; reference: path tracing, %llu paths per ray (seed %llu), cached in %s\n",
+  std::printf("%zu rays; reference: path tracing, %llu paths per ray, %llu with the sun below the horizon "
+              "(seed %llu), cached in %s\n",
               rays.size(), (unsigned long long)cache.settings().samples,
+              (unsigned long long)cache.settings().samples_sun_below_horizon,
               (unsigned long long)cache.settings().seed, cache_path.c_str());
   std::printf("GPU time: median of %d frames at %dx%d on %s, forced to completion; copy = full-screen copy\n",
               o.frames, width, height, renderer.c_str());

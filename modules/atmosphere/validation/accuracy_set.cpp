@@ -85,10 +85,11 @@ std::size_t ReferenceCache::load(const std::string& path) {
   try {
     j = json::parse(in);
     if (j.at("format").get<int>() != 1 || j.at("model").dump() != json::parse(model_key_).dump() ||
-        j.at("samples").get<std::uint64_t>() != settings_.samples ||
         j.at("seed").get<std::uint64_t>() != settings_.seed ||
         j.at("chunk_size").get<std::uint64_t>() != settings_.chunk_size)
       return 0;
+    // Each entry records its own sample count; files from before that carry one for all.
+    const std::uint64_t file_samples = j.at("samples").get<std::uint64_t>();
     std::size_t n = 0;
     for (const json& r : j.at("rays")) {
       const ref::ProbeGeometry g{.altitude_km = r.at("altitude_km").get<double>(),
@@ -96,6 +97,7 @@ std::size_t ReferenceCache::load(const std::string& path) {
                                  .view_azimuth_deg = r.at("view_azimuth_deg").get<double>(),
                                  .sun_zenith_deg = r.at("sun_zenith_deg").get<double>(),
                                  .sun_azimuth_deg = r.at("sun_azimuth_deg").get<double>()};
+      if (r.value("samples", file_samples) != settings_.samples_for(g)) continue;
       put(g, {.radiance = rgb(r.at("radiance")), .ci95 = rgb(r.at("ci95"))});
       ++n;
     }
@@ -114,6 +116,7 @@ void ReferenceCache::save(const std::string& path) const {
                     {"view_azimuth_deg", g.view_azimuth_deg},
                     {"sun_zenith_deg", g.sun_zenith_deg},
                     {"sun_azimuth_deg", g.sun_azimuth_deg},
+                    {"samples", settings_.samples_for(g)},
                     {"radiance", rgb(v.radiance)},
                     {"ci95", rgb(v.ci95)}});
   }
@@ -124,6 +127,7 @@ void ReferenceCache::save(const std::string& path) const {
        "it) of welkin accuracy's rays; ci95 is the 95% confidence half-width"},
       {"model", json::parse(model_key_)},
       {"samples", settings_.samples},
+      {"samples_sun_below_horizon", settings_.samples_sun_below_horizon},
       {"seed", settings_.seed},
       {"chunk_size", settings_.chunk_size},
       {"rays", rays}};
@@ -148,7 +152,7 @@ void ReferenceCache::put(const ref::ProbeGeometry& g, const CachedReference& val
 
 CachedReference path_trace_reference(const ref::AtmosphereModel& model, const ref::ProbeGeometry& g,
                                      const ReferenceSettings& settings, int threads) {
-  const ref::PathTraceSettings s{.samples = settings.samples,
+  const ref::PathTraceSettings s{.samples = settings.samples_for(g),
                                  .seed = settings.seed,
                                  .threads = threads,
                                  .chunk_size = settings.chunk_size,
