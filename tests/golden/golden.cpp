@@ -11,7 +11,8 @@ GoldenResult compare_with_golden(const ImageU8& actual, const std::string& name,
   namespace fs = std::filesystem;
   fs::path golden = fs::path(WELKIN_SOURCE_DIR) / "tests/golden" / (name + ".png");
   fs::path out_dir = fs::path(WELKIN_BINARY_DIR) / "golden-output";
-  fs::create_directories(out_dir);
+  // Names carry their folder ("atmosphere/noon"): the images written for review go in the same one.
+  fs::create_directories((out_dir / name).parent_path());
   GoldenResult r;
   const char* update = std::getenv("WELKIN_UPDATE_GOLDENS");
   if (update && std::string(update) == "1") {
@@ -28,8 +29,10 @@ GoldenResult compare_with_golden(const ImageU8& actual, const std::string& name,
   }
   ImageU8 expected = read_png(golden.string());
   if (expected.width != actual.width || expected.height != actual.height) {
+    write_png((out_dir / (name + ".actual.png")).string(), actual);
     r.message = "size differs: golden " + std::to_string(expected.width) + "x" + std::to_string(expected.height) +
-                ", actual " + std::to_string(actual.width) + "x" + std::to_string(actual.height);
+                ", actual " + std::to_string(actual.width) + "x" + std::to_string(actual.height) + "; wrote " +
+                (out_dir / (name + ".actual.png")).string();
     return r;
   }
   ImageU8 diff{actual.width, actual.height, std::vector<uint8_t>(actual.rgba.size(), 255)};
