@@ -15,22 +15,6 @@ namespace {
 
 using nlohmann::json;
 
-int component_size(int ct) {
-  switch (ct) {
-    case 5120:
-    case 5121:
-      return 1;
-    case 5122:
-    case 5123:
-      return 2;
-    case 5125:
-    case 5126:
-      return 4;
-    default:
-      return 0;
-  }
-}
-
 float read_component(const uint8_t* p, int ct, bool normalized) {
   switch (ct) {
     case 5120: {

@@ -16,22 +16,6 @@ using nlohmann::json;
 const std::set<std::string> kSupportedRequired = {"KHR_draco_mesh_compression", "KHR_mesh_quantization",
                                                   "KHR_texture_transform", "KHR_materials_emissive_strength"};
 
-int component_size(int component_type) {
-  switch (component_type) {
-    case 5120:
-    case 5121:
-      return 1;
-    case 5122:
-    case 5123:
-      return 2;
-    case 5125:
-    case 5126:
-      return 4;
-    default:
-      return 0;
-  }
-}
-
 int type_components(const std::string& type) {
   if (type == "SCALAR") return 1;
   if (type == "VEC2") return 2;

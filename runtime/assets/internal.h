@@ -27,6 +27,23 @@ struct Source {
 [[noreturn]] void fail(const Source& src, const std::string& path, const std::string& expected,
                        const std::string& found);
 
+// Bytes per component of a glTF accessor componentType (5120 BYTE .. 5126 FLOAT); 0 for any other.
+inline int component_size(int component_type) {
+  switch (component_type) {
+    case 5120:
+    case 5121:
+      return 1;
+    case 5122:
+    case 5123:
+      return 2;
+    case 5125:
+    case 5126:
+      return 4;
+    default:
+      return 0;
+  }
+}
+
 // JSON pointer segment escaping (~ and / in keys such as attribute names).
 std::string pointer_key(std::string_view key);
 
