@@ -5,6 +5,7 @@
 
 #include "welkin/core/module.h"
 #include "welkin/core/world.h"
+#include "welkin/gfx/light_environment.h"
 #include "welkin/gfx/renderer.h"
 
 namespace welkin {
@@ -73,7 +74,7 @@ void debug_shape_system(SystemContext& sc) {
   reg.each<DebugShape>([&](Entity, DebugShape& s) { shapes.push_back(s); });
   const FrameTargets t = *sc.targets;
   sc.graph->add_pass("debug_shapes", [&](PassBuilder& pb) { pb.read(t.color); pb.write(t.color); pb.read(t.depth); pb.write(t.depth); },
-                     [&rc, &reg, shapes, t](PassContext& pc) {
+                     [&rc, &world = sc.world, shapes, t](PassContext& pc) {
     Framebuffer fb(&pc.texture(t.color), &pc.texture(t.depth));
     fb.bind();
     glEnable(GL_DEPTH_TEST);
@@ -82,7 +83,7 @@ void debug_shape_system(SystemContext& sc) {
     const Program& p = rc.shaders.graphics("debug_shape.vert", "debug_shape.frag");
     p.use();
     p.set("u_view_projection", rc.view.view_projection);
-    set_default_light_uniforms(p, reg);
+    world.resource<LightEnvironment>().bind();
     for (const DebugShape& s : shapes) {
       // Camera-relative in double, then to float: precision independent of distance from the origin.
       glm::vec3 rel = glm::vec3(s.position_m - rc.view.camera_position_m);
@@ -100,16 +101,30 @@ void debug_shape_system(SystemContext& sc) {
 
 }  // namespace
 
-void set_default_light_uniforms(const Program& p, const Registry& reg) {
-  DirectionalLight light;
-  if (const ComponentPool* pool = reg.pool(type_id<DirectionalLight>()); pool && !pool->empty())
-    light = *reg.get<DirectionalLight>(pool->entities()[0]);
-  p.set("u_sun_direction", glm::vec3(direction_from_azimuth_elevation(light.azimuth_deg, light.elevation_deg)));
-  p.set("u_sun_illuminance", light.color * light.illuminance_lux);
-  p.set("u_ambient_fraction", light.ambient_fraction);
+void add_default_light_term(World& world) {
+  auto buffer = std::make_shared<std::unique_ptr<Buffer>>();
+  world.resource<LightEnvironment>().add(LightTerm{
+      .name = "core.default_lights",
+      .include = "welkin/default_lights.glsl",
+      .lights = "default",
+      .priority = 0,
+      .blocks = {"core.default_lights"},
+      .bind = [&world, buffer](const LightEnvironment& env) {
+        DirectionalLight light;
+        const Registry& reg = world.registry();
+        if (const ComponentPool* pool = reg.pool(type_id<DirectionalLight>()); pool && !pool->empty())
+          light = *reg.get<DirectionalLight>(pool->entities()[0]);
+        const glm::vec4 data[2] = {
+            glm::vec4(glm::vec3(direction_from_azimuth_elevation(light.azimuth_deg, light.elevation_deg)), 0.0f),
+            glm::vec4(light.color * light.illuminance_lux, light.ambient_fraction)};
+        if (!*buffer) *buffer = std::make_unique<Buffer>(sizeof(data));
+        (*buffer)->upload(data, sizeof(data));
+        glBindBufferBase(GL_UNIFORM_BUFFER, env.block("core.default_lights"), (*buffer)->id());
+      }});
 }
 
 void register_debug_content(ModuleContext& ctx) {
+  add_default_light_term(ctx.world());
   ctx.component<Backdrop>();
   ctx.component<DirectionalLight>();
   ctx.component<DebugShape>();

@@ -6,6 +6,7 @@
 
 #include "welkin/core/error.h"
 #include "welkin/gfx/gl_objects.h"
+#include "welkin/gfx/light_environment.h"
 
 #ifndef WELKIN_SOURCE_SHADER_DIR
 #error "WELKIN_SOURCE_SHADER_DIR must be defined by the build"
@@ -51,6 +52,8 @@ FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height
   }
   FrameResult result;
   result.systems_run = world_.update(frame);
+  // The composed material lighting of whatever terms the loaded modules declared.
+  world_.resource<LightEnvironment>().install(ctx_.shaders);
 
   Registry& reg = world_.registry();
   Entity cam = reg.first<Camera>();

@@ -33,7 +33,22 @@ void ShaderLibrary::add_search_dir(const std::filesystem::path& dir, bool front)
   cache_.clear();  // an earlier folder may now shadow what a cached program included
 }
 
+namespace {
+// Generated files are named "<generated>/file" so that they never resolve to a path on disk.
+constexpr std::string_view kGeneratedPrefix = "<generated>/";
+}  // namespace
+
+void ShaderLibrary::set_environment(std::map<std::string, std::string> generated_files, ShaderDefines global_defines,
+                                    uint64_t version) {
+  environment_version_ = version;
+  if (generated_files == generated_ && global_defines == global_defines_) return;
+  generated_ = std::move(generated_files);
+  global_defines_ = std::move(global_defines);
+  cache_.clear();
+}
+
 std::filesystem::path ShaderLibrary::find(const std::string& file, const std::filesystem::path& beside) const {
+  if (generated_.count(file)) return std::string(kGeneratedPrefix) + file;
   std::error_code ec;
   for (const auto& d : dirs_)
     if (std::filesystem::is_regular_file(d / file, ec)) return d / file;
@@ -43,8 +58,14 @@ std::filesystem::path ShaderLibrary::find(const std::string& file, const std::fi
 
 void ShaderLibrary::expand(const std::filesystem::path& path, ShaderSource& out, std::vector<std::string>& stack,
                            std::vector<std::string>& once) const {
-  std::ifstream in(path);
-  if (!in) throw Error(ErrorInfo{.file = path.string(), .message = "cannot read shader"});
+  std::istringstream generated;
+  std::ifstream file;
+  const std::string name = path.string();
+  const bool is_generated = name.rfind(kGeneratedPrefix, 0) == 0;
+  if (is_generated) generated.str(generated_.at(name.substr(kGeneratedPrefix.size())));
+  else file.open(path);
+  if (!is_generated && !file) throw Error(ErrorInfo{.file = path.string(), .message = "cannot read shader"});
+  std::istream& in = is_generated ? static_cast<std::istream&>(generated) : file;
   int index = int(out.files.size());
   out.files.push_back(path.string());
   stack.push_back(path.string());
@@ -61,11 +82,13 @@ void ShaderLibrary::expand(const std::filesystem::path& path, ShaderSource& out,
       if (inc.empty())
         throw Error(ErrorInfo{.file = path.string() + ":" + std::to_string(line_no),
                               .message = "#include \"" + m[1].str() + "\" not found"});
-      std::string key = std::filesystem::weakly_canonical(inc).string();
+      const bool inc_generated = inc.string().rfind(kGeneratedPrefix, 0) == 0;
+      std::string key = inc_generated ? inc.string() : std::filesystem::weakly_canonical(inc).string();
       if (std::find(stack.begin(), stack.end(), inc.string()) != stack.end())
         throw Error(ErrorInfo{.file = path.string() + ":" + std::to_string(line_no), .message = "recursive #include"});
       bool seen = false;
-      for (const auto& o : once) seen = seen || std::filesystem::weakly_canonical(o).string() == key;
+      for (const auto& o : once)
+        seen = seen || (o.rfind(kGeneratedPrefix, 0) == 0 ? o : std::filesystem::weakly_canonical(o).string()) == key;
       if (!seen) expand(inc, out, stack, once);  // every include behaves as #pragma once
       out.text += "#line " + std::to_string(line_no + 1) + " " + std::to_string(index) + "\n";
     } else if (line.find("#pragma once") != std::string::npos) {
@@ -86,6 +109,7 @@ ShaderSource ShaderLibrary::preprocess(const std::string& file, const ShaderDefi
   }
   ShaderSource src;
   src.text = "#version 450 core\n";
+  for (const auto& [k, v] : global_defines_) src.text += "#define " + k + " " + v + "\n";
   for (const auto& [k, v] : defines) src.text += "#define " + k + " " + v + "\n";
   std::vector<std::string> stack, once;
   expand(path, src, stack, once);

@@ -6,6 +6,7 @@
 #include "welkin/atmosphere/gpu.h"
 #include "welkin/core/error.h"
 #include "welkin/core/world.h"
+#include "welkin/gfx/light_environment.h"
 #include "welkin/gfx/renderer.h"
 #include "welkin/scene/json_fields.h"
 
@@ -97,16 +98,38 @@ void draw_star_points(RenderContext& rc, const AtmosphereGpu& gpu, const StarsDr
 }  // namespace
 
 void bind_for_materials(const AtmosphereGpu& gpu) {
-  if (gpu.uniform_buffer) glBindBufferBase(GL_UNIFORM_BUFFER, kUniformBinding, gpu.uniform_buffer->id());
+  const AtmosphereGpu::Bindings& b = gpu.bindings;
+  if (gpu.uniform_buffer) glBindBufferBase(GL_UNIFORM_BUFFER, b.block, gpu.uniform_buffer->id());
   auto bind = [](GLuint unit, const std::unique_ptr<Texture>& t) {
     if (t) glBindTextureUnit(unit, t->id());
   };
-  bind(kTransmittanceUnit, gpu.transmittance);
-  bind(kMultiscatteringUnit, gpu.multiscattering);
-  bind(kSkyViewUnit, gpu.sky_view);
-  bind(kAerialInscatteringUnit, gpu.aerial_inscattering);
-  bind(kAerialTransmittanceUnit, gpu.aerial_transmittance);
-  bind(kSkyIrradianceUnit, gpu.sky_irradiance);
+  bind(b.transmittance, gpu.transmittance);
+  bind(b.multiscattering, gpu.multiscattering);
+  bind(b.sky_view, gpu.sky_view);
+  bind(b.aerial_inscattering, gpu.aerial_inscattering);
+  bind(b.aerial_transmittance, gpu.aerial_transmittance);
+  bind(b.sky_irradiance, gpu.sky_irradiance);
+}
+
+void add_light_term(World& world) {
+  LightEnvironment& env = world.resource<LightEnvironment>();
+  env.add(LightTerm{.name = "atmosphere",
+                    .include = "atmosphere/light_term.glsl",
+                    .lights = "atmosphere",
+                    .priority = 10,
+                    .aerial_perspective = "atmosphere_term_aerial_perspective",
+                    .textures = {"atmosphere.transmittance", "atmosphere.multiscattering", "atmosphere.sky_view",
+                                 "atmosphere.aerial_inscattering", "atmosphere.aerial_transmittance",
+                                 "atmosphere.sky_irradiance"},
+                    .blocks = {"atmosphere"},
+                    .bind = [&world](const LightEnvironment&) { bind_for_materials(world.resource<AtmosphereGpu>()); }});
+  world.resource<AtmosphereGpu>().bindings = {.block = env.block("atmosphere"),
+                                              .transmittance = env.unit("atmosphere.transmittance"),
+                                              .multiscattering = env.unit("atmosphere.multiscattering"),
+                                              .sky_view = env.unit("atmosphere.sky_view"),
+                                              .aerial_inscattering = env.unit("atmosphere.aerial_inscattering"),
+                                              .aerial_transmittance = env.unit("atmosphere.aerial_transmittance"),
+                                              .sky_irradiance = env.unit("atmosphere.sky_irradiance")};
 }
 
 void lut_system(SystemContext& sc) {
@@ -216,11 +239,11 @@ void lut_system(SystemContext& sc) {
           const Program& iterate =
               rcp->shaders.compute("atmosphere/multiscattering_lut.comp", {{"ATM_MS_ITERATE", "1"}});
           for (int k = n - 1; k >= 0; --k) {
-            glBindTextureUnit(kMultiscatteringUnit, target[(k + 1) % 2]->id());
+            glBindTextureUnit(gp->bindings.multiscattering, target[(k + 1) % 2]->id());
             bind_image(0, *target[k % 2]);
             dispatch(iterate, q.multiscattering_size, q.multiscattering_size);
           }
-          glBindTextureUnit(kMultiscatteringUnit, gp->multiscattering->id());
+          glBindTextureUnit(gp->bindings.multiscattering, gp->multiscattering->id());
           gp->lut_uniforms = u;
           gp->luts_valid = true;
           ++gp->lut_builds;

@@ -12,6 +12,7 @@ void register_atmosphere(ModuleContext& ctx) {
   ctx.component<Sun>();
   ctx.component<Moon>();
   ctx.component<Stars>();
+  add_light_term(ctx.world());
   // LUTs and the sky first, so every material drawn this frame reads this frame's tables and covers
   // the sky; the aerial perspective over the depth buffer last, once the geometry is in.
   ctx.system({.name = "atmosphere.luts",

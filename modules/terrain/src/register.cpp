@@ -31,6 +31,7 @@ void describe(TypeBuilder<Terrain>& t) {
 namespace welkin::modules {
 void register_terrain(ModuleContext& ctx) {
   ctx.component<welkin::terrain::Terrain>();
+  welkin::terrain::add_light_term(ctx.world());
   ctx.system({.name = "terrain.draw", .phase = Phase::render, .reads = {type_id<welkin::terrain::Terrain>()},
               .run = welkin::terrain::terrain_system});
 }

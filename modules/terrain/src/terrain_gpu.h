@@ -34,6 +34,13 @@ struct TerrainCache {
   // Cascades side by side in one depth atlas (kShadowCascades x 1), compared in the shader.
   std::unique_ptr<Texture> shadow_atlas;
   Texture& shadow_map(int cascade_size);
+  // This frame's cascades as the light term's std140 block (terrain/light_term.glsl), and its buffer.
+  struct CascadeBlock {
+    glm::mat4 light_view_projection[kShadowCascades];
+    glm::vec4 far_m{0.0f};  // w: 1 while shadows are on
+    glm::vec4 texel_m{0.0f};
+  } cascade_block;
+  std::unique_ptr<Buffer> cascade_buffer;
   assets::AssetCache assets;
   std::map<std::string, std::unique_ptr<GpuTerrain>> terrains;  // key: file + build settings
   // Loads (or returns) the GPU terrain for these settings; throws welkin::Error naming the file.

@@ -9,6 +9,7 @@
 #include "welkin/core/error.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/debug_content.h"
+#include "welkin/gfx/light_environment.h"
 #include "welkin/gfx/renderer.h"
 #include "welkin/scene/field_path.h"
 
@@ -129,6 +130,22 @@ glm::dvec3 anchor_position(World& world, const Terrain& t) {
   return {};
 }
 
+void add_light_term(World& world) {
+  world.resource<LightEnvironment>().add(LightTerm{
+      .name = "terrain.cascades",
+      .include = "terrain/light_term.glsl",
+      .light_visibility = "terrain_light_visibility",
+      .textures = {"terrain.shadow_atlas"},
+      .blocks = {"terrain.cascades"},
+      .bind = [&world](const LightEnvironment& env) {
+        TerrainCache& cache = world.resource<TerrainCache>();
+        if (!cache.cascade_buffer) cache.cascade_buffer = std::make_unique<Buffer>(sizeof(cache.cascade_block));
+        cache.cascade_buffer->upload(&cache.cascade_block, sizeof(cache.cascade_block));
+        glBindBufferBase(GL_UNIFORM_BUFFER, env.block("terrain.cascades"), cache.cascade_buffer->id());
+        if (cache.shadow_atlas) glBindTextureUnit(env.unit("terrain.shadow_atlas"), cache.shadow_atlas->id());
+      }});
+}
+
 void terrain_system(SystemContext& sc) {
   World& world = sc.world;
   auto& rc = world.resource<RenderContext>();
@@ -176,7 +193,6 @@ void terrain_system(SystemContext& sc) {
   });
 
   const FrameTargets targets = *sc.targets;
-  const Registry* reg = &world.registry();
   // Shadows: cascades from the first terrain that casts them (one sun, one set of cascades).
   std::optional<glm::vec3> sun = sun_direction(world);
   const Terrain* shadow_settings = nullptr;
@@ -185,9 +201,16 @@ void terrain_system(SystemContext& sc) {
   });
   auto cascades = std::make_shared<std::optional<Cascades>>();
   ResourceHandle shadow_handle;
+  cache.cascade_block.far_m.w = 0.0f;  // until a cascade is made this frame
   if (sun && shadow_settings) {
     *cascades = make_cascades(view, *sun, shadow_settings->shadow_distance_m, 20000.0f);
     Texture& atlas = cache.shadow_map(shadow_settings->shadow_map_size);
+    for (int i = 0; i < kShadowCascades; ++i) {
+      cache.cascade_block.light_view_projection[i] = (**cascades).light_view_projection[size_t(i)];
+      cache.cascade_block.far_m[i] = (**cascades).far_m[size_t(i)];
+      cache.cascade_block.texel_m[i] = (**cascades).extent_m[size_t(i)] / float(shadow_settings->shadow_map_size);
+    }
+    cache.cascade_block.far_m.w = 1.0f;
     shadow_handle = sc.graph->import("terrain.shadow_atlas", atlas);
     const int size = shadow_settings->shadow_map_size;
     sc.graph->add_pass("terrain.shadows", [&](PassBuilder& b) { b.write(shadow_handle); }, [placed, cascades, shadow_handle, size, &rc](PassContext& pc) {
@@ -224,7 +247,7 @@ void terrain_system(SystemContext& sc) {
     b.read(targets.depth);
     b.write(targets.depth);
     if (shadow_handle.valid()) b.read(shadow_handle);
-  }, [placed, targets, &rc, reg, cascades, shadow_handle](PassContext& pc) {
+  }, [placed, targets, &rc, &world](PassContext& pc) {
     Framebuffer fb(&pc.texture(targets.color), &pc.texture(targets.depth));
     fb.bind();
     glEnable(GL_DEPTH_TEST);
@@ -233,18 +256,8 @@ void terrain_system(SystemContext& sc) {
     glEnable(GL_CULL_FACE);
     const Program& prog = rc.shaders.graphics("terrain/terrain.vert", "terrain/terrain.frag");
     prog.use();
-    set_default_light_uniforms(prog, *reg);
     prog.set("u_view_projection", rc.view.view_projection);
-    prog.set("u_shadows", cascades->has_value() ? 1 : 0);
-    if (cascades->has_value()) {
-      glBindTextureUnit(3, pc.texture(shadow_handle).id());
-      for (int i = 0; i < kShadowCascades; ++i) {
-        prog.set("u_cascade[" + std::to_string(i) + "]", (**cascades).light_view_projection[size_t(i)]);
-        prog.set("u_cascade_far[" + std::to_string(i) + "]", (**cascades).far_m[size_t(i)]);
-        prog.set("u_cascade_texel_m[" + std::to_string(i) + "]",
-                 (**cascades).extent_m[size_t(i)] / float(pc.texture(shadow_handle).desc().height));
-      }
-    }
+    world.resource<LightEnvironment>().bind();
     for (const Placed& p : *placed) {
       bind_placement(prog, p, rc.view);
       int bound = -2;

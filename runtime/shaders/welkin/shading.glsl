@@ -1,14 +1,16 @@
 #pragma once
 // Surface shading shared by every material: Lambert and metallic-roughness PBR (GGX, Smith,
-// Schlick) under the lights of welkin/lighting.glsl. Radiance out, in the units of the lights.
+// Schlick) under the lights of welkin/lighting.glsl, which the runtime composes from the loaded
+// modules' light terms (sources, their visibility, sky occlusion). Radiance out, in the lights' units.
 #include "welkin/lighting.glsl"
 
 const float WELKIN_PI = 3.14159265358979;
 
 vec3 shade_lambert(vec3 albedo, vec3 normal, vec3 camera_relative_position) {
   vec3 p = camera_relative_position;
-  vec3 e = welkin_sun_irradiance(p) * max(dot(normal, welkin_sun_direction()), 0.0) +
-           welkin_moon_irradiance(p) * max(dot(normal, welkin_moon_direction()), 0.0) + welkin_sky_irradiance(normal);
+  vec3 e = welkin_sun_irradiance(p) * (max(dot(normal, welkin_sun_direction()), 0.0) * welkin_light_visibility(p, normal, 0)) +
+           welkin_moon_irradiance(p) * (max(dot(normal, welkin_moon_direction()), 0.0) * welkin_light_visibility(p, normal, 1)) +
+           welkin_sky_irradiance(normal) * welkin_sky_visibility(p, normal);
   return albedo / WELKIN_PI * e;
 }
 
@@ -27,16 +29,18 @@ vec3 pbr_direct(vec3 base_color, float metallic, float roughness, vec3 n, vec3 v
   return (diffuse + d * vis * f) * irradiance * n_dot_l;
 }
 
-// Sun (scaled by `sun_visibility`, e.g. a shadow map), moon and sky light on a PBR surface.
-vec3 shade_pbr(vec3 base_color, float metallic, float roughness, float occlusion, vec3 n, vec3 camera_relative_position,
-               float sun_visibility) {
+// Sun, moon and sky light on a PBR surface, each scaled by the light environment's visibility
+// (shadow maps, cloud shadows, sky occlusion).
+vec3 shade_pbr(vec3 base_color, float metallic, float roughness, float occlusion, vec3 n, vec3 camera_relative_position) {
   vec3 p = camera_relative_position;
   vec3 v = normalize(-p);
-  vec3 c = pbr_direct(base_color, metallic, roughness, n, v, welkin_sun_direction(), welkin_sun_irradiance(p) * sun_visibility);
-  c += pbr_direct(base_color, metallic, roughness, n, v, welkin_moon_direction(), welkin_moon_irradiance(p));
+  vec3 c = pbr_direct(base_color, metallic, roughness, n, v, welkin_sun_direction(),
+                      welkin_sun_irradiance(p) * welkin_light_visibility(p, n, 0));
+  c += pbr_direct(base_color, metallic, roughness, n, v, welkin_moon_direction(),
+                  welkin_moon_irradiance(p) * welkin_light_visibility(p, n, 1));
   // Sky light: diffuse from the irradiance, specular approximated by the irradiance toward the reflection.
   vec3 f0 = mix(vec3(0.04), base_color, metallic);
   vec3 sky_diffuse = welkin_sky_irradiance(n) * (1.0 - metallic) * base_color / WELKIN_PI;
   vec3 sky_specular = welkin_sky_irradiance(reflect(-v, n)) / WELKIN_PI * f0 * (1.0 - roughness * 0.7);
-  return c + (sky_diffuse + sky_specular) * occlusion;
+  return c + (sky_diffuse + sky_specular) * (occlusion * welkin_sky_visibility(p, n));
 }

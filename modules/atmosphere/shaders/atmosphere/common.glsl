@@ -1,10 +1,10 @@
 #pragma once
 // Everything the atmosphere shaders share: the uniform block (src/uniforms.h mirrors it), the LUT
-// samplers at fixed units, the medium, phase functions, ray geometry and the LUT parameterisations.
+// samplers at the units the runtime's light environment assigned (WELKIN_UNIT_*), the medium, phase functions, ray geometry and the LUT parameterisations.
 // Lengths are km in a planet-centred frame whose axes are the scene's (x east, y north, z up).
 #define ATM_PI 3.14159265358979
 
-layout(std140, binding = 7) uniform WelkinAtmosphere {
+layout(std140, binding = WELKIN_BLOCK_ATMOSPHERE) uniform WelkinAtmosphere {
   vec4 atm_rayleigh_scattering;    // rgb 1/km
   vec4 atm_mie_scattering;         // rgb 1/km; w: g
   vec4 atm_mie_extinction;         // rgb 1/km; w: phase (0 Cornette-Shanks, 1 Henyey-Greenstein)
@@ -32,12 +32,12 @@ layout(std140, binding = 7) uniform WelkinAtmosphere {
   vec4 atm_sky_view_params_v;
 };
 
-layout(binding = 10) uniform sampler2D atm_transmittance_lut;
-layout(binding = 11) uniform sampler2D atm_multiscattering_lut;
-layout(binding = 12) uniform sampler2D atm_sky_view_lut;
-layout(binding = 13) uniform sampler3D atm_aerial_inscattering;
-layout(binding = 14) uniform sampler3D atm_aerial_transmittance;
-layout(binding = 15) uniform sampler2D atm_sky_irradiance_sh;
+layout(binding = WELKIN_UNIT_ATMOSPHERE_TRANSMITTANCE) uniform sampler2D atm_transmittance_lut;
+layout(binding = WELKIN_UNIT_ATMOSPHERE_MULTISCATTERING) uniform sampler2D atm_multiscattering_lut;
+layout(binding = WELKIN_UNIT_ATMOSPHERE_SKY_VIEW) uniform sampler2D atm_sky_view_lut;
+layout(binding = WELKIN_UNIT_ATMOSPHERE_AERIAL_INSCATTERING) uniform sampler3D atm_aerial_inscattering;
+layout(binding = WELKIN_UNIT_ATMOSPHERE_AERIAL_TRANSMITTANCE) uniform sampler3D atm_aerial_transmittance;
+layout(binding = WELKIN_UNIT_ATMOSPHERE_SKY_IRRADIANCE) uniform sampler2D atm_sky_irradiance_sh;
 
 float atm_bottom() { return atm_radii.x; }
 float atm_top() { return atm_radii.y; }

@@ -1,7 +1,7 @@
 #pragma once
 // Built-in content that needs no module: a gradient backdrop (a test pattern for an empty scene)
 // and lit debug shapes (spheres and boxes). Editors and tests use them; they light themselves
-// through the same material include that modules override (welkin/lighting.glsl).
+// through the light environment's composed material include (welkin/lighting.glsl).
 #include <glm/glm.hpp>
 #include <string_view>
 
@@ -44,10 +44,11 @@ void describe(TypeBuilder<DebugShape>& t);
 class ModuleContext;
 class Program;
 class Registry;
+class World;
 
-// Sets the uniforms of the default welkin/lighting.glsl from the scene's first core.DirectionalLight
-// (or its defaults). Harmless when a module overrides the lights: the uniforms are then unused.
-void set_default_light_uniforms(const Program& program, const Registry& registry);
+// Declares the runtime's default light term (the scene's first core.DirectionalLight, or its
+// defaults) in the world's light environment; a module's lights of higher priority replace it.
+void add_default_light_term(World& world);
 // Registers the built-in components and their render systems (part of the "core" module).
 void register_debug_content(ModuleContext& ctx);
 

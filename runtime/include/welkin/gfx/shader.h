@@ -5,6 +5,7 @@
 // compile errors are reported with the real file and line.
 #include <filesystem>
 #include <glm/glm.hpp>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -58,12 +59,21 @@ class ShaderLibrary {
                           const ShaderDefines& defines = {});
   size_t cached_programs() const { return cache_.size(); }
 
+  // Generated files (found before any folder, by name) and defines prepended to every stage: the
+  // light environment's composed lighting and its bindings. Drops cached programs when they change.
+  void set_environment(std::map<std::string, std::string> generated_files, ShaderDefines global_defines,
+                       uint64_t version);
+  uint64_t environment_version() const { return environment_version_; }
+
  private:
   std::filesystem::path find(const std::string& file, const std::filesystem::path& beside) const;
   void expand(const std::filesystem::path& path, ShaderSource& out, std::vector<std::string>& stack,
               std::vector<std::string>& once) const;
   std::vector<std::filesystem::path> dirs_;
   std::map<std::string, std::unique_ptr<Program>> cache_;
+  std::map<std::string, std::string> generated_;
+  ShaderDefines global_defines_;
+  uint64_t environment_version_ = 0;
 };
 
 // Compiles and links stage sources; throws Error with file:line messages on failure.

@@ -17,12 +17,6 @@ struct SystemContext;
 
 namespace welkin::atmosphere {
 
-// Fixed bindings shared with shaders/atmosphere/common.glsl; units high enough that materials'
-// own textures (from unit 0 up) never collide with them.
-inline constexpr GLuint kUniformBinding = 7;
-inline constexpr GLuint kTransmittanceUnit = 10, kMultiscatteringUnit = 11, kSkyViewUnit = 12;
-inline constexpr GLuint kAerialInscatteringUnit = 13, kAerialTransmittanceUnit = 14, kSkyIrradianceUnit = 15;
-
 // std140 mirror of the WelkinAtmosphere block (vec4/mat4/ivec4 only, so no hidden padding).
 struct GpuUniforms {
   glm::vec4 rayleigh_scattering{0.0f};
@@ -72,10 +66,19 @@ struct AtmosphereGpu {
   GpuUniforms lut_uniforms;  // what the persistent LUTs were built from
   bool luts_valid = false;
   int lut_builds = 0;  // transmittance + multi-scattering regenerations (tests, stats)
+  // Where the light environment put the block and the LUTs (add_light_term fills them).
+  struct Bindings {
+    GLuint block = 0, transmittance = 0, multiscattering = 0, sky_view = 0, aerial_inscattering = 0,
+           aerial_transmittance = 0, sky_irradiance = 0;
+  } bindings;
 };
 
-// Binds the uniform block and every LUT at the fixed units: call from a material pass's execute
-// (after the atmosphere's passes in the same frame) before drawing with aerial_perspective.glsl.
+// Declares the atmosphere's light term (sun, moon and sky through the LUTs; aerial perspective) in
+// the world's light environment and records the bindings it was given.
+void add_light_term(World& world);
+
+// Binds the uniform block and every LUT at the light environment's units (materials get this
+// through LightEnvironment::bind; the atmosphere's own passes and tools call it directly).
 void bind_for_materials(const AtmosphereGpu& gpu);
 
 // Render phase, before geometry (order -100): transmittance and multi-scattering LUTs when the

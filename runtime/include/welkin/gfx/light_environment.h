@@ -1,0 +1,80 @@
+#pragma once
+// The light a material receives, composed from the terms of the loaded modules. A module declares a
+// term (its GLSL include, the functions it contributes, the textures and uniform blocks it needs and
+// how to bind them); the runtime assigns texture units and block bindings, writes the composed
+// `welkin/lighting.glsl` that materials include, and binds every term before a material draws. No
+// module owns the file or a binding by convention, and a term that is not declared is not compiled.
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "welkin/gfx/gl_objects.h"
+#include "welkin/gfx/shader.h"
+
+namespace welkin {
+
+class LightEnvironment;
+
+// One module's contribution. Function names are GLSL functions its include defines.
+struct LightTerm {
+  std::string name;     // unique, e.g. "atmosphere", "terrain.cascades", "clouds.shadows"
+  std::string include;  // GLSL file defining the term's functions, e.g. "atmosphere/light_term.glsl"
+  // Prefix P of the light sources: P_sun_direction(), P_sun_irradiance(vec3 p), P_moon_direction(),
+  // P_moon_irradiance(vec3 p), P_sky_irradiance(vec3 n). The term with the highest `priority` that
+  // provides lights wins; the runtime's default lights have priority 0.
+  std::string lights;
+  int priority = 0;
+  // float F(vec3 p, vec3 n, int light): fraction of light 0 (sun) or 1 (moon) reaching p; multiplied.
+  std::string light_visibility;
+  // float F(vec3 p, vec3 n): fraction of the sky's light reaching p; multiplied.
+  std::string sky_visibility;
+  // vec3 F(vec3 p, out vec3 transmittance): light added between p and the camera, and the
+  // transmittance of that path (one provider; materials that write no depth call it).
+  std::string aerial_perspective;
+  std::vector<std::string> textures;  // names; each gets a unit: #define WELKIN_UNIT_<NAME>
+  std::vector<std::string> blocks;    // names; each gets a binding: #define WELKIN_BLOCK_<NAME>
+  // Binds the term's textures and blocks at the units the environment assigned.
+  std::function<void(const LightEnvironment&)> bind;
+};
+
+class LightEnvironment {
+ public:
+  static constexpr std::string_view kTypeName = "core.LightEnvironment";
+  // First unit and binding handed out: materials keep units 0..7 and blocks 0..3 for themselves.
+  static constexpr GLuint kFirstUnit = 8, kFirstBlock = 4;
+
+  // Adds a term or replaces the one of the same name. Units and bindings once assigned never move.
+  // Throws Error on a name clash of textures/blocks or when the units run out.
+  void add(LightTerm term);
+  bool remove(std::string_view name);
+  bool has(std::string_view name) const;
+  std::vector<std::string> term_names() const;
+
+  // The unit or binding assigned to a texture or block name; throws Error when unknown.
+  GLuint unit(std::string_view texture) const;
+  GLuint block(std::string_view block_name) const;
+
+  // The composed welkin/lighting.glsl, and the #defines of every assigned unit and binding.
+  std::string composed_source() const;
+  ShaderDefines binding_defines() const;
+  // Bumped whenever the composed source or the bindings change.
+  uint64_t version() const { return version_; }
+
+  // Binds every term's resources: call in a material pass before drawing.
+  void bind() const;
+  // Installs the composed file and the binding defines into a shader library (cheap when unchanged).
+  void install(ShaderLibrary& shaders) const;
+
+  static std::string macro_name(std::string_view prefix, std::string_view name);
+
+ private:
+  std::vector<LightTerm> terms_;  // in the order they were added
+  std::map<std::string, GLuint, std::less<>> units_, blocks_;
+  GLuint next_unit_ = kFirstUnit, next_block_ = kFirstBlock;
+  uint64_t version_ = 1;
+};
+
+}  // namespace welkin
