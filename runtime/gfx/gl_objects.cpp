@@ -9,6 +9,7 @@ GLenum gl_internal_format(TextureFormat f) {
     case TextureFormat::rgba8: return GL_RGBA8;
     case TextureFormat::rgba16f: return GL_RGBA16F;
     case TextureFormat::rgba32f: return GL_RGBA32F;
+    case TextureFormat::r8: return GL_R8;
     case TextureFormat::r32f: return GL_R32F;
     case TextureFormat::depth32f: return GL_DEPTH_COMPONENT32F;
   }
@@ -20,6 +21,7 @@ const char* texture_format_name(TextureFormat f) {
     case TextureFormat::rgba8: return "rgba8";
     case TextureFormat::rgba16f: return "rgba16f";
     case TextureFormat::rgba32f: return "rgba32f";
+    case TextureFormat::r8: return "r8";
     case TextureFormat::r32f: return "r32f";
     case TextureFormat::depth32f: return "depth32f";
   }

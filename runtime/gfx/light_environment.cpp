@@ -4,6 +4,8 @@
 #include <cctype>
 
 #include "welkin/core/error.h"
+#include "welkin/gfx/debug_content.h"
+#include "welkin/scene/field_path.h"
 
 namespace welkin {
 
@@ -146,6 +148,14 @@ void LightEnvironment::bind() const {
 void LightEnvironment::install(ShaderLibrary& shaders) const {
   if (shaders.environment_version() == version_) return;
   shaders.set_environment({{kComposedFile, composed_source()}}, binding_defines(), version_);
+}
+
+std::optional<glm::vec3> scene_sun_direction(World& world) {
+  auto az = scene_scalar(world, "atmosphere.Sun", "azimuth_deg");
+  auto el = scene_scalar(world, "atmosphere.Sun", "elevation_deg");
+  if (!az) az = scene_scalar(world, "core.DirectionalLight", "azimuth_deg"), el = scene_scalar(world, "core.DirectionalLight", "elevation_deg");
+  if (!az || !el) return std::nullopt;
+  return glm::vec3(direction_from_azimuth_elevation(*az, *el));
 }
 
 }  // namespace welkin

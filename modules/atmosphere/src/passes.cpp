@@ -6,6 +6,7 @@
 #include "welkin/atmosphere/gpu.h"
 #include "welkin/core/error.h"
 #include "welkin/core/world.h"
+#include "welkin/gfx/compute.h"
 #include "welkin/gfx/light_environment.h"
 #include "welkin/gfx/renderer.h"
 #include "welkin/scene/json_fields.h"
@@ -13,26 +14,6 @@
 namespace welkin::atmosphere {
 
 namespace {
-
-// (Re)creates a persistent texture when its size or format changes; returns true when it did.
-bool ensure_texture(std::unique_ptr<Texture>& tex, const TextureDesc& desc) {
-  if (tex && tex->desc() == desc) return false;
-  tex = std::make_unique<Texture>(desc);
-  // Defined contents: LUTs a frame skips (the sky view from space) are still bound and read back.
-  glClearTexImage(tex->id(), 0, GL_RGBA, GL_FLOAT, nullptr);
-  return true;
-}
-
-void dispatch(const Program& p, int x, int y, int z = 1) {
-  p.use();
-  glDispatchCompute(GLuint(x), GLuint(y), GLuint(z));
-  // Later passes sample what this one stored.
-  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-}
-
-int groups(int n, int size) {
-  return (n + size - 1) / size;
-}
 
 // Shader permutations of one frame: software rasterisers run both sides of every branch, so
 // features a frame does not use are compiled out rather than branched around.
@@ -44,11 +25,6 @@ ShaderDefines moon_defines(const GpuUniforms& u) {
 
 bool in_space(const GpuUniforms& u) {
   return u.aerial_params.z > 0.5f;
-}
-
-void bind_image(GLuint unit, const Texture& t) {
-  glBindImageTexture(unit, t.id(), 0, t.is_3d() ? GL_TRUE : GL_FALSE, 0, GL_WRITE_ONLY,
-                     gl_internal_format(t.desc().format));
 }
 
 // What the star pass needs of a frame, prepared outside the pass (the catalogue is rebuilt only when
@@ -216,9 +192,9 @@ void lut_system(SystemContext& sc) {
         },
         [gp, rcp, q](PassContext&) {
           bind_for_materials(*gp);
-          bind_image(0, *gp->transmittance);
-          dispatch(rcp->shaders.compute("atmosphere/transmittance_lut.comp"),
-                   groups(q.transmittance_width, 8), groups(q.transmittance_height, 8));
+          bind_image_for_write(0, *gp->transmittance);
+          dispatch_compute(rcp->shaders.compute("atmosphere/transmittance_lut.comp"),
+                   group_count(q.transmittance_width, 8), group_count(q.transmittance_height, 8));
         });
     g.add_pass(
         "atmosphere.multiscattering",
@@ -233,15 +209,15 @@ void lut_system(SystemContext& sc) {
           // other texture, ordered so that the final pass writes the LUT every reader binds.
           const int n = q.multiscattering_iterations;
           Texture* target[2] = {gp->multiscattering.get(), gp->multiscattering_scratch.get()};
-          bind_image(0, *target[n % 2]);
-          dispatch(rcp->shaders.compute("atmosphere/multiscattering_lut.comp", {{"ATM_MS_ITERATE", "0"}}),
+          bind_image_for_write(0, *target[n % 2]);
+          dispatch_compute(rcp->shaders.compute("atmosphere/multiscattering_lut.comp", {{"ATM_MS_ITERATE", "0"}}),
                    q.multiscattering_size, q.multiscattering_size);
           const Program& iterate =
               rcp->shaders.compute("atmosphere/multiscattering_lut.comp", {{"ATM_MS_ITERATE", "1"}});
           for (int k = n - 1; k >= 0; --k) {
             glBindTextureUnit(gp->bindings.multiscattering, target[(k + 1) % 2]->id());
-            bind_image(0, *target[k % 2]);
-            dispatch(iterate, q.multiscattering_size, q.multiscattering_size);
+            bind_image_for_write(0, *target[k % 2]);
+            dispatch_compute(iterate, q.multiscattering_size, q.multiscattering_size);
           }
           glBindTextureUnit(gp->bindings.multiscattering, gp->multiscattering->id());
           gp->lut_uniforms = u;
@@ -261,9 +237,9 @@ void lut_system(SystemContext& sc) {
         },
         [gp, rcp, q, moon_defs](PassContext&) {
           bind_for_materials(*gp);
-          bind_image(0, *gp->sky_view);
-          dispatch(rcp->shaders.compute("atmosphere/sky_view_lut.comp", moon_defs),
-                   groups(q.sky_view_width, 8), groups(q.sky_view_height, 8));
+          bind_image_for_write(0, *gp->sky_view);
+          dispatch_compute(rcp->shaders.compute("atmosphere/sky_view_lut.comp", moon_defs),
+                   group_count(q.sky_view_width, 8), group_count(q.sky_view_height, 8));
         });
   }
   if (!space) {
@@ -277,10 +253,10 @@ void lut_system(SystemContext& sc) {
         },
         [gp, rcp, q, moon_defs](PassContext&) {
           bind_for_materials(*gp);
-          bind_image(0, *gp->aerial_inscattering);
-          bind_image(1, *gp->aerial_transmittance);
-          dispatch(rcp->shaders.compute("atmosphere/aerial_perspective_volume.comp", moon_defs),
-                   groups(q.aerial_perspective_width, 8), groups(q.aerial_perspective_height, 8));
+          bind_image_for_write(0, *gp->aerial_inscattering);
+          bind_image_for_write(1, *gp->aerial_transmittance);
+          dispatch_compute(rcp->shaders.compute("atmosphere/aerial_perspective_volume.comp", moon_defs),
+                   group_count(q.aerial_perspective_width, 8), group_count(q.aerial_perspective_height, 8));
         });
   }
   g.add_pass(
@@ -294,8 +270,8 @@ void lut_system(SystemContext& sc) {
       },
       [gp, rcp, irradiance_defines](PassContext&) {
         bind_for_materials(*gp);
-        bind_image(0, *gp->sky_irradiance);
-        dispatch(rcp->shaders.compute("atmosphere/sky_irradiance.comp", irradiance_defines), 1, 1);
+        bind_image_for_write(0, *gp->sky_irradiance);
+        dispatch_compute(rcp->shaders.compute("atmosphere/sky_irradiance.comp", irradiance_defines), 1, 1);
       });
 
   // The sky goes first, over the whole target, and the geometry drawn later covers it: cheaper than

@@ -17,26 +17,7 @@ namespace welkin::terrain {
 
 namespace {
 
-// A scalar field of the first entity with `component`, when the scene has one (reached through
-// reflection: the terrain depends on no other module).
-std::optional<double> scene_scalar(World& world, std::string_view component, std::string_view field) {
-  const ComponentInfo* info = world.modules().component(component);
-  if (!info) return std::nullopt;
-  const ComponentPool* pool = world.registry().pool(info->type->id);
-  if (!pool || pool->empty()) return std::nullopt;
-  return resolve_field(*info->type, world.registry().get(pool->entities()[0], info->type->id), field).get_scalar();
-}
-
 constexpr double kEarthRadiusM = 6371008.8;  // mean radius, for geodetic offsets
-
-// Direction toward the sun from the scene's sun (atmosphere) or built-in light; nullopt at night.
-std::optional<glm::vec3> sun_direction(World& world) {
-  auto az = scene_scalar(world, "atmosphere.Sun", "azimuth_deg");
-  auto el = scene_scalar(world, "atmosphere.Sun", "elevation_deg");
-  if (!az) az = scene_scalar(world, "core.DirectionalLight", "azimuth_deg"), el = scene_scalar(world, "core.DirectionalLight", "elevation_deg");
-  if (!az || !el || *el <= 0.0) return std::nullopt;
-  return glm::vec3(direction_from_azimuth_elevation(*az, *el));
-}
 
 struct Cascades {
   std::array<glm::mat4, 3> light_view_projection;  // camera-relative world -> cascade clip space
@@ -194,7 +175,8 @@ void terrain_system(SystemContext& sc) {
 
   const FrameTargets targets = *sc.targets;
   // Shadows: cascades from the first terrain that casts them (one sun, one set of cascades).
-  std::optional<glm::vec3> sun = sun_direction(world);
+  std::optional<glm::vec3> sun = scene_sun_direction(world);
+  if (sun && sun->z <= 0.0f) sun.reset();  // no shadows from a sun below the horizon
   const Terrain* shadow_settings = nullptr;
   world.registry().each<Terrain>([&](Entity, Terrain& t) {
     if (t.cast_shadows && !shadow_settings) shadow_settings = &t;

@@ -6,6 +6,8 @@
 // module owns the file or a binding by convention, and a term that is not declared is not compiled.
 #include <cstdint>
 #include <functional>
+#include <glm/glm.hpp>
+#include <optional>
 #include <map>
 #include <string>
 #include <string_view>
@@ -76,5 +78,10 @@ class LightEnvironment {
   GLuint next_unit_ = kFirstUnit, next_block_ = kFirstBlock;
   uint64_t version_ = 1;
 };
+
+class World;
+// Direction toward the scene's sun (atmosphere.Sun, else core.DirectionalLight, read through
+// reflection), also below the horizon; nullopt when the scene has neither.
+std::optional<glm::vec3> scene_sun_direction(World& world);
 
 }  // namespace welkin

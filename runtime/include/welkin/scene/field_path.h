@@ -2,6 +2,7 @@
 // Field paths address one reflected value inside a component: "layers/0/coverage" or
 // "rayleigh_scattering/2". Sequences, presets, `--set` and the editor all go through here.
 #include <nlohmann/json_fwd.hpp>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -28,5 +29,10 @@ struct FieldRef {
 
 // Resolves `path` inside `object` of `type`; throws Error naming the first bad segment.
 FieldRef resolve_field(const TypeDesc& type, void* object, std::string_view path);
+
+class World;
+// A scalar field of the first entity with the named component, when the scene has one: how a
+// module reads another's components (the sun, the planet, the time of day) without depending on it.
+std::optional<double> scene_scalar(World& world, std::string_view component, std::string_view path);
 
 }  // namespace welkin

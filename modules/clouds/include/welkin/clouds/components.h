@@ -1,0 +1,113 @@
+#pragma once
+// Components of the clouds module. Plain reflected structs: the reflection in src/components.cpp is
+// the single source of their JSON form, units, ranges, the editor inspector and sequence tracks
+// (`clouds.VolumetricClouds/layers/0/coverage`). Lengths are metres, extinction 1/m.
+#include <glm/glm.hpp>
+#include <string_view>
+#include <vector>
+
+#include "welkin/core/reflection.h"
+
+namespace welkin::clouds {
+
+// The ten genera (WMO). The genus picks the shape model of a layer (domes with flat bases, sheets,
+// rolls, streaks) and the defaults of its preset file (presets/genera/<genus>.json).
+enum class Genus : int {
+  cumulus = 0,
+  stratus = 1,
+  stratocumulus = 2,
+  cumulonimbus = 3,
+  altocumulus = 4,
+  altostratus = 5,
+  nimbostratus = 6,
+  cirrus = 7,
+  cirrostratus = 8,
+  cirrocumulus = 9,
+};
+
+// One layer of clouds. Density at a point = weather (coverage) x vertical envelope x profile,
+// eroded by the shape and detail noise, times density_per_m.
+struct CloudLayer {
+  static constexpr std::string_view kTypeName = "clouds.CloudLayer";
+  Genus genus = Genus::cumulus;
+  float base_altitude_m = 1500.0f;  // above the planet's surface
+  float thickness_m = 1500.0f;      // 0 disables the layer
+  float coverage = 0.45f;           // fraction of the sky the layer covers, 0..1
+  float density_per_m = 0.05f;      // extinction at full density (1/m): cumulus 0.02-0.1
+  float shape_amount = 1.0f;        // erosion by the Perlin-Worley shape noise
+  float detail_amount = 1.0f;       // erosion by the Worley detail noise at the edges
+  float coverage_filter_width = 0.6f;  // 0: hard edge at the weather signal, 1: a linear ramp
+  float base_variation_m = 150.0f;     // the base rises and falls with the weather (bases do not line up)
+  // Density over the height fraction h in [0, 1]: exp_term * exp(exponent * h) + linear_term * h + constant_term.
+  float profile_exp_term = 0.0f;
+  float profile_exponent = 0.0f;
+  float profile_linear_term = 0.75f;
+  float profile_constant_term = 0.25f;
+  glm::vec2 wind_mps{0.0f, 0.0f};  // drift of this layer's weather (east, north)
+  bool casts_shadow = true;
+};
+void describe(TypeBuilder<CloudLayer>& t);
+
+enum class Quality : int { low = 0, medium = 1, high = 2, ultra = 3, custom = 4 };
+// Dual-lobe Henyey-Greenstein, or Jendersie & d'Eon 2023's fit of Mie scattering by water droplets
+// (a Henyey-Greenstein and a Draine lobe, parameterised by the droplet diameter).
+enum class PhaseModel : int { dual_lobe_hg = 0, droplet_mie = 1 };
+
+struct VolumetricClouds {
+  static constexpr std::string_view kTypeName = "clouds.VolumetricClouds";
+  Quality quality = Quality::high;
+  float coverage = 1.0f;  // scales every layer's coverage (sequences drive it)
+  // Scattering and absorption per unit of a layer's density (single-scattering albedo ~ 1 for water).
+  float scattering_coefficient = 1.0f;
+  float absorption_coefficient = 0.0f;
+  PhaseModel phase = PhaseModel::dual_lobe_hg;
+  float phase_g_forward = 0.7f;
+  float phase_g_backward = -0.2f;
+  float phase_mix = 0.5f;            // weight of the forward lobe
+  float droplet_diameter_um = 10.0f; // droplet_mie: 5-50 um
+  int multiscattering_octaves = 8;   // Wrenninge's octaves (1: single scattering only)
+  float powder = 0.0f;               // Schneider's "beer-powder" darkening of thin edges (0: off)
+  float ground_albedo = 0.3f;        // ground bounce lighting the cloud bases
+  // Marching (quality custom; the presets set them otherwise).
+  int max_steps = 384;
+  float min_step_m = 40.0f;
+  float max_step_m = 800.0f;
+  int light_steps = 4;
+  float light_step_m = 80.0f;  // first step toward the sun; each next one doubles
+  float max_distance_m = 200000.0f;
+  bool shape_detail = true;
+  float resolution_scale = 0.5f;  // the march runs at this fraction of the frame's width and height
+  // Shadows on every material (a beer shadow map from the sun around the camera) and sky occlusion.
+  bool shadows = true;
+  int shadow_map_size = 256;
+  float shadow_distance_m = 30000.0f;
+  // Noise: generated on the GPU from the seed, tileable; each texture repeats over its period.
+  int seed = 1;
+  float shape_period_m = 4000.0f;
+  float detail_period_m = 300.0f;
+  float weather_period_m = 40000.0f;
+  glm::vec2 wind_mps{6.0f, 2.0f};  // drift of the shape noise (east, north)
+  std::vector<CloudLayer> layers = default_layers();
+
+  // Partly cloudy: cumulus at 1.5 km and a thin altostratus at 5.5 km.
+  static std::vector<CloudLayer> default_layers();
+};
+void describe(TypeBuilder<VolumetricClouds>& t);
+
+// The marching parameters a quality preset stands for (custom: the component's own).
+struct ResolvedQuality {
+  int max_steps;
+  float min_step_m, max_step_m;
+  int light_steps;
+  float light_step_m;
+  bool shape_detail;
+  float resolution_scale;  // of the march; the composite upsamples
+};
+ResolvedQuality resolve_quality(const VolumetricClouds& clouds);
+
+// Throws Error naming the field for values that fail together (ranges are checked by reflection).
+void validate(const VolumetricClouds& clouds);
+
+const char* genus_name(Genus genus);
+
+}  // namespace welkin::clouds

@@ -1,0 +1,106 @@
+#pragma once
+// The clouds' GPU side: the per-frame block and layer array every cloud shader reads
+// (shaders/clouds/density.glsl), the noise volumes generated once per seed, and the render system.
+#include <glm/glm.hpp>
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include "welkin/clouds/components.h"
+#include "welkin/gfx/camera.h"
+#include "welkin/gfx/gl_objects.h"
+
+namespace welkin {
+class World;
+struct SystemContext;
+}  // namespace welkin
+
+namespace welkin::clouds {
+
+// std140 mirror of CloudsFrame (vec4 and mat4 only: no hidden padding).
+struct FrameBlock {
+  glm::vec4 planet{0.0f};         // planet radius m, camera altitude m, camera radius m, layer count
+  glm::vec4 up{0.0f};             // planet-centred up at the camera; w: max march distance m
+  glm::vec4 shell{0.0f};          // lowest base, highest top of the layers (altitude m), empty-space step m
+  glm::vec4 shape_origin{0.0f};   // camera in shape periods (fraction); w: 1 / period
+  glm::vec4 detail_origin{0.0f};
+  glm::vec4 steps{0.0f};          // max steps, min step m, max step m, light steps
+  glm::vec4 light{0.0f};          // first light step m, octaves, powder, ground albedo
+  glm::vec4 medium{0.0f};         // scattering, absorption, phase model, droplet diameter um
+  glm::vec4 phase{0.0f};          // g forward, g backward, forward weight, light marched (0 sun, 1 moon)
+  glm::vec4 frame{0.0f};          // frame index, shape detail, march width, march height
+  glm::mat4 inverse_view_projection{1.0f};
+};
+static_assert(sizeof(FrameBlock) == 224, "FrameBlock must match the std140 CloudsFrame block");
+
+// std430 mirror of CloudLayerGpu.
+struct LayerBlock {
+  glm::vec4 altitude{0.0f};  // base m, thickness m, base variation m, density per m
+  glm::vec4 shape{0.0f};     // coverage, shape amount, detail amount, coverage filter width
+  glm::vec4 profile{0.0f};   // exp term, exponent, linear term, constant term
+  glm::vec4 weather{0.0f};   // camera in weather periods (fraction); w: 1 / period
+  glm::vec4 model{0.0f};     // dome, weather channel, casts shadow, -
+};
+
+// Where the planet is and when it is: what the clouds read of other modules (through reflection).
+struct CloudsContext {
+  double planet_radius_m = 6360000.0;
+  glm::dvec3 planet_center_m{0.0, 0.0, -6360000.0};
+  double time_s = 0.0;               // drives the wind: the time of day when there is one
+  glm::vec3 sun_direction{0, 0, 1};  // toward the sun
+  bool sun_up_for_clouds = true;     // the sun still lights cloud tops (else the moon is marched)
+};
+
+// The layers that can hold cloud this frame (coverage, thickness and density above zero), packed.
+struct PackedLayers {
+  std::vector<LayerBlock> layers;
+  std::vector<int> source_index;  // the component's layer index of each packed layer
+  float lowest_m = 0.0f, highest_m = 0.0f;
+  float lowest_shadow_m = 0.0f, highest_shadow_m = 0.0f;
+  bool any_shadow = false;
+};
+PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& context, const glm::dvec3& camera_m);
+FrameBlock make_frame_block(const VolumetricClouds& clouds, const CloudsContext& context, const FrameView& view,
+                            const PackedLayers& layers, int march_width, int march_height, uint64_t frame_index);
+// The shape model of a genus: dome (0 sheet .. 1 dome) and weather frequency relative to the period.
+struct GenusModel {
+  float dome;
+  float weather_frequency;
+};
+GenusModel genus_model(Genus genus);
+
+// std140 mirror of the light term's CloudsShadow block (shaders/clouds/light_term.glsl).
+struct ShadowBlock {
+  glm::vec4 origin{0.0f};
+  glm::vec4 axis_u{0.0f};
+  glm::vec4 axis_v{0.0f};
+  glm::vec4 light{0.0f};
+};
+
+// Noise volumes, generated on the GPU once per seed (sizes fixed by the module).
+inline constexpr int kShapeNoiseSize = 128, kDetailNoiseSize = 32, kWeatherNoiseSize = 64, kBlueNoiseSize = 64;
+
+struct CloudsGpu {
+  static constexpr std::string_view kTypeName = "clouds.Gpu";
+  std::unique_ptr<Texture> shape, detail, weather, blue_noise, shadow_map, march;
+  int noise_seed = -1;   // the seed the noise was made from (-1: none yet)
+  int noise_builds = 0;  // how often the noise was generated (tests, stats)
+  std::unique_ptr<Buffer> frame_buffer, layer_buffer, shadow_buffer;
+  size_t layer_capacity = 0;
+  ShadowBlock shadow;    // as last uploaded (valid: origin.w = 1)
+  FrameBlock block;      // this frame's, uploaded before the geometry
+  bool has_layers = false;  // some layer can hold cloud this frame
+};
+
+// Declares the cloud shadows and sky occlusion as a term of the world's light environment.
+void add_light_term(World& world);
+// Render phase, before the geometry (order -50): noise when the seed changed, this frame's block and
+// layers, and the shadow map every material reads.
+void shadow_system(SystemContext& sc);
+// Render phase, after the atmosphere's aerial perspective (order 150): the march at the quality's
+// resolution and the composite over the frame.
+void clouds_system(SystemContext& sc);
+// Noise generation alone (also used by the CPU reference's field, which reads the volumes back).
+void ensure_noise(World& world, int seed);
+
+}  // namespace welkin::clouds

@@ -1,0 +1,33 @@
+#pragma once
+// The clouds' light term (src/light_term.cpp registers it): the sun's light through the cloud layers
+// that cast shadows, from a beer shadow map (front depth, mean extinction and the maximum optical
+// depth of each texel's column toward the sun; Schneider/takram), and the sky occluded under them.
+layout(std140, binding = WELKIN_BLOCK_CLOUDS_SHADOW) uniform CloudsShadow {
+  vec4 cs_origin;  // camera-relative centre of the map's plane; w: 1 while the map is valid
+  vec4 cs_axis_u;  // xyz: the plane's axis per map unit (uv = 0.5 + dot(p - origin, axis)); w: start distance toward the sun
+  vec4 cs_axis_v;
+  vec4 cs_light;   // xyz: direction toward the sun; w: |sun.z| (vertical fraction of a slanted column)
+};
+layout(binding = WELKIN_UNIT_CLOUDS_SHADOW_MAP) uniform sampler2D cs_map;
+
+// Optical depth of the clouds between p and the sun: zero above the column's front, then the mean
+// extinction times the depth into it, up to the column's total.
+float clouds_shadow_optical_depth(vec3 p) {
+  vec3 q = p - cs_origin.xyz;
+  vec2 uv = vec2(0.5 + dot(q, cs_axis_u.xyz), 0.5 + dot(q, cs_axis_v.xyz));
+  if (cs_origin.w < 0.5 || any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 0.0;
+  vec3 m = texture(cs_map, uv).xyz;  // front distance from the start, mean extinction, total optical depth
+  float depth = cs_axis_u.w - dot(q, cs_light.xyz);
+  return min(m.z, m.y * max(depth - m.x, 0.0));
+}
+
+float clouds_light_visibility(vec3 p, vec3 n, int light) {
+  if (light != 0) return 1.0;
+  return exp(-clouds_shadow_optical_depth(p));
+}
+
+// Diffuse light through a cloud deck: the two-stream transmittance 1 / (1 + 0.75 (1 - g) tau) of
+// the column above (the slanted column's depth times |sun.z|), g = 0.8.
+float clouds_sky_visibility(vec3 p, vec3 n) {
+  return 1.0 / (1.0 + 0.15 * clouds_shadow_optical_depth(p) * cs_light.w);
+}

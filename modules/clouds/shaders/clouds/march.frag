@@ -1,0 +1,144 @@
+// The volumetric clouds along each view ray, at the march resolution: radiance that reaches the
+// camera from the clouds and from the air in front of them (rgb), and the clouds' transmittance (a).
+// The composite adds rgb and scales what lies behind by a. Light at every sample comes from the
+// light environment: the sun or moon through the atmosphere's transmittance, the sky's irradiance.
+//   CLOUDS_AP_MODE 0: aerial perspective per sample (each sample's light is attenuated by the air
+//                     in front of it, and the air in front of each opacity step is added)
+//                  1: once at the transmittance-weighted mean depth (takram's approximation, kept
+//                     for comparison: it fails where distant sparse clouds overlap)
+//                  2: once at the first cloud sample (the camera in space: the froxels cover no vacuum)
+#include "clouds/density.glsl"
+#include "clouds/phase.glsl"
+#include "welkin/lighting.glsl"
+#include "welkin/view.glsl"
+
+in vec2 v_ndc;
+out vec4 o_color;
+layout(binding = 3) uniform sampler2D u_depth;       // the scene's depth (reversed Z; 0 = nothing)
+layout(binding = 4) uniform sampler2D u_blue_noise;  // 64 x 64, void-and-cluster
+
+// Distance to the scene's geometry along this pixel's ray (infinite where there is none).
+float scene_distance(vec2 ndc) {
+  float depth = texture(u_depth, ndc * 0.5 + 0.5).r;
+  if (depth <= 0.0) return 3.4e38;
+  vec4 p = cl_inverse_view_projection * vec4(ndc, depth, 1.0);
+  return length(p.xyz / p.w);
+}
+
+// Optical depth toward the light from x: steps that double from the first light step.
+// The detail noise is left out: it erodes edges the light crosses at most once.
+float light_optical_depth(vec3 x, vec3 l) {
+  float tau = 0.0, s = 0.0, step_m = cl_light.x;
+  int n = int(cl_steps.w);
+  for (int k = 0; k < n; ++k) {
+    tau += clouds_density(x + l * (s + 0.5 * step_m), false, false) * step_m;
+    s += step_m;
+    step_m *= 2.0;
+  }
+  return tau;
+}
+
+struct Accumulated {
+  vec3 color;           // light from the clouds (and, per sample, the air in front of them)
+  float transmittance;  // of the clouds alone
+  float depth_weight, weighted_depth;  // for CLOUDS_AP_MODE 1
+  bool ap_taken;                       // CLOUDS_AP_MODE 2: the air's terms at the first cloud
+  vec3 ap_inscattering, ap_transmittance;
+  int steps;
+};
+
+void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) {
+  bool detail = cl_frame.y > 0.5;
+  vec3 l = cl_phase.w > 0.5 ? welkin_moon_direction() : welkin_sun_direction();
+  float mu = dot(dir, l);
+  int octaves = int(cl_light.y);
+  float extinction_per_density = cl_medium.x + cl_medium.y;
+  float albedo = cl_medium.x / max(extinction_per_density, 1e-9);
+  float t = segment.x;
+  bool first = true;
+  while (t < segment.y && acc.steps < int(cl_steps.x) && acc.transmittance > 0.01) {
+    // Steps grow with distance (a pixel's footprint grows with it), within [min, max].
+    float step_m = clamp(cl_steps.y + t * 0.004, cl_steps.y, cl_steps.z);
+    if (first) step_m *= jitter, first = false;
+    step_m = min(step_m, segment.y - t);
+    vec3 x = dir * (t + 0.5 * step_m);
+    ++acc.steps;
+    // Empty space: the weather allows no cloud here, so skip ahead without fetching the noise, by
+    // up to a quarter of the weather's texel (it cannot rise from nothing to cloud much faster).
+    if (clouds_empty(x)) {
+      t += max(step_m, min(cl_steps.z, cl_shell.z));
+      continue;
+    }
+    float density = clouds_density(x, detail, false);
+    if (density > 0.0) {
+      float sigma_t = density * extinction_per_density;
+      vec3 up = normalize(cl_up.xyz * cl_planet.z + x);
+      vec3 e_light = cl_phase.w > 0.5 ? welkin_moon_irradiance(x) : welkin_sun_irradiance(x);
+      float tau = light_optical_depth(x, l) * extinction_per_density;
+      // Wrenninge 2015: octave k scatters b^k of the light, sees a^k of the optical depth, and a
+      // phase whose anisotropy is scaled by c^k (a = b = c = 1/2).
+      float scattered = 0.0, weight = 1.0;
+      for (int k = 0; k < octaves; ++k) {
+        scattered += weight * clouds_phase(mu, weight) * exp(-weight * tau);
+        weight *= 0.5;
+      }
+      scattered *= 1.0 - cl_light.z * exp(-2.0 * sigma_t * cl_light.x);  // powder (0: off)
+      // Sky from above and the lit ground from below, diffused through the cloud: the two-stream
+      // transmittance 1 / (1 + 0.75 (1 - g) tau) with g = 0.8, tau the optical depth toward the light
+      // (no extra samples: on software rasterisers each density sample is most of a step's cost).
+      vec3 e_sky = welkin_sky_irradiance(up);
+      vec3 e_ground = cl_light.w * (e_light * max(dot(l, up), 0.0) * exp(-tau) + e_sky);
+      vec3 ambient = (e_sky + e_ground) / (2.0 * CLOUDS_PI * (1.0 + 0.15 * tau));
+      vec3 source = albedo * (e_light * scattered + ambient);  // per unit extinction
+      // Energy-conserving step (Hillaire 2015): integrate the source over the step's own attenuation.
+      float step_transmittance = exp(-sigma_t * step_m);
+      vec3 step_light = source * (1.0 - step_transmittance);
+      float opacity = acc.transmittance * (1.0 - step_transmittance);
+#if CLOUDS_AP_MODE == 0
+      vec3 ap_t;
+      vec3 ap_s = welkin_aerial_perspective(x, ap_t);
+      acc.color += acc.transmittance * ap_t * step_light + ap_s * opacity;
+#else
+      acc.color += acc.transmittance * step_light;
+      acc.weighted_depth += opacity * (t + 0.5 * step_m);
+      acc.depth_weight += opacity;
+#if CLOUDS_AP_MODE == 2
+      if (!acc.ap_taken) acc.ap_inscattering = welkin_aerial_perspective(x, acc.ap_transmittance), acc.ap_taken = true;
+#endif
+#endif
+      acc.transmittance *= step_transmittance;
+    }
+    t += step_m;
+  }
+}
+
+void main() {
+  vec3 dir = view_ray_direction(cl_inverse_view_projection, v_ndc);
+  float t_max = min(cl_up.w, scene_distance(v_ndc));
+  vec2 ground = clouds_sphere(dir, 0.0);
+  if (ground.x <= ground.y && ground.x > 0.0) t_max = min(t_max, ground.x);
+  vec2 outer = clouds_sphere(dir, cl_shell.y), inner = clouds_sphere(dir, cl_shell.x);
+  Accumulated acc = Accumulated(vec3(0.0), 1.0, 0.0, 0.0, false, vec3(0.0), vec3(1.0), 0);
+  float jitter = fract(texelFetch(u_blue_noise, ivec2(gl_FragCoord.xy) % 64, 0).r + cl_frame.x * 0.618034);
+  jitter = 0.25 + 0.75 * jitter;  // the first step: never so short that it wastes a sample
+  if (outer.x <= outer.y && outer.y > 0.0) {
+    vec2 a = vec2(max(outer.x, 0.0), outer.y), b = vec2(1.0, -1.0);
+    if (inner.x <= inner.y && inner.y > 0.0) {
+      b = vec2(max(inner.y, 0.0), outer.y);
+      a.y = min(a.y, inner.x);
+    }
+    a.y = min(a.y, t_max), b.y = min(b.y, t_max);
+    if (a.x < a.y) march_segment(dir, a, jitter, acc);
+    if (b.x < b.y) march_segment(dir, b, jitter, acc);
+  }
+#if CLOUDS_AP_MODE == 1
+  if (acc.depth_weight > 0.0) {
+    vec3 ap_t;
+    vec3 ap_s = welkin_aerial_perspective(dir * (acc.weighted_depth / acc.depth_weight), ap_t);
+    acc.color = acc.color * ap_t + ap_s * (1.0 - acc.transmittance);
+  }
+#elif CLOUDS_AP_MODE == 2
+  acc.color = acc.color * acc.ap_transmittance + acc.ap_inscattering * (1.0 - acc.transmittance);
+#endif
+  o_color = vec4(max(acc.color, vec3(0.0)), acc.transmittance);
+}

@@ -1,0 +1,39 @@
+// Fills one of the clouds' tileable noise volumes (CLOUDS_NOISE selects which):
+//   0 shape (128^3, R8): Perlin-Worley base eroded by three octaves of Worley fBm (Schneider 2015)
+//   1 detail (32^3, R8): Worley fBm at higher frequencies
+//   2 weather (64^3, RGBA8): r, g, b coverage signals for layers (layer i reads channel i % 3),
+//     a the base variation; sampled at planet-centred positions, so the globe has no seams.
+#include "clouds/noise.glsl"
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+#if CLOUDS_NOISE == 2
+layout(rgba8, binding = 0) uniform writeonly image3D u_out;
+#else
+layout(r8, binding = 0) uniform writeonly image3D u_out;
+#endif
+uniform int u_size;
+uniform uint u_seed;
+
+void main() {
+  ivec3 id = ivec3(gl_GlobalInvocationID);
+  if (any(greaterThanEqual(id, ivec3(u_size)))) return;
+  vec3 uvw = (vec3(id) + 0.5) / float(u_size);
+#if CLOUDS_NOISE == 0
+  float perlin = clouds_perlin_fbm(uvw * 4.0, 4, u_seed, 5);
+  float worley = clouds_worley_fbm(uvw * 6.0, 6, u_seed + 1000u);
+  float perlin_worley = clamp(clouds_remap(perlin, worley - 1.0, 1.0, 0.0, 1.0), 0.0, 1.0);
+  float erosion = clouds_worley_fbm(uvw * 12.0, 12, u_seed + 2000u);
+  float shape = clamp(clouds_remap(perlin_worley, erosion - 1.0, 1.0, 0.0, 1.0), 0.0, 1.0);
+  imageStore(u_out, id, vec4(shape));
+#elif CLOUDS_NOISE == 1
+  imageStore(u_out, id, vec4(clouds_worley_fbm(uvw * 4.0, 4, u_seed + 3000u)));
+#else
+  vec4 w;
+  for (int c = 0; c < 3; ++c) {
+    float p = clouds_perlin_fbm(uvw * 4.0, 4, u_seed + 4000u + uint(c) * 97u, 4);
+    float cell = clouds_worley(uvw * 8.0, 8, u_seed + 5000u + uint(c) * 89u);
+    w[c] = clamp(clouds_remap(p, 1.0 - cell, 1.0, 0.0, 1.0) * 0.5 + p * 0.5, 0.0, 1.0);
+  }
+  w.a = clouds_perlin_fbm(uvw * 8.0, 8, u_seed + 6000u, 3);
+  imageStore(u_out, id, w);
+#endif
+}

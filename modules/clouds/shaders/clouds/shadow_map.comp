@@ -1,0 +1,39 @@
+// The beer shadow map: for each texel, a column from above the cloud shell toward the ground along
+// the sun's direction, through the layers that cast shadows. Stores the distance from the column's
+// start to its first cloud, the mean extinction over the cloudy part and the total optical depth.
+#include "clouds/density.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(rgba32f, binding = 0) uniform writeonly image2D u_map;
+uniform vec3 u_light;        // toward the sun
+uniform vec3 u_axis_u, u_axis_v;  // the map plane's axes through the camera, unit length
+uniform float u_extent_m;    // side of the map
+uniform float u_start_m;     // columns start this far toward the sun from the plane
+uniform int u_steps;
+
+void main() {
+  ivec2 id = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 size = imageSize(u_map);
+  if (any(greaterThanEqual(id, size))) return;
+  vec2 uv = (vec2(id) + 0.5) / vec2(size);
+  vec3 start = ((uv.x - 0.5) * u_axis_u + (uv.y - 0.5) * u_axis_v) * u_extent_m + u_light * u_start_m;
+  vec3 dir = -u_light;
+  vec2 outer = clouds_sphere_from(start, dir, cl_shell.y), inner = clouds_sphere_from(start, dir, cl_shell.x);
+  vec4 result = vec4(3.0e37, 0.0, 0.0, 0.0);
+  if (outer.x <= outer.y && outer.y > 0.0) {
+    vec2 seg = vec2(max(outer.x, 0.0), outer.y);
+    if (inner.x <= inner.y && inner.x > 0.0) seg.y = min(seg.y, inner.x);
+    float step_m = (seg.y - seg.x) / float(u_steps);
+    float tau = 0.0, front = -1.0, back = 0.0;
+    for (int i = 0; i < u_steps; ++i) {
+      float t = seg.x + (float(i) + 0.5) * step_m;
+      float d = clouds_density(start + dir * t, false, true) * (cl_medium.x + cl_medium.y);
+      if (d > 0.0) {
+        if (front < 0.0) front = t - 0.5 * step_m;
+        back = t + 0.5 * step_m;
+        tau += d * step_m;
+      }
+    }
+    if (front >= 0.0) result = vec4(front, tau / max(back - front, 1e-3), tau, 0.0);
+  }
+  imageStore(u_map, id, result);
+}

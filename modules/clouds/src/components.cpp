@@ -1,0 +1,118 @@
+#include "welkin/clouds/components.h"
+
+#include <algorithm>
+#include <string>
+
+#include "welkin/core/error.h"
+
+namespace welkin::clouds {
+
+namespace {
+const std::vector<EnumValue> kGenera = {
+    {"cumulus", int(Genus::cumulus)},           {"stratus", int(Genus::stratus)},
+    {"stratocumulus", int(Genus::stratocumulus)}, {"cumulonimbus", int(Genus::cumulonimbus)},
+    {"altocumulus", int(Genus::altocumulus)},   {"altostratus", int(Genus::altostratus)},
+    {"nimbostratus", int(Genus::nimbostratus)}, {"cirrus", int(Genus::cirrus)},
+    {"cirrostratus", int(Genus::cirrostratus)}, {"cirrocumulus", int(Genus::cirrocumulus)},
+};
+}  // namespace
+
+const char* genus_name(Genus genus) {
+  for (const EnumValue& v : kGenera)
+    if (v.value == int(genus)) return v.name.c_str();
+  return "?";
+}
+
+void describe(TypeBuilder<CloudLayer>& t) {
+  t.tooltip("One layer of clouds: altitude, thickness, genus, coverage, density and its profile over height");
+  t.field("genus", &CloudLayer::genus).values(kGenera).tooltip("Shape model: domes with flat bases, sheets, rolls or streaks");
+  t.field("base_altitude_m", &CloudLayer::base_altitude_m).unit("m").range(0, 100000).tooltip("Cloud base above the surface");
+  t.field("thickness_m", &CloudLayer::thickness_m).unit("m").range(0, 20000).tooltip("0 disables the layer");
+  t.field("coverage", &CloudLayer::coverage).range(0, 1).tooltip("Fraction of the sky covered (0 clear, 1 overcast)");
+  t.field("density_per_m", &CloudLayer::density_per_m).unit("1/m").range(0, 100).tooltip("Extinction at full density");
+  t.field("shape_amount", &CloudLayer::shape_amount).range(0, 1);
+  t.field("detail_amount", &CloudLayer::detail_amount).range(0, 1);
+  t.field("coverage_filter_width", &CloudLayer::coverage_filter_width).range(0.01, 1).tooltip("Softness of the weather's edge");
+  t.field("base_variation_m", &CloudLayer::base_variation_m).unit("m").range(0, 5000).tooltip("How far the base moves with the weather");
+  t.field("profile_exp_term", &CloudLayer::profile_exp_term).range(-100, 100);
+  t.field("profile_exponent", &CloudLayer::profile_exponent).range(-100, 100);
+  t.field("profile_linear_term", &CloudLayer::profile_linear_term).range(-100, 100);
+  t.field("profile_constant_term", &CloudLayer::profile_constant_term).range(-100, 100);
+  t.field("wind_mps", &CloudLayer::wind_mps).unit("m/s").range(-200, 200).tooltip("Drift of the layer's weather (east, north)");
+  t.field("casts_shadow", &CloudLayer::casts_shadow).tooltip("Included in the shadow map on materials");
+}
+
+std::vector<CloudLayer> VolumetricClouds::default_layers() {
+  return {CloudLayer{.genus = Genus::cumulus, .base_altitude_m = 1500.0f, .thickness_m = 1400.0f, .coverage = 0.45f},
+          CloudLayer{.genus = Genus::altostratus,
+                     .base_altitude_m = 5500.0f,
+                     .thickness_m = 600.0f,
+                     .coverage = 0.3f,
+                     .density_per_m = 0.004f,
+                     .shape_amount = 0.5f,
+                     .detail_amount = 0.3f,
+                     .coverage_filter_width = 0.8f,
+                     .base_variation_m = 300.0f,
+                     .profile_linear_term = 0.0f,
+                     .profile_constant_term = 1.0f,
+                     .wind_mps = {12.0f, 3.0f},
+                     .casts_shadow = false}};
+}
+
+void describe(TypeBuilder<VolumetricClouds>& t) {
+  t.tooltip("Volumetric cloud layers on the spherical planet, raymarched and lit by the atmosphere");
+  t.validate(validate);
+  t.field("quality", &VolumetricClouds::quality).values({{"low", 0}, {"medium", 1}, {"high", 2}, {"ultra", 3}, {"custom", 4}});
+  t.field("coverage", &VolumetricClouds::coverage).range(0, 1).tooltip("Scales every layer's coverage");
+  t.field("scattering_coefficient", &VolumetricClouds::scattering_coefficient).range(0, 10);
+  t.field("absorption_coefficient", &VolumetricClouds::absorption_coefficient).range(0, 10);
+  t.field("phase", &VolumetricClouds::phase).values({{"dual_lobe_hg", 0}, {"droplet_mie", 1}});
+  t.field("phase_g_forward", &VolumetricClouds::phase_g_forward).range(-0.999, 0.999);
+  t.field("phase_g_backward", &VolumetricClouds::phase_g_backward).range(-0.999, 0.999);
+  t.field("phase_mix", &VolumetricClouds::phase_mix).range(0, 1).tooltip("Weight of the forward lobe");
+  t.field("droplet_diameter_um", &VolumetricClouds::droplet_diameter_um).unit("um").range(5, 50).tooltip("droplet_mie only");
+  t.field("multiscattering_octaves", &VolumetricClouds::multiscattering_octaves).range(1, 16);
+  t.field("powder", &VolumetricClouds::powder).range(0, 1).tooltip("Darkens thin edges facing the sun (not physical; 0: off)");
+  t.field("ground_albedo", &VolumetricClouds::ground_albedo).range(0, 1).tooltip("Ground bounce on the cloud bases");
+  t.field("max_steps", &VolumetricClouds::max_steps).range(1, 4096).tooltip("quality custom");
+  t.field("min_step_m", &VolumetricClouds::min_step_m).unit("m").range(1, 100000).tooltip("quality custom");
+  t.field("max_step_m", &VolumetricClouds::max_step_m).unit("m").range(1, 100000).tooltip("quality custom");
+  t.field("light_steps", &VolumetricClouds::light_steps).range(0, 64).tooltip("quality custom");
+  t.field("light_step_m", &VolumetricClouds::light_step_m).unit("m").range(1, 100000).tooltip("quality custom");
+  t.field("max_distance_m", &VolumetricClouds::max_distance_m).unit("m").range(100, 1e8);
+  t.field("shape_detail", &VolumetricClouds::shape_detail).tooltip("quality custom");
+  t.field("resolution_scale", &VolumetricClouds::resolution_scale).range(0.0625, 1).tooltip("quality custom: fraction of the frame marched");
+  t.field("shadows", &VolumetricClouds::shadows).tooltip("Cloud shadows and sky occlusion on every material");
+  t.field("shadow_map_size", &VolumetricClouds::shadow_map_size).unit("px").range(16, 4096);
+  t.field("shadow_distance_m", &VolumetricClouds::shadow_distance_m).unit("m").range(100, 1e6);
+  t.field("seed", &VolumetricClouds::seed).range(0, 1 << 30);
+  t.field("shape_period_m", &VolumetricClouds::shape_period_m).unit("m").range(10, 1e6);
+  t.field("detail_period_m", &VolumetricClouds::detail_period_m).unit("m").range(1, 1e5);
+  t.field("weather_period_m", &VolumetricClouds::weather_period_m).unit("m").range(100, 1e8);
+  t.field("wind_mps", &VolumetricClouds::wind_mps).unit("m/s").range(-200, 200);
+  t.field("layers", &VolumetricClouds::layers).max_count(256);
+}
+
+ResolvedQuality resolve_quality(const VolumetricClouds& c) {
+  switch (c.quality) {
+    case Quality::low: return {96, 120.0f, 1500.0f, 2, 150.0f, false, 0.25f};
+    case Quality::medium: return {192, 70.0f, 1000.0f, 3, 100.0f, true, 0.5f};
+    case Quality::high: return {384, 40.0f, 800.0f, 4, 80.0f, true, 0.5f};
+    case Quality::ultra: return {768, 20.0f, 500.0f, 6, 50.0f, true, 1.0f};
+    case Quality::custom: break;
+  }
+  return {c.max_steps, c.min_step_m, c.max_step_m, c.light_steps, c.light_step_m, c.shape_detail, c.resolution_scale};
+}
+
+void validate(const VolumetricClouds& c) {
+  if (c.max_step_m < c.min_step_m)
+    throw Error(ErrorInfo{.path = "/max_step_m",
+                          .expected = "at least min_step_m (" + std::to_string(c.min_step_m) + ")",
+                          .found = std::to_string(c.max_step_m)});
+  if (c.detail_period_m > c.shape_period_m)
+    throw Error(ErrorInfo{.path = "/detail_period_m",
+                          .expected = "at most shape_period_m (" + std::to_string(c.shape_period_m) + "): detail is finer than shape",
+                          .found = std::to_string(c.detail_period_m)});
+}
+
+}  // namespace welkin::clouds

@@ -1,0 +1,98 @@
+// What the cloud shaders see of a frame: the layers that can hold cloud, packed, and the frame block.
+// Positions that tile (noise coordinates) are reduced modulo their period in double precision here,
+// so the GPU adds only camera-relative offsets in float, at any distance from the scene origin.
+#include <algorithm>
+#include <cmath>
+
+#include "welkin/clouds/gpu.h"
+
+namespace welkin::clouds {
+
+namespace {
+
+// The fractional part of a position in periods, as float.
+glm::vec3 tile_origin(const glm::dvec3& p_m, double period_m) {
+  glm::dvec3 q = p_m / period_m;
+  return glm::vec3(q - glm::floor(q));
+}
+
+}  // namespace
+
+GenusModel genus_model(Genus genus) {
+  switch (genus) {
+    case Genus::cumulus: return {1.0f, 2.5f};
+    case Genus::cumulonimbus: return {1.0f, 0.4f};
+    case Genus::stratocumulus: return {0.4f, 1.6f};
+    case Genus::altocumulus: return {0.5f, 4.0f};
+    case Genus::cirrocumulus: return {0.3f, 8.0f};
+    case Genus::stratus: return {0.0f, 0.5f};
+    case Genus::nimbostratus: return {0.1f, 0.4f};
+    case Genus::altostratus: return {0.0f, 0.7f};
+    case Genus::cirrostratus: return {0.0f, 0.5f};
+    case Genus::cirrus: return {0.2f, 2.5f};
+  }
+  return {1.0f, 1.0f};
+}
+
+PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& ctx, const glm::dvec3& camera_m) {
+  PackedLayers out;
+  const glm::dvec3 p = camera_m - ctx.planet_center_m;
+  bool first = true, first_shadow = true;
+  for (size_t i = 0; i < clouds.layers.size(); ++i) {
+    const CloudLayer& L = clouds.layers[i];
+    const float coverage = std::clamp(L.coverage * clouds.coverage, 0.0f, 1.0f);
+    // A layer that cannot hold cloud is not marched at all.
+    if (!(L.thickness_m > 0.0f) || !(coverage > 0.0f) || !(L.density_per_m > 0.0f)) continue;
+    const GenusModel g = genus_model(L.genus);
+    const double period = double(clouds.weather_period_m) / g.weather_frequency;
+    // Each layer reads its own part of the weather volume, so layers sharing a channel differ.
+    const glm::dvec3 offset = glm::dvec3(0.37 * double(i), 0.61 * double(i), 0.13 * double(i)) * period;
+    const glm::dvec3 drift = glm::dvec3(L.wind_mps, 0.0) * ctx.time_s;
+    LayerBlock b;
+    b.altitude = {L.base_altitude_m, L.thickness_m, L.base_variation_m, L.density_per_m};
+    b.shape = {coverage, L.shape_amount, L.detail_amount, std::max(L.coverage_filter_width, 0.01f)};
+    b.profile = {L.profile_exp_term, L.profile_exponent, L.profile_linear_term, L.profile_constant_term};
+    b.weather = glm::vec4(tile_origin(p - drift + offset, period), float(1.0 / period));
+    b.model = {g.dome, float(i % 3), L.casts_shadow ? 1.0f : 0.0f, 0.0f};
+    out.layers.push_back(b);
+    out.source_index.push_back(int(i));
+    const float lo = L.base_altitude_m - L.base_variation_m, hi = L.base_altitude_m + L.thickness_m + L.base_variation_m;
+    out.lowest_m = first ? lo : std::min(out.lowest_m, lo);
+    out.highest_m = first ? hi : std::max(out.highest_m, hi);
+    first = false;
+    if (L.casts_shadow) {
+      out.lowest_shadow_m = first_shadow ? lo : std::min(out.lowest_shadow_m, lo);
+      out.highest_shadow_m = first_shadow ? hi : std::max(out.highest_shadow_m, hi);
+      first_shadow = false;
+      out.any_shadow = true;
+    }
+  }
+  return out;
+}
+
+FrameBlock make_frame_block(const VolumetricClouds& clouds, const CloudsContext& ctx, const FrameView& view,
+                            const PackedLayers& layers, int march_width, int march_height, uint64_t frame_index) {
+  const ResolvedQuality q = resolve_quality(clouds);
+  const glm::dvec3 p = view.camera_position_m - ctx.planet_center_m;
+  const double r = std::max(glm::length(p), 1.0);
+  const glm::dvec3 drift = glm::dvec3(clouds.wind_mps, 0.0) * ctx.time_s;
+  FrameBlock f;
+  f.planet = {float(ctx.planet_radius_m), float(r - ctx.planet_radius_m), float(r), float(layers.layers.size())};
+  f.up = glm::vec4(glm::vec3(p / r), clouds.max_distance_m);
+  // z: the empty-space step, a quarter of the finest weather texel of the layers.
+  float finest_weather_m = clouds.weather_period_m;
+  for (const LayerBlock& b : layers.layers) finest_weather_m = std::min(finest_weather_m, 1.0f / b.weather.w);
+  f.shell = {layers.lowest_m, layers.highest_m, 0.25f * finest_weather_m / float(kWeatherNoiseSize), 0.0f};
+  f.shape_origin = glm::vec4(tile_origin(p - drift, clouds.shape_period_m), 1.0f / clouds.shape_period_m);
+  f.detail_origin = glm::vec4(tile_origin(p - drift, clouds.detail_period_m), 1.0f / clouds.detail_period_m);
+  f.steps = {float(q.max_steps), q.min_step_m, q.max_step_m, float(q.light_steps)};
+  f.light = {q.light_step_m, float(clouds.multiscattering_octaves), clouds.powder, clouds.ground_albedo};
+  f.medium = {clouds.scattering_coefficient, clouds.absorption_coefficient, float(int(clouds.phase)),
+              clouds.droplet_diameter_um};
+  f.phase = {clouds.phase_g_forward, clouds.phase_g_backward, clouds.phase_mix, ctx.sun_up_for_clouds ? 0.0f : 1.0f};
+  f.frame = {float(frame_index % 1024), q.shape_detail ? 1.0f : 0.0f, float(march_width), float(march_height)};
+  f.inverse_view_projection = view.inverse_view_projection;
+  return f;
+}
+
+}  // namespace welkin::clouds

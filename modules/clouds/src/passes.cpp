@@ -1,0 +1,273 @@
+// The clouds' frame: noise generated once per seed, the beer shadow map before the geometry (every
+// material reads it through the light environment), and after the geometry and its aerial
+// perspective, the march at a fraction of the resolution and its composite over the frame.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <memory>
+
+#include "welkin/clouds/blue_noise.h"
+#include "welkin/clouds/gpu.h"
+#include "welkin/core/error.h"
+#include "welkin/core/world.h"
+#include "welkin/gfx/compute.h"
+#include "welkin/gfx/light_environment.h"
+#include "welkin/gfx/renderer.h"
+#include "welkin/scene/field_path.h"
+#include "welkin/scene/json_fields.h"
+
+namespace welkin::clouds {
+
+namespace {
+
+constexpr int kShadowSteps = 48;
+
+const VolumetricClouds* first_clouds(World& world) {
+  Registry& reg = world.registry();
+  const Entity e = reg.first<VolumetricClouds>();
+  return e.is_null() ? nullptr : reg.get<VolumetricClouds>(e);
+}
+
+// The planet, the time and the sun, from whichever modules the scene has (through reflection).
+CloudsContext read_context(World& world, const FrameInfo& frame) {
+  CloudsContext c;
+  if (auto r = scene_scalar(world, "atmosphere.Atmosphere", "bottom_radius_km")) {
+    c.planet_radius_m = *r * 1000.0;
+    c.planet_center_m = {0.0, 0.0, -c.planet_radius_m};
+    if (auto below = scene_scalar(world, "atmosphere.Atmosphere", "planet_center_below_origin"); below && *below < 0.5)
+      for (int i = 0; i < 3; ++i)
+        c.planet_center_m[i] = *scene_scalar(world, "atmosphere.Atmosphere", "planet_center_m/" + std::to_string(i));
+  }
+  // Wind follows the time of day when there is one, so scrubbing a sequence equals playing it.
+  if (auto h = scene_scalar(world, "timeofday.TimeOfDay", "local_time_h")) c.time_s = *h * 3600.0;
+  else c.time_s = frame.time_s;
+  if (auto sun = scene_sun_direction(world)) c.sun_direction = *sun;
+  // Cloud tops at 10 km still see a sun 3 degrees below the horizon; below ~10 degrees the moon
+  // (when the scene has one) is the light worth marching toward.
+  const bool has_moon = scene_scalar(world, "atmosphere.Moon", "illuminance_lux").has_value();
+  c.sun_up_for_clouds = !has_moon || c.sun_direction.z > -0.17f;
+  return c;
+}
+
+// Equalises each coverage channel of the weather volume to a uniform distribution, so that a
+// layer's coverage c covers a fraction c of the sky whatever the noise's own histogram.
+void equalise_weather(Texture& weather) {
+  const int n = weather.desc().width * weather.desc().height * weather.desc().depth;
+  std::vector<uint8_t> data(size_t(n) * 4);
+  glGetTextureImage(weather.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(data.size()), data.data());
+  for (int c = 0; c < 3; ++c) {
+    std::array<double, 256> histogram{};
+    for (int i = 0; i < n; ++i) histogram[data[size_t(i) * 4 + size_t(c)]] += 1.0;
+    std::array<uint8_t, 256> map{};
+    double below = 0.0;
+    for (int v = 0; v < 256; ++v) {
+      map[size_t(v)] = uint8_t(std::lround(255.0 * (below + 0.5 * histogram[size_t(v)]) / n));
+      below += histogram[size_t(v)];
+    }
+    for (int i = 0; i < n; ++i) data[size_t(i) * 4 + size_t(c)] = map[data[size_t(i) * 4 + size_t(c)]];
+  }
+  glTextureSubImage3D(weather.id(), 0, 0, 0, 0, weather.desc().width, weather.desc().height, weather.desc().depth,
+                      GL_RGBA, GL_UNSIGNED_BYTE, data.data());
+}
+
+void bind_field(const CloudsGpu& gpu) {
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, gpu.frame_buffer->id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, gpu.layer_buffer->id());
+  glBindTextureUnit(0, gpu.shape->id());
+  glBindTextureUnit(1, gpu.detail->id());
+  glBindTextureUnit(2, gpu.weather->id());
+}
+
+bool camera_in_space(World& world, const FrameBlock& f) {
+  auto top = scene_scalar(world, "atmosphere.Atmosphere", "top_radius_km");
+  return top && double(f.planet.z) > *top * 1000.0;
+}
+
+// Uploads this frame's block and layers; false when no layer can hold cloud (nothing to draw).
+bool upload_frame(World& world, const SystemContext& sc, const VolumetricClouds& clouds, FrameBlock& block) {
+  // Values set in code or by sequences never passed the loaders' checks: a bad one is an error
+  // naming the field, not a black or hanging frame.
+  try {
+    check_object(type_desc<VolumetricClouds>(), &clouds);
+  } catch (const Error& e) {
+    throw e.with_path_prefix(std::string(VolumetricClouds::kTypeName));
+  }
+  auto& gpu = world.resource<CloudsGpu>();
+  const FrameView& view = world.resource<RenderContext>().view;
+  const CloudsContext ctx = read_context(world, sc.frame);
+  const PackedLayers layers = pack_layers(clouds, ctx, view.camera_position_m);
+  const ResolvedQuality q = resolve_quality(clouds);
+  const int w = std::max(1, int(std::ceil(view.width * q.resolution_scale)));
+  const int h = std::max(1, int(std::ceil(view.height * q.resolution_scale)));
+  block = make_frame_block(clouds, ctx, view, layers, w, h, sc.frame.index);
+  if (!gpu.frame_buffer) gpu.frame_buffer = std::make_unique<Buffer>(sizeof(FrameBlock));
+  gpu.frame_buffer->upload(&block, sizeof(block));
+  const size_t count = std::max<size_t>(layers.layers.size(), 1);
+  if (!gpu.layer_buffer || gpu.layer_capacity < count) {
+    gpu.layer_buffer = std::make_unique<Buffer>(count * sizeof(LayerBlock));
+    gpu.layer_capacity = count;
+  }
+  if (!layers.layers.empty()) gpu.layer_buffer->upload(layers.layers.data(), layers.layers.size() * sizeof(LayerBlock));
+
+  // The shadow map's frame: a square around the camera across the sun's direction.
+  gpu.shadow = ShadowBlock{};
+  const glm::vec3 l = ctx.sun_direction;
+  if (clouds.shadows && layers.any_shadow && l.z > 0.0f) {
+    const glm::vec3 u = glm::normalize(glm::cross(l, std::abs(l.z) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1)));
+    const glm::vec3 v = glm::cross(l, u);
+    const float extent = 2.0f * clouds.shadow_distance_m;
+    const float start = std::max((layers.highest_shadow_m - block.planet.y) / std::max(l.z, 0.05f), 0.0f) + 100.0f;
+    gpu.shadow.origin = {0.0f, 0.0f, 0.0f, 1.0f};
+    gpu.shadow.axis_u = glm::vec4(u / extent, start);
+    gpu.shadow.axis_v = glm::vec4(v / extent, extent);
+    gpu.shadow.light = glm::vec4(l, std::abs(l.z));
+  }
+  return !layers.layers.empty();
+}
+
+}  // namespace
+
+void ensure_noise(World& world, int seed) {
+  auto& gpu = world.resource<CloudsGpu>();
+  if (gpu.noise_seed == seed) return;
+  auto& rc = world.resource<RenderContext>();
+  ensure_texture(gpu.shape, {.width = kShapeNoiseSize, .height = kShapeNoiseSize, .depth = kShapeNoiseSize,
+                             .format = TextureFormat::r8, .clamp = false});
+  ensure_texture(gpu.detail, {.width = kDetailNoiseSize, .height = kDetailNoiseSize, .depth = kDetailNoiseSize,
+                              .format = TextureFormat::r8, .clamp = false});
+  ensure_texture(gpu.weather, {.width = kWeatherNoiseSize, .height = kWeatherNoiseSize, .depth = kWeatherNoiseSize,
+                               .format = TextureFormat::rgba8, .clamp = false});
+  const std::pair<Texture*, const char*> volumes[] = {{gpu.shape.get(), "0"}, {gpu.detail.get(), "1"}, {gpu.weather.get(), "2"}};
+  for (auto [texture, kind] : volumes) {
+    const Program& p = rc.shaders.compute("clouds/noise.comp", {{"CLOUDS_NOISE", kind}});
+    p.set("u_size", texture->desc().width);
+    glProgramUniform1ui(p.id(), p.location("u_seed"), GLuint(seed));
+    bind_image_for_write(0, *texture);
+    const int g = group_count(texture->desc().width, 4);
+    dispatch_compute(p, g, g, g);
+  }
+  glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
+  equalise_weather(*gpu.weather);
+  const std::vector<float> blue = void_and_cluster(kBlueNoiseSize, uint32_t(seed));
+  ensure_texture(gpu.blue_noise, {.width = kBlueNoiseSize, .height = kBlueNoiseSize, .format = TextureFormat::r32f,
+                                  .linear_filter = false, .clamp = false});
+  glTextureSubImage2D(gpu.blue_noise->id(), 0, 0, 0, kBlueNoiseSize, kBlueNoiseSize, GL_RED, GL_FLOAT, blue.data());
+  gpu.noise_seed = seed;
+  ++gpu.noise_builds;
+}
+
+void add_light_term(World& world) {
+  world.resource<LightEnvironment>().add(LightTerm{
+      .name = "clouds.shadows",
+      .include = "clouds/light_term.glsl",
+      .light_visibility = "clouds_light_visibility",
+      .sky_visibility = "clouds_sky_visibility",
+      .textures = {"clouds.shadow_map"},
+      .blocks = {"clouds.shadow"},
+      .bind = [&world](const LightEnvironment& env) {
+        CloudsGpu& gpu = world.resource<CloudsGpu>();
+        if (!gpu.shadow_buffer) gpu.shadow_buffer = std::make_unique<Buffer>(sizeof(ShadowBlock));
+        ShadowBlock s = gpu.shadow;
+        if (!gpu.shadow_map) s.origin.w = 0.0f;
+        gpu.shadow_buffer->upload(&s, sizeof(s));
+        glBindBufferBase(GL_UNIFORM_BUFFER, env.block("clouds.shadow"), gpu.shadow_buffer->id());
+        if (gpu.shadow_map) glBindTextureUnit(env.unit("clouds.shadow_map"), gpu.shadow_map->id());
+      }});
+}
+
+// Before the geometry: noise, this frame's block, and the shadow map every material reads.
+void shadow_system(SystemContext& sc) {
+  World& world = sc.world;
+  const VolumetricClouds* clouds = first_clouds(world);
+  if (!clouds) return;
+  auto& gpu = world.resource<CloudsGpu>();
+  ensure_noise(world, clouds->seed);
+  gpu.has_layers = upload_frame(world, sc, *clouds, gpu.block);
+  if (!gpu.has_layers || gpu.shadow.origin.w < 0.5f) {
+    gpu.shadow.origin.w = 0.0f;
+    return;
+  }
+  ensure_texture(gpu.shadow_map, {.width = clouds->shadow_map_size, .height = clouds->shadow_map_size,
+                                  .format = TextureFormat::rgba32f});
+  const ResourceHandle map = sc.graph->import("clouds.shadow_map", *gpu.shadow_map);
+  auto& rc = world.resource<RenderContext>();
+  CloudsGpu* gp = &gpu;
+  const ShadowBlock s = gpu.shadow;
+  sc.graph->add_pass(
+      "clouds.shadow_map",
+      [&](PassBuilder& b) {
+        b.write(map);
+        b.side_effect();  // read by every material through the light environment
+      },
+      [gp, &rc, s](PassContext&) {
+        bind_field(*gp);
+        bind_image_for_write(0, *gp->shadow_map);
+        const Program& p = rc.shaders.compute("clouds/shadow_map.comp");
+        const float extent = s.axis_v.w;
+        p.set("u_light", glm::vec3(s.light));
+        p.set("u_axis_u", glm::vec3(s.axis_u) * extent);
+        p.set("u_axis_v", glm::vec3(s.axis_v) * extent);
+        p.set("u_extent_m", extent);
+        p.set("u_start_m", s.axis_u.w);
+        p.set("u_steps", kShadowSteps);
+        const int g = group_count(gp->shadow_map->desc().width, 8);
+        dispatch_compute(p, g, g);
+      });
+}
+
+// After the geometry and its aerial perspective: the march and the composite.
+void clouds_system(SystemContext& sc) {
+  World& world = sc.world;
+  const VolumetricClouds* clouds = first_clouds(world);
+  if (!clouds) return;
+  auto& gpu = world.resource<CloudsGpu>();
+  auto& rc = world.resource<RenderContext>();
+  // No layer holds cloud (coverage 0, no thickness or density): nothing is marched.
+  if (!gpu.has_layers) return;
+  const int w = int(gpu.block.frame.z), h = int(gpu.block.frame.w);
+  const ShaderDefines defines = {{"CLOUDS_AP_MODE", camera_in_space(world, gpu.block) ? "2" : "0"}};
+  const FrameTargets t = *sc.targets;
+  RenderGraph& g = *sc.graph;
+  auto march = std::make_shared<ResourceHandle>();
+  CloudsGpu* gp = &gpu;
+  g.add_pass(
+      "clouds.march",
+      [&](PassBuilder& b) {
+        b.read(t.depth);
+        *march = b.create("clouds.march", TextureDesc{.width = w, .height = h, .format = TextureFormat::rgba16f});
+      },
+      [gp, &rc, &world, t, march, defines](PassContext& pc) {
+        Framebuffer fb(&pc.texture(*march), nullptr);
+        fb.bind();
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_BLEND);
+        world.resource<LightEnvironment>().bind();
+        bind_field(*gp);
+        glBindTextureUnit(3, pc.texture(t.depth).id());
+        glBindTextureUnit(4, gp->blue_noise->id());
+        const Program& p = rc.shaders.graphics("fullscreen.vert", "clouds/march.frag", defines);
+        p.use();
+        rc.draw_fullscreen_triangle();
+      });
+  g.add_pass(
+      "clouds.composite",
+      [&](PassBuilder& b) {
+        b.read(*march);
+        b.read(t.color);
+        b.write(t.color);
+      },
+      [&rc, t, march](PassContext& pc) {
+        Framebuffer fb(&pc.texture(t.color), nullptr);
+        fb.bind();
+        glDisable(GL_DEPTH_TEST);
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_SRC_ALPHA);  // clouds + transmittance x what lies behind
+        glBindTextureUnit(0, pc.texture(*march).id());
+        const Program& p = rc.shaders.graphics("fullscreen.vert", "clouds/composite.frag");
+        p.use();
+        rc.draw_fullscreen_triangle();
+        glDisable(GL_BLEND);
+      });
+}
+
+}  // namespace welkin::clouds

@@ -1,0 +1,21 @@
+// Entry point of the clouds module: its component, its light term and its two render systems.
+#include "welkin/clouds/components.h"
+#include "welkin/clouds/gpu.h"
+#include "welkin/core/module.h"
+#include "welkin/core/world.h"
+
+namespace welkin::modules {
+
+void register_clouds(ModuleContext& ctx) {
+  using namespace welkin::clouds;
+  ctx.component<VolumetricClouds>();
+  add_light_term(ctx.world());
+  // The shadow map before any material draws; the march after the geometry and the atmosphere's
+  // aerial perspective on it (order 100), so clouds cover both and carry the air in front of them.
+  ctx.system({.name = "clouds.shadows", .phase = Phase::render, .order = -50,
+              .reads = {type_id<VolumetricClouds>()}, .run = shadow_system});
+  ctx.system({.name = "clouds.march", .phase = Phase::render, .order = 150,
+              .reads = {type_id<VolumetricClouds>()}, .run = clouds_system});
+}
+
+}  // namespace welkin::modules
