@@ -102,9 +102,13 @@ std::string LightEnvironment::composed_source() const {
     if (!t.lights.empty() && (!lights || t.priority > lights->priority)) lights = &t;
     if (!t.aerial_perspective.empty() && (!aerial || t.priority > aerial->priority)) aerial = &t;
   }
+  // The light functions are declared first, so that terms may use them.
+  s += "vec3 welkin_sun_direction();\nvec3 welkin_sun_irradiance(vec3 p);\nvec3 welkin_moon_direction();\n"
+       "vec3 welkin_moon_irradiance(vec3 p);\nvec3 welkin_sky_irradiance(vec3 n);\n";
   // Only the terms whose functions are called are included: an unused provider compiles nothing.
   for (const LightTerm& t : terms_) {
-    bool used = &t == lights || &t == aerial || !t.light_visibility.empty() || !t.sky_visibility.empty();
+    bool used = &t == lights || &t == aerial || !t.light_visibility.empty() || !t.sky_visibility.empty() ||
+                !t.added_irradiance.empty();
     if (used && !t.include.empty()) s += "#include \"" + t.include + "\"\n";
   }
   if (lights) {
@@ -131,6 +135,11 @@ std::string LightEnvironment::composed_source() const {
   for (const LightTerm& t : terms_)
     if (!t.sky_visibility.empty()) s += "  v *= " + t.sky_visibility + "(p, n);\n";
   s += "  return v;\n}\n";
+  s += "// Diffuse irradiance the terms redirect onto the point.\n";
+  s += "vec3 welkin_added_irradiance(vec3 p, vec3 n) {\n  vec3 e = vec3(0.0);\n";
+  for (const LightTerm& t : terms_)
+    if (!t.added_irradiance.empty()) s += "  e += " + t.added_irradiance + "(p, n);\n";
+  s += "  return e;\n}\n";
   s += "// Light added between a camera-relative point and the camera, and that path's transmittance.\n";
   if (aerial)
     s += "vec3 welkin_aerial_perspective(vec3 p, out vec3 transmittance) { return " + aerial->aerial_perspective +

@@ -121,6 +121,7 @@ bool upload_frame(World& world, const SystemContext& sc, const VolumetricClouds&
     gpu.shadow.axis_u = glm::vec4(u / extent, start);
     gpu.shadow.axis_v = glm::vec4(v / extent, extent);
     gpu.shadow.light = glm::vec4(l, std::abs(l.z));
+    gpu.shadow.up = glm::vec4(glm::vec3(block.up), 0.0f);
   }
   return !layers.layers.empty();
 }
@@ -162,6 +163,7 @@ void add_light_term(World& world) {
       .include = "clouds/light_term.glsl",
       .light_visibility = "clouds_light_visibility",
       .sky_visibility = "clouds_sky_visibility",
+      .added_irradiance = "clouds_added_irradiance",
       .textures = {"clouds.shadow_map"},
       .blocks = {"clouds.shadow"},
       .bind = [&world](const LightEnvironment& env) {

@@ -10,7 +10,7 @@ vec3 shade_lambert(vec3 albedo, vec3 normal, vec3 camera_relative_position) {
   vec3 p = camera_relative_position;
   vec3 e = welkin_sun_irradiance(p) * (max(dot(normal, welkin_sun_direction()), 0.0) * welkin_light_visibility(p, normal, 0)) +
            welkin_moon_irradiance(p) * (max(dot(normal, welkin_moon_direction()), 0.0) * welkin_light_visibility(p, normal, 1)) +
-           welkin_sky_irradiance(normal) * welkin_sky_visibility(p, normal);
+           welkin_sky_irradiance(normal) * welkin_sky_visibility(p, normal) + welkin_added_irradiance(p, normal);
   return albedo / WELKIN_PI * e;
 }
 
@@ -40,7 +40,8 @@ vec3 shade_pbr(vec3 base_color, float metallic, float roughness, float occlusion
                   welkin_moon_irradiance(p) * welkin_light_visibility(p, n, 1));
   // Sky light: diffuse from the irradiance, specular approximated by the irradiance toward the reflection.
   vec3 f0 = mix(vec3(0.04), base_color, metallic);
-  vec3 sky_diffuse = welkin_sky_irradiance(n) * (1.0 - metallic) * base_color / WELKIN_PI;
+  vec3 sky_diffuse = (welkin_sky_irradiance(n) * welkin_sky_visibility(p, n) + welkin_added_irradiance(p, n)) *
+                     (1.0 - metallic) * base_color / WELKIN_PI;
   vec3 sky_specular = welkin_sky_irradiance(reflect(-v, n)) / WELKIN_PI * f0 * (1.0 - roughness * 0.7);
-  return c + (sky_diffuse + sky_specular) * (occlusion * welkin_sky_visibility(p, n));
+  return c + (sky_diffuse + sky_specular * welkin_sky_visibility(p, n)) * occlusion;
 }

@@ -34,10 +34,11 @@ TEST(LightEnvironment, HighestPriorityLightsWinAndOnlyUsedTermsAreIncluded) {
 TEST(LightEnvironment, VisibilitiesMultiplyAndTermsComeAndGo) {
   LightEnvironment env;
   env.add({.name = "a", .include = "a.glsl", .light_visibility = "a_vis"});
-  env.add({.name = "b", .include = "b.glsl", .light_visibility = "b_vis", .sky_visibility = "b_sky"});
+  env.add({.name = "b", .include = "b.glsl", .light_visibility = "b_vis", .sky_visibility = "b_sky", .added_irradiance = "b_add"});
   std::string s = env.composed_source();
   EXPECT_NE(s.find("v *= a_vis(p, n, light);\n  v *= b_vis(p, n, light);"), std::string::npos) << s;
   EXPECT_NE(s.find("v *= b_sky(p, n);"), std::string::npos);
+  EXPECT_NE(s.find("e += b_add(p, n);"), std::string::npos);
   const uint64_t v = env.version();
   EXPECT_TRUE(env.remove("b"));
   EXPECT_GT(env.version(), v);

@@ -7,6 +7,7 @@ layout(std140, binding = WELKIN_BLOCK_CLOUDS_SHADOW) uniform CloudsShadow {
   vec4 cs_axis_u;  // xyz: the plane's axis per map unit (uv = 0.5 + dot(p - origin, axis)); w: start distance toward the sun
   vec4 cs_axis_v;
   vec4 cs_light;   // xyz: direction toward the sun; w: |sun.z| (vertical fraction of a slanted column)
+  vec4 cs_up;      // xyz: up at the camera
 };
 layout(binding = WELKIN_UNIT_CLOUDS_SHADOW_MAP) uniform sampler2D cs_map;
 
@@ -26,8 +27,19 @@ float clouds_light_visibility(vec3 p, vec3 n, int light) {
   return exp(-clouds_shadow_optical_depth(p));
 }
 
-// Diffuse light through a cloud deck: the two-stream transmittance 1 / (1 + 0.75 (1 - g) tau) of
-// the column above (the slanted column's depth times |sun.z|), g = 0.8.
+// Diffuse light through a cloud deck: the two-stream transmittance 1 / (1 + 0.75 (1 - g) tau) of a
+// conservative slab (g = 0.8) for the column toward the sun.
+float clouds_diffuse_transmittance(float tau) { return 1.0 / (1.0 + 0.15 * tau); }
+
 float clouds_sky_visibility(vec3 p, vec3 n) {
-  return 1.0 / (1.0 + 0.15 * clouds_shadow_optical_depth(p) * cs_light.w);
+  return clouds_diffuse_transmittance(clouds_shadow_optical_depth(p) * cs_light.w);
+}
+
+// The sunlight the deck scatters down rather than lets through directly, spread like an overcast
+// sky (brighter overhead: the cosine-weighted irradiance of a uniform sky on a tilted plane).
+vec3 clouds_added_irradiance(vec3 p, vec3 n) {
+  float tau = clouds_shadow_optical_depth(p);
+  if (tau <= 0.0) return vec3(0.0);
+  float diffuse = max(clouds_diffuse_transmittance(tau) - exp(-tau), 0.0);
+  return welkin_sun_irradiance(p) * (cs_light.w * diffuse * (0.5 + 0.5 * dot(n, cs_up.xyz)));
 }

@@ -2,7 +2,8 @@
 //   0 shape (128^3, R8): Perlin-Worley base eroded by three octaves of Worley fBm (Schneider 2015)
 //   1 detail (32^3, R8): Worley fBm at higher frequencies
 //   2 weather (64^3, RGBA8): r, g, b coverage signals for layers (layer i reads channel i % 3),
-//     a the base variation; sampled at planet-centred positions, so the globe has no seams.
+//     a the base variation; sampled at planet-centred positions, so the globe has no seams. The
+//     coverage channels are equalised to a uniform distribution afterwards (src/passes.cpp).
 #include "clouds/noise.glsl"
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 #if CLOUDS_NOISE == 2
@@ -31,7 +32,8 @@ void main() {
   for (int c = 0; c < 3; ++c) {
     float p = clouds_perlin_fbm(uvw * 4.0, 4, u_seed + 4000u + uint(c) * 97u, 4);
     float cell = clouds_worley(uvw * 8.0, 8, u_seed + 5000u + uint(c) * 89u);
-    w[c] = clamp(clouds_remap(p, 1.0 - cell, 1.0, 0.0, 1.0) * 0.5 + p * 0.5, 0.0, 1.0);
+    // Continuous (no clamping to a constant), so that equalisation leaves no lump at one value.
+    w[c] = clamp(0.6 * p + 0.4 * cell, 0.0, 1.0);
   }
   w.a = clouds_perlin_fbm(uvw * 8.0, 8, u_seed + 6000u, 3);
   imageStore(u_out, id, w);

@@ -10,7 +10,8 @@ uint clouds_hash(uvec3 p, uint seed) {
   return v.x ^ v.y ^ v.z;
 }
 vec3 clouds_hash3(ivec3 cell, int period, uint seed) {
-  uvec3 c = uvec3((cell % period + period) % period);
+  // GLSL leaves % undefined for negative operands (Worley's cells left of the origin): floor instead.
+  uvec3 c = uvec3(cell - period * ivec3(floor(vec3(cell) / float(period))));
   uint h = clouds_hash(c, seed);
   return vec3(h & 1023u, (h >> 10) & 1023u, (h >> 20) & 1023u) / 1023.0;
 }
@@ -44,7 +45,7 @@ float clouds_worley(vec3 x, int period, uint seed) {
   return 1.0 - clamp(sqrt(d), 0.0, 1.0);
 }
 
-// Octaves of Perlin noise mapped to [0, 1]; each doubles the frequency and keeps the tiling.
+// Octaves of Perlin noise mapped to about [0, 1]; each doubles the frequency and keeps the tiling.
 float clouds_perlin_fbm(vec3 x, int period, uint seed, int octaves) {
   float sum = 0.0, amplitude = 0.5, norm = 0.0;
   for (int k = 0; k < octaves; ++k) {

@@ -33,6 +33,9 @@ struct LightTerm {
   std::string light_visibility;
   // float F(vec3 p, vec3 n): fraction of the sky's light reaching p; multiplied.
   std::string sky_visibility;
+  // vec3 F(vec3 p, vec3 n): diffuse irradiance a term redirects onto p (sunlight a cloud deck
+  // scatters down, say); summed. Terms may call the composed welkin_* light functions.
+  std::string added_irradiance;
   // vec3 F(vec3 p, out vec3 transmittance): light added between p and the camera, and the
   // transmittance of that path (one provider; materials that write no depth call it).
   std::string aerial_perspective;

@@ -75,6 +75,7 @@ struct ShadowBlock {
   glm::vec4 axis_u{0.0f};
   glm::vec4 axis_v{0.0f};
   glm::vec4 light{0.0f};
+  glm::vec4 up{0.0f};
 };
 
 // Noise volumes, generated on the GPU once per seed (sizes fixed by the module).

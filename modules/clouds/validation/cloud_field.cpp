@@ -1,0 +1,111 @@
+#include "cloud_field.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace welkin::clouds {
+
+namespace {
+double clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
+double smoothstep(double a, double b, double x) {
+  const double t = clamp01((x - a) / (b - a));
+  return t * t * (3.0 - 2.0 * t);
+}
+}  // namespace
+
+NoiseVolumes read_noise(const CloudsGpu& gpu) {
+  NoiseVolumes n;
+  n.shape_size = gpu.shape->desc().width, n.detail_size = gpu.detail->desc().width, n.weather_size = gpu.weather->desc().width;
+  auto read = [](const Texture& t, GLenum format, int channels, std::vector<uint8_t>& out) {
+    const int s = t.desc().width;
+    out.resize(size_t(s) * s * s * size_t(channels));
+    glGetTextureImage(t.id(), 0, format, GL_UNSIGNED_BYTE, GLsizei(out.size()), out.data());
+  };
+  read(*gpu.shape, GL_RED, 1, n.shape);
+  read(*gpu.detail, GL_RED, 1, n.detail);
+  read(*gpu.weather, GL_RGBA, 4, n.weather);
+  return n;
+}
+
+CloudField::CloudField(NoiseVolumes noise, const FrameBlock& frame, std::vector<LayerBlock> layers)
+    : noise_(std::move(noise)), frame_(frame), layers_(std::move(layers)) {}
+
+// Trilinear with repeat, texel centres at (i + 0.5) / size: what GL's linear filter does.
+double CloudField::sample(const std::vector<uint8_t>& v, int size, int channels, int channel, glm::dvec3 uvw) const {
+  const glm::dvec3 p = uvw * double(size) - 0.5;
+  const glm::dvec3 f = p - glm::floor(p);
+  const glm::ivec3 i = glm::ivec3(glm::floor(p));
+  double sum = 0.0;
+  for (int k = 0; k < 8; ++k) {
+    const glm::ivec3 o(k & 1, (k >> 1) & 1, (k >> 2) & 1);
+    glm::ivec3 c = i + o;
+    for (int a = 0; a < 3; ++a) c[a] = ((c[a] % size) + size) % size;
+    const double w = (o.x ? f.x : 1.0 - f.x) * (o.y ? f.y : 1.0 - f.y) * (o.z ? f.z : 1.0 - f.z);
+    sum += w * v[(size_t(c.z) * size * size + size_t(c.y) * size + size_t(c.x)) * size_t(channels) + size_t(channel)] / 255.0;
+  }
+  return sum;
+}
+
+double CloudField::altitude(const glm::dvec3& x) const {
+  const glm::dvec3 up(frame_.up);
+  const double r_c = frame_.planet.z;
+  const double d = 2.0 * r_c * glm::dot(up, x) + glm::dot(x, x);
+  const double r = std::sqrt(std::max(r_c * r_c + d, 0.0));
+  return double(frame_.planet.y) + d / std::max(r + r_c, 1.0);
+}
+
+glm::dvec2 CloudField::sphere(const glm::dvec3& origin, const glm::dvec3& dir, double alt) const {
+  const glm::dvec3 up(frame_.up);
+  const double R = double(frame_.planet.x) + alt, r_c = frame_.planet.z;
+  const double b = r_c * glm::dot(up, dir) + glm::dot(origin, dir);
+  const double c = (alt - double(frame_.planet.y)) * (R + r_c) - (2.0 * r_c * glm::dot(up, origin) + glm::dot(origin, origin));
+  const double disc = b * b + c;
+  if (disc < 0.0) return {1.0, -1.0};
+  const double s = std::sqrt(disc);
+  return {-b - s, -b + s};
+}
+
+double CloudField::layer_density(const LayerBlock& L, const glm::dvec3& x, double h, bool detail) const {
+  const glm::dvec3 wuv = glm::dvec3(L.weather) + x * double(L.weather.w);
+  const int channel = int(L.model.y);
+  const double w = sample(noise_.weather, noise_.weather_size, 4, channel, wuv);
+  const double variation = sample(noise_.weather, noise_.weather_size, 4, 3, wuv);
+  const double base = L.altitude.x + L.altitude.z * (variation - 0.5) * 2.0;
+  const double t = (h - base) / std::max(double(L.altitude.y), 1e-3);
+  if (t <= 0.0 || t >= 1.0) return 0.0;
+  const double fw = L.shape.w, c = L.shape.x;
+  const double lo = (1.0 - c) * (1.0 + fw) - fw;
+  const double d0 = clamp01((w - lo) / fw);
+  if (d0 <= 0.0) return 0.0;
+  const double top = (1.0 - L.model.x) * 1.0 + L.model.x * std::max(d0, 0.05);
+  const double envelope = smoothstep(0.0, 0.08, t) * (1.0 - smoothstep(top * 0.75, top, t));
+  const double profile = clamp01(L.profile.x * std::exp(L.profile.y * t) + L.profile.z * t + L.profile.w);
+  const double b = d0 * envelope * profile;
+  if (b <= 0.0) return 0.0;
+  const double s = sample(noise_.shape, noise_.shape_size, 1, 0, glm::dvec3(frame_.shape_origin) + x * double(frame_.shape_origin.w));
+  const double erosion = (1.0 - s) * L.shape.y;
+  double d = clamp01((b - erosion) / std::max(1.0 - erosion, 1e-3));
+  if (detail && d > 0.0 && L.shape.z > 0.0) {
+    const double n = sample(noise_.detail, noise_.detail_size, 1, 0, glm::dvec3(frame_.detail_origin) + x * double(frame_.detail_origin.w));
+    const double m = clamp01(t * 4.0);
+    const double e = (n * (1.0 - m) + (1.0 - n) * m) * L.shape.z * 0.35 * (1.0 - d);
+    d = clamp01((d - e) / std::max(1.0 - e, 1e-3));
+  }
+  return d * L.altitude.w;
+}
+
+double CloudField::extinction(const glm::dvec3& x, bool detail) const {
+  const double h = altitude(x);
+  if (h < frame_.shell.x || h > frame_.shell.y) return 0.0;
+  double sum = 0.0;
+  for (const LayerBlock& L : layers_) sum += layer_density(L, x, h, detail);
+  return sum * (double(frame_.medium.x) + double(frame_.medium.y));
+}
+
+double CloudField::majorant() const {
+  double sum = 0.0;
+  for (const LayerBlock& L : layers_) sum += L.altitude.w;
+  return sum * (double(frame_.medium.x) + double(frame_.medium.y));
+}
+
+}  // namespace welkin::clouds

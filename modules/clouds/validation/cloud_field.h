@@ -1,0 +1,42 @@
+#pragma once
+// The cloud density field of shaders/clouds/density.glsl in double precision, over CPU copies of
+// the very noise volumes the GPU generated: what the CPU reference path tracer marches through, so
+// that the GPU march and the reference see the same clouds.
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "welkin/clouds/gpu.h"
+
+namespace welkin::clouds {
+
+struct NoiseVolumes {
+  int shape_size = 0, detail_size = 0, weather_size = 0;
+  std::vector<uint8_t> shape, detail, weather;  // R8, R8, RGBA8 as stored
+};
+// Reads the world's noise volumes back (a current GL context; ensure_noise first).
+NoiseVolumes read_noise(const CloudsGpu& gpu);
+
+class CloudField {
+ public:
+  CloudField(NoiseVolumes noise, const FrameBlock& frame, std::vector<LayerBlock> layers);
+  // Extinction (1/m) at a camera-relative point, as the march sees it (detail: with the detail noise).
+  double extinction(const glm::dvec3& x, bool detail = true) const;
+  double altitude(const glm::dvec3& x) const;
+  // Distances along a ray from a camera-relative origin to the sphere at `altitude` (near > far: missed).
+  glm::dvec2 sphere(const glm::dvec3& origin, const glm::dvec3& dir, double altitude) const;
+  double lowest_m() const { return frame_.shell.x; }
+  double highest_m() const { return frame_.shell.y; }
+  // The largest extinction anywhere: the sum of the layers' full densities (a majorant).
+  double majorant() const;
+  const FrameBlock& frame() const { return frame_; }
+
+ private:
+  double sample(const std::vector<uint8_t>& v, int size, int channels, int channel, glm::dvec3 uvw) const;
+  double layer_density(const LayerBlock& L, const glm::dvec3& x, double h, bool detail) const;
+  NoiseVolumes noise_;
+  FrameBlock frame_;
+  std::vector<LayerBlock> layers_;
+};
+
+}  // namespace welkin::clouds
