@@ -67,8 +67,8 @@ void describe(TypeBuilder<VolumetricClouds>& t) {
   t.field("scattering_coefficient", &VolumetricClouds::scattering_coefficient).range(0, 10);
   t.field("absorption_coefficient", &VolumetricClouds::absorption_coefficient).range(0, 10);
   t.field("phase", &VolumetricClouds::phase).values({{"dual_lobe_hg", 0}, {"droplet_mie", 1}});
-  t.field("phase_g_forward", &VolumetricClouds::phase_g_forward).range(-0.999, 0.999);
-  t.field("phase_g_backward", &VolumetricClouds::phase_g_backward).range(-0.999, 0.999);
+  t.field("phase_g_forward", &VolumetricClouds::phase_g_forward).range(-0.9999, 0.9999);
+  t.field("phase_g_backward", &VolumetricClouds::phase_g_backward).range(-0.9999, 0.9999);
   t.field("phase_mix", &VolumetricClouds::phase_mix).range(0, 1).tooltip("Weight of the forward lobe");
   t.field("droplet_diameter_um", &VolumetricClouds::droplet_diameter_um).unit("um").range(5, 50).tooltip("droplet_mie only");
   t.field("multiscattering_octaves", &VolumetricClouds::multiscattering_octaves).range(1, 16);
