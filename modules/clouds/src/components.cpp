@@ -71,6 +71,7 @@ void describe(TypeBuilder<VolumetricClouds>& t) {
   t.field("phase_g_backward", &VolumetricClouds::phase_g_backward).range(-0.9999, 0.9999);
   t.field("phase_mix", &VolumetricClouds::phase_mix).range(0, 1).tooltip("Weight of the forward lobe");
   t.field("droplet_diameter_um", &VolumetricClouds::droplet_diameter_um).unit("um").range(5, 50).tooltip("droplet_mie only");
+  t.field("multiple_scattering", &VolumetricClouds::multiple_scattering).values({{"octaves", 0}, {"diffusion", 1}});
   t.field("multiscattering_octaves", &VolumetricClouds::multiscattering_octaves).range(1, 16);
   t.field("powder", &VolumetricClouds::powder).range(0, 1).tooltip("Darkens thin edges facing the sun (not physical; 0: off)");
   t.field("ground_albedo", &VolumetricClouds::ground_albedo).range(0, 1).tooltip("Ground bounce on the cloud bases");

@@ -16,6 +16,7 @@ layout(std140, binding = 0) uniform CloudsFrame {
   vec4 cl_medium;          // scattering, absorption (per unit density), phase model, droplet diameter um
   vec4 cl_phase;           // g forward, g backward, forward weight, light marched (0 sun, 1 moon)
   vec4 cl_frame;           // frame index, shape detail on, march width, march height
+  vec4 cl_light_model;     // multiple scattering: 0 octaves, 1 diffusion
   mat4 cl_inverse_view_projection;
 };
 

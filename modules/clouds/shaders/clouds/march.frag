@@ -75,12 +75,20 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
       vec3 up = normalize(cl_up.xyz * cl_planet.z + x);
       vec3 e_light = cl_phase.w > 0.5 ? welkin_moon_irradiance(x) : welkin_sun_irradiance(x);
       float tau = light_optical_depth(x, l) * extinction_per_density;
-      // Wrenninge 2015: octave k scatters b^k of the light, sees a^k of the optical depth, and a
-      // phase whose anisotropy is scaled by c^k (a = b = c = 1/2).
-      float scattered = 0.0, weight = 1.0;
-      for (int k = 0; k < octaves; ++k) {
-        scattered += weight * clouds_phase(mu, weight) * exp(-weight * tau);
-        weight *= 0.5;
+      float scattered = 0.0;
+      if (cl_light_model.x < 0.5) {
+        // Wrenninge 2015: octave k scatters b^k of the light, sees a^k of the optical depth, and a
+        // phase whose anisotropy is scaled by c^k (a = b = c = 1/2).
+        float weight = 1.0;
+        for (int k = 0; k < octaves; ++k) {
+          scattered += weight * clouds_phase(mu, weight) * exp(-weight * tau);
+          weight *= 0.5;
+        }
+      } else {
+        // Single scattering, and the diffuse light of a conservative slab: what the two-stream
+        // transmittance lets through beyond the direct beam, spread over the sphere of directions.
+        float direct = exp(-tau);
+        scattered = clouds_phase(mu, 1.0) * direct + max(1.0 / (1.0 + 0.15 * tau) - direct, 0.0) / (2.0 * CLOUDS_PI);
       }
       scattered *= 1.0 - cl_light.z * exp(-2.0 * sigma_t * cl_light.x);  // powder (0: off)
       // Sky from above and the lit ground from below, diffused through the cloud: the two-stream

@@ -2,6 +2,8 @@
 // anything is drawn. Round trips keep every field.
 #include "clouds_test_support.h"
 #include "welkin/core/error.h"
+#include <filesystem>
+
 #include "welkin/scene/json_fields.h"
 
 namespace welkin::clouds {
@@ -49,6 +51,32 @@ TEST(CloudsComponents, RoundTripKeepsEveryField) {
   object_from_json(type_desc<VolumetricClouds>(), &back, j);
   EXPECT_EQ(object_to_json(type_desc<VolumetricClouds>(), &back), j);
   EXPECT_EQ(back.layers[1].genus, Genus::cirrocumulus);
+}
+
+}  // namespace
+}  // namespace welkin::clouds
+
+namespace welkin::clouds {
+namespace {
+
+// Every scene preset is a valid clouds.VolumetricClouds, every genus preset a valid layer of its genus.
+TEST(CloudsPresets, EveryPresetFileLoadsAndEachGenusHasOne) {
+  const std::filesystem::path dir = WELKIN_SOURCE_DIR "/modules/clouds/presets";
+  int scenes = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    if (e.path().extension() != ".json") continue;
+    VolumetricClouds c;
+    EXPECT_NO_THROW(object_from_json(type_desc<VolumetricClouds>(), &c, read_json_file(e.path().string()))) << e.path();
+    EXPECT_FALSE(c.layers.empty()) << e.path();
+    ++scenes;
+  }
+  EXPECT_GE(scenes, 7);
+  for (int g = 0; g <= int(Genus::cirrocumulus); ++g) {
+    const std::string name = genus_name(Genus(g));
+    CloudLayer layer;
+    EXPECT_NO_THROW(object_from_json(type_desc<CloudLayer>(), &layer, read_json_file((dir / "genera" / (name + ".json")).string())));
+    EXPECT_EQ(int(layer.genus), g) << name;
+  }
 }
 
 }  // namespace

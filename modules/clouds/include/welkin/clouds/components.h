@@ -52,6 +52,11 @@ enum class Quality : int { low = 0, medium = 1, high = 2, ultra = 3, custom = 4 
 // Dual-lobe Henyey-Greenstein, or Jendersie & d'Eon 2023's fit of Mie scattering by water droplets
 // (a Henyey-Greenstein and a Draine lobe, parameterised by the droplet diameter).
 enum class PhaseModel : int { dual_lobe_hg = 0, droplet_mie = 1 };
+// Light scattered more than once: Wrenninge 2015's octaves (takram's, Frostbite's), or single
+// scattering plus the diffuse light of a conservative slab (the two-stream transmittance toward the
+// light, 1 / (1 + 0.75 (1 - g) tau), less its direct part), which stays right in thick decks where
+// the octaves' exponentials starve.
+enum class MultipleScattering : int { octaves = 0, diffusion = 1 };
 
 struct VolumetricClouds {
   static constexpr std::string_view kTypeName = "clouds.VolumetricClouds";
@@ -65,6 +70,7 @@ struct VolumetricClouds {
   float phase_g_backward = -0.2f;
   float phase_mix = 0.5f;            // weight of the forward lobe
   float droplet_diameter_um = 10.0f; // droplet_mie: 5-50 um
+  MultipleScattering multiple_scattering = MultipleScattering::diffusion;
   int multiscattering_octaves = 8;   // Wrenninge's octaves (1: single scattering only)
   float powder = 0.0f;               // Schneider's "beer-powder" darkening of thin edges (0: off)
   float ground_albedo = 0.3f;        // ground bounce lighting the cloud bases

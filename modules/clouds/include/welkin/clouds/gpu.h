@@ -29,9 +29,10 @@ struct FrameBlock {
   glm::vec4 medium{0.0f};         // scattering, absorption, phase model, droplet diameter um
   glm::vec4 phase{0.0f};          // g forward, g backward, forward weight, light marched (0 sun, 1 moon)
   glm::vec4 frame{0.0f};          // frame index, shape detail, march width, march height
+  glm::vec4 light_model{0.0f};    // multiple scattering (0 octaves, 1 diffusion)
   glm::mat4 inverse_view_projection{1.0f};
 };
-static_assert(sizeof(FrameBlock) == 224, "FrameBlock must match the std140 CloudsFrame block");
+static_assert(sizeof(FrameBlock) == 240, "FrameBlock must match the std140 CloudsFrame block");
 
 // std430 mirror of CloudLayerGpu.
 struct LayerBlock {
