@@ -20,7 +20,7 @@ namespace welkin::clouds {
 
 namespace {
 
-constexpr int kShadowSteps = 48;
+constexpr int kShadowSteps = 40;
 
 const VolumetricClouds* first_clouds(World& world) {
   Registry& reg = world.registry();
@@ -109,20 +109,40 @@ bool upload_frame(World& world, const SystemContext& sc, const VolumetricClouds&
   }
   if (!layers.layers.empty()) gpu.layer_buffer->upload(layers.layers.data(), layers.layers.size() * sizeof(LayerBlock));
 
-  // The shadow map's frame: a square around the camera across the sun's direction.
-  gpu.shadow = ShadowBlock{};
+  // The shadow map: a square around the camera across the sun's direction, anchored in the world
+  // and rebuilt only when what it shows has changed (sun, settings, drift or camera by a texel).
   const glm::vec3 l = ctx.sun_direction;
-  if (clouds.shadows && layers.any_shadow && l.z > 0.0f) {
+  ShadowKey key;
+  key.wanted = clouds.shadows && layers.any_shadow && l.z > 0.0f;
+  key.sun = l;
+  key.time_s = ctx.time_s;
+  key.anchor_m = view.camera_position_m;
+  key.texel_m = 2.0f * clouds.shadow_distance_m / float(clouds.shadow_map_size);
+  key.size = clouds.shadow_map_size;
+  key.max_wind_mps = glm::length(clouds.wind_mps);
+  for (const LayerBlock& b : layers.layers) {
+    key.settings.insert(key.settings.end(), {b.altitude.x, b.altitude.y, b.altitude.z, b.altitude.w, b.shape.x, b.shape.y,
+                                             b.shape.z, b.shape.w, b.profile.x, b.profile.y, b.profile.z, b.profile.w,
+                                             b.model.x, b.model.y, b.model.z});
+  }
+  for (const CloudLayer& L : clouds.layers) key.max_wind_mps = std::max(key.max_wind_mps, glm::length(L.wind_mps));
+  key.settings.insert(key.settings.end(), {block.medium.x, block.medium.y, float(clouds.seed), clouds.shape_period_m,
+                                           clouds.weather_period_m, clouds.shadow_distance_m});
+  gpu.shadow_rebuild = key.wanted && (!gpu.shadow_key.wanted || gpu.shadow_key.stale(key));
+  if (gpu.shadow_rebuild) {
     const glm::vec3 u = glm::normalize(glm::cross(l, std::abs(l.z) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1)));
     const glm::vec3 v = glm::cross(l, u);
     const float extent = 2.0f * clouds.shadow_distance_m;
     const float start = std::max((layers.highest_shadow_m - block.planet.y) / std::max(l.z, 0.05f), 0.0f) + 100.0f;
-    gpu.shadow.origin = {0.0f, 0.0f, 0.0f, 1.0f};
     gpu.shadow.axis_u = glm::vec4(u / extent, start);
     gpu.shadow.axis_v = glm::vec4(v / extent, extent);
     gpu.shadow.light = glm::vec4(l, std::abs(l.z));
     gpu.shadow.up = glm::vec4(glm::vec3(block.up), 0.0f);
+    gpu.shadow_key = key;
   }
+  if (!key.wanted) gpu.shadow_key.wanted = false;
+  // The map stays where it was made: its centre, relative to this frame's camera.
+  gpu.shadow.origin = glm::vec4(glm::vec3(gpu.shadow_key.anchor_m - view.camera_position_m), key.wanted ? 1.0f : 0.0f);
   return !layers.layers.empty();
 }
 
@@ -187,8 +207,10 @@ void shadow_system(SystemContext& sc) {
   gpu.has_layers = upload_frame(world, sc, *clouds, gpu.block);
   if (!gpu.has_layers || gpu.shadow.origin.w < 0.5f) {
     gpu.shadow.origin.w = 0.0f;
+    gpu.shadow_key.wanted = false;
     return;
   }
+  if (!gpu.shadow_rebuild && gpu.shadow_map) return;  // this frame reads the map made earlier
   ensure_texture(gpu.shadow_map, {.width = clouds->shadow_map_size, .height = clouds->shadow_map_size,
                                   .format = TextureFormat::rgba32f});
   const ResourceHandle map = sc.graph->import("clouds.shadow_map", *gpu.shadow_map);
@@ -214,6 +236,7 @@ void shadow_system(SystemContext& sc) {
         p.set("u_steps", kShadowSteps);
         const int g = group_count(gp->shadow_map->desc().width, 8);
         dispatch_compute(p, g, g);
+        ++gp->shadow_builds;
       });
 }
 

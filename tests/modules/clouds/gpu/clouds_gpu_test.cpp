@@ -7,6 +7,7 @@
 #include "clouds_test_support.h"
 #include "validation/cloud_field.h"
 #include "welkin/gfx/light_environment.h"
+#include "welkin/scene/field_path.h"
 
 namespace welkin::clouds {
 namespace {
@@ -107,6 +108,36 @@ TEST(CloudsGpu, OvercastDarkensTheGroundThroughTheLightEnvironment) {
   // 1 / (1 + 0.75 (1 - g) tau) ~ 30% of the light through: dimmer, never black.
   EXPECT_LT(shaded, 0.5f * lit);
   EXPECT_GT(shaded, 0.1f * lit);
+}
+
+}  // namespace
+}  // namespace welkin::clouds
+
+namespace welkin::clouds {
+namespace {
+
+// The shadow map is remade only when what it shows changes: not for a still frame, yes for a sun
+// that moved; and the map made earlier stays anchored where it was made.
+TEST(CloudsGpu, ShadowMapIsRebuiltOnlyWhenItsInputsChange) {
+  test::Rendered r = test::render(test::noon());
+  const CloudsGpu& gpu = r.world->resource<CloudsGpu>();
+  EXPECT_EQ(gpu.shadow_builds, 1);
+  r.frame(32, 18);
+  r.frame(32, 18);
+  EXPECT_EQ(gpu.shadow_builds, 1);
+  EXPECT_FALSE(r.ran("clouds.shadow_map"));
+  r.camera().position_m.x += 50.0;  // a fraction of a texel's worth of the map's middle
+  r.frame(32, 18);
+  EXPECT_EQ(gpu.shadow_builds, 1);
+  EXPECT_NEAR(gpu.shadow.origin.x, -50.0f, 1e-3f);
+  auto& reg = r.world->registry();
+  const ComponentInfo* sun = r.world->modules().component("atmosphere.Sun");
+  resolve_field(*sun->type, reg.get(reg.pool(sun->type->id)->entities()[0], sun->type->id), "elevation_deg").set_scalar(41.0);
+  r.frame(32, 18);
+  EXPECT_EQ(gpu.shadow_builds, 2);
+  r.clouds().layers[0].coverage = 0.2f;
+  r.frame(32, 18);
+  EXPECT_EQ(gpu.shadow_builds, 3);
 }
 
 }  // namespace

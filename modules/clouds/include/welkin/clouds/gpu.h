@@ -79,6 +79,24 @@ struct ShadowBlock {
   glm::vec4 up{0.0f};
 };
 
+// What the shadow map was made from; a frame whose key is not stale reuses it.
+struct ShadowKey {
+  bool wanted = false;
+  glm::vec3 sun{0.0f};
+  double time_s = 0.0;
+  glm::dvec3 anchor_m{0.0};  // the camera when the map was made: the map's centre
+  float texel_m = 1.0f, max_wind_mps = 0.0f;
+  int size = 0;
+  std::vector<float> settings;  // the layers' and medium's values the map depends on
+  // Stale when the sun turned by more than ~0.05 degrees, the settings changed, the wind moved the
+  // clouds by half a texel, or the camera left the middle half of the map.
+  bool stale(const ShadowKey& now) const {
+    return glm::dot(sun, now.sun) < 0.9999996f || settings != now.settings || size != now.size ||
+           std::abs(now.time_s - time_s) * max_wind_mps > 0.5 * texel_m ||
+           glm::length(now.anchor_m - anchor_m) > 0.125 * texel_m * size;
+  }
+};
+
 // Noise volumes, generated on the GPU once per seed (sizes fixed by the module).
 inline constexpr int kShapeNoiseSize = 128, kDetailNoiseSize = 32, kWeatherNoiseSize = 64, kBlueNoiseSize = 64;
 
@@ -90,6 +108,9 @@ struct CloudsGpu {
   std::unique_ptr<Buffer> frame_buffer, layer_buffer, shadow_buffer;
   size_t layer_capacity = 0;
   ShadowBlock shadow;    // as last uploaded (valid: origin.w = 1)
+  ShadowKey shadow_key;  // what the shadow map holds
+  bool shadow_rebuild = false;  // this frame remakes it
+  int shadow_builds = 0;
   FrameBlock block;      // this frame's, uploaded before the geometry
   bool has_layers = false;  // some layer can hold cloud this frame
 };
