@@ -11,6 +11,7 @@ GLenum gl_internal_format(TextureFormat f) {
     case TextureFormat::rgba32f: return GL_RGBA32F;
     case TextureFormat::r8: return GL_R8;
     case TextureFormat::r32f: return GL_R32F;
+    case TextureFormat::rg32f: return GL_RG32F;
     case TextureFormat::depth32f: return GL_DEPTH_COMPONENT32F;
   }
   return GL_RGBA8;
@@ -23,6 +24,7 @@ const char* texture_format_name(TextureFormat f) {
     case TextureFormat::rgba32f: return "rgba32f";
     case TextureFormat::r8: return "r8";
     case TextureFormat::r32f: return "r32f";
+    case TextureFormat::rg32f: return "rg32f";
     case TextureFormat::depth32f: return "depth32f";
   }
   return "?";
@@ -47,16 +49,31 @@ Texture::Texture(const TextureDesc& desc) : desc_(desc) {
 }
 
 Framebuffer::Framebuffer(const Texture* color, const Texture* depth) {
+  const Texture* colors[1] = {color};
+  attach(colors, color ? 1 : 0, depth);
+}
+
+Framebuffer::Framebuffer(std::initializer_list<const Texture*> colors, const Texture* depth) {
+  attach(colors.begin(), int(colors.size()), depth);
+}
+
+void Framebuffer::attach(const Texture* const* colors, int color_count, const Texture* depth) {
   GLuint id = 0;
   glCreateFramebuffers(1, &id);
   name_ = GlFramebufferName(id);
-  if (color) {
-    glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, color->id(), 0);
+  GLenum buffers[8];
+  GLsizei count = 0;
+  if (color_count > 8) throw Error("a framebuffer holds at most 8 colour attachments");
+  for (int i = 0; i < color_count; ++i) {
+    const Texture* color = colors[i];
+    glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0 + GLenum(count), color->id(), 0);
+    buffers[count] = GL_COLOR_ATTACHMENT0 + GLenum(count);
+    ++count;
     width_ = color->desc().width;
     height_ = color->desc().height;
-  } else {
-    glNamedFramebufferDrawBuffer(id, GL_NONE);
   }
+  if (count == 0) glNamedFramebufferDrawBuffer(id, GL_NONE);
+  else glNamedFramebufferDrawBuffers(id, count, buffers);
   if (depth) {
     glNamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, depth->id(), 0);
     width_ = depth->desc().width;

@@ -83,6 +83,8 @@ void describe(TypeBuilder<VolumetricClouds>& t) {
   t.field("max_distance_m", &VolumetricClouds::max_distance_m).unit("m").range(100, 1e8);
   t.field("shape_detail", &VolumetricClouds::shape_detail).tooltip("quality custom");
   t.field("resolution_scale", &VolumetricClouds::resolution_scale).range(0.0625, 1).tooltip("quality custom: fraction of the frame marched");
+  t.field("temporal_upscaling", &VolumetricClouds::temporal_upscaling).tooltip("March a quarter of the pixels per frame, reproject the rest");
+  t.field("temporal_clipping", &VolumetricClouds::temporal_clipping).tooltip("Clip reprojected history to this frame's samples (against ghosting)");
   t.field("shadows", &VolumetricClouds::shadows).tooltip("Cloud shadows and sky occlusion on every material");
   t.field("shadow_map_size", &VolumetricClouds::shadow_map_size).unit("px").range(16, 4096);
   t.field("shadow_distance_m", &VolumetricClouds::shadow_distance_m).unit("m").range(100, 1e6);

@@ -250,44 +250,107 @@ void clouds_system(SystemContext& sc) {
   // No layer holds cloud (coverage 0, no thickness or density): nothing is marched.
   if (!gpu.has_layers) return;
   const int w = int(gpu.block.frame.z), h = int(gpu.block.frame.w);
-  const ShaderDefines defines = {{"CLOUDS_AP_MODE", camera_in_space(world, gpu.block) ? "2" : "0"}};
+  const FrameView& view = rc.view;
+  ShaderDefines defines = {{"CLOUDS_AP_MODE", camera_in_space(world, gpu.block) ? "2" : "0"}};
+  const bool temporal = clouds->temporal_upscaling && w >= 2 && h >= 2;
+  const int qw = temporal ? (w + 1) / 2 : w, qh = temporal ? (h + 1) / 2 : h;
+  static constexpr glm::ivec2 kOffsets[4] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
+  const glm::ivec2 offset = temporal ? kOffsets[gpu.temporal_frame++ % 4] : glm::ivec2(0);
+  const glm::ivec3 stride_offset(temporal ? 2 : 1, offset.x, offset.y);
+
   const FrameTargets t = *sc.targets;
   RenderGraph& g = *sc.graph;
-  auto march = std::make_shared<ResourceHandle>();
+  auto current = std::make_shared<std::array<ResourceHandle, 2>>();
   CloudsGpu* gp = &gpu;
   g.add_pass(
       "clouds.march",
       [&](PassBuilder& b) {
         b.read(t.depth);
-        *march = b.create("clouds.march", TextureDesc{.width = w, .height = h, .format = TextureFormat::rgba16f});
+        (*current)[0] = b.create("clouds.march", TextureDesc{.width = qw, .height = qh, .format = TextureFormat::rgba16f});
+        (*current)[1] = b.create("clouds.march_distance",
+                                 TextureDesc{.width = qw, .height = qh, .format = TextureFormat::rg32f, .linear_filter = false});
       },
-      [gp, &rc, &world, t, march, defines](PassContext& pc) {
-        Framebuffer fb(&pc.texture(*march), nullptr);
+      [gp, &rc, &world, t, current, defines, stride_offset](PassContext& pc) {
+        Framebuffer fb({&pc.texture((*current)[0]), &pc.texture((*current)[1])}, nullptr);
         fb.bind();
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_BLEND);
+        // GL forbids several draw buffers while the blend function names a second source colour
+        // (the atmosphere's aerial perspective leaves one), even with blending off.
+        glBlendFunc(GL_ONE, GL_ZERO);
         world.resource<LightEnvironment>().bind();
         bind_field(*gp);
         glBindTextureUnit(3, pc.texture(t.depth).id());
         glBindTextureUnit(4, gp->blue_noise->id());
         const Program& p = rc.shaders.graphics("fullscreen.vert", "clouds/march.frag", defines);
         p.use();
+        glProgramUniform3i(p.id(), p.location("u_stride_offset"), stride_offset.x, stride_offset.y, stride_offset.z);
         rc.draw_fullscreen_triangle();
       });
+
+  ResourceHandle result = (*current)[0];
+  if (temporal) {
+    const int write = gpu.history_index, read = 1 - write;
+    for (int i = 0; i < 2; ++i) {
+      if (ensure_texture(gpu.history_color[i], {.width = w, .height = h, .format = TextureFormat::rgba16f})) gpu.history_valid = false;
+    }
+    const ResourceHandle out_color = g.import("clouds.history_color", *gpu.history_color[write]);
+    const ResourceHandle history = g.import("clouds.history_previous", *gpu.history_color[read]);
+    const glm::vec3 moved = glm::vec3(view.camera_position_m - gpu.previous_camera_m);
+    const glm::mat4 previous_vp = gpu.previous_view_projection, inverse_vp = view.inverse_view_projection;
+    const bool valid = gpu.history_valid;
+    const float inside_cloud_m = 2.0f * gpu.block.steps.y;  // two of the shortest march steps
+    const ShaderDefines resolve_defines = {{"CLOUDS_CLIP", clouds->temporal_clipping ? "1" : "0"}};
+    g.add_pass(
+        "clouds.resolve",
+        [&](PassBuilder& b) {
+          b.read((*current)[0]);
+          b.read((*current)[1]);
+          b.read(history);
+          b.write(out_color);
+        },
+        [&rc, current, out_color, history, offset, moved, previous_vp, inverse_vp, valid,
+         resolve_defines, inside_cloud_m](PassContext& pc) {
+          Framebuffer fb(&pc.texture(out_color), nullptr);
+          fb.bind();
+          glDisable(GL_DEPTH_TEST);
+          glDisable(GL_BLEND);
+          glBindTextureUnit(0, pc.texture((*current)[0]).id());
+          glBindTextureUnit(1, pc.texture((*current)[1]).id());
+          glBindTextureUnit(2, pc.texture(history).id());
+          const Program& p = rc.shaders.graphics("fullscreen.vert", "clouds/resolve.frag", resolve_defines);
+          p.use();
+          glProgramUniform2i(p.id(), p.location("u_offset"), offset.x, offset.y);
+          p.set("u_inverse_view_projection", inverse_vp);
+          p.set("u_previous_view_projection", previous_vp);
+          p.set("u_camera_moved_m", moved);
+          p.set("u_history_valid", valid ? 1 : 0);
+          p.set("u_inside_cloud_m", inside_cloud_m);
+          rc.draw_fullscreen_triangle();
+        });
+    result = out_color;
+    gpu.history_index = read;
+    gpu.history_valid = true;
+  } else {
+    gpu.history_valid = false;
+  }
+  gpu.previous_view_projection = view.view_projection;
+  gpu.previous_camera_m = view.camera_position_m;
+
   g.add_pass(
       "clouds.composite",
       [&](PassBuilder& b) {
-        b.read(*march);
+        b.read(result);
         b.read(t.color);
         b.write(t.color);
       },
-      [&rc, t, march](PassContext& pc) {
+      [&rc, t, result](PassContext& pc) {
         Framebuffer fb(&pc.texture(t.color), nullptr);
         fb.bind();
         glDisable(GL_DEPTH_TEST);
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_SRC_ALPHA);  // clouds + transmittance x what lies behind
-        glBindTextureUnit(0, pc.texture(*march).id());
+        glBindTextureUnit(0, pc.texture(result).id());
         const Program& p = rc.shaders.graphics("fullscreen.vert", "clouds/composite.frag");
         p.use();
         rc.draw_fullscreen_triangle();

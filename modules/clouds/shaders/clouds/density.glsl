@@ -44,6 +44,9 @@ float clouds_altitude(vec3 x) {
 // What a layer's weather and vertical envelope allow at x, before the noise erodes it (also the
 // coarse occupancy that lets the march skip empty space without fetching the shape noise).
 float clouds_layer_envelope(CloudLayerGpu L, vec3 x, float h, out float t) {
+  t = 0.0;
+  // Outside the layer's reach (its base can move by the variation): no texture fetch at all.
+  if (h < L.altitude.x - L.altitude.z || h > L.altitude.x + L.altitude.y + L.altitude.z) return 0.0;
   vec4 w4 = texture(cl_weather_noise, L.weather.xyz + x * L.weather.w);
   int channel = int(L.model.y);
   float w = channel == 0 ? w4.r : channel == 1 ? w4.g : w4.b;
@@ -62,14 +65,15 @@ float clouds_layer_envelope(CloudLayerGpu L, vec3 x, float h, out float t) {
   return d0 * envelope * profile;
 }
 
-// Extinction (1/m) of one layer at x; `detail` adds the detail noise's erosion.
-float clouds_layer_density(CloudLayerGpu L, vec3 x, float h, bool detail) {
+// Extinction (1/m) of one layer at x; `detail` adds the detail noise's erosion. `envelope` is what
+// the weather allowed before any noise (0: empty space the march may skip).
+float clouds_layer_density(CloudLayerGpu L, vec3 x, float h, bool detail, out float envelope) {
   float t;
-  float base = clouds_layer_envelope(L, x, h, t);
-  if (base <= 0.0) return 0.0;
+  envelope = clouds_layer_envelope(L, x, h, t);
+  if (envelope <= 0.0) return 0.0;
   float s = texture(cl_shape_noise, cl_shape_origin.xyz + x * cl_shape_origin.w).r;
   float erosion = (1.0 - s) * L.shape.y;
-  float d = clamp((base - erosion) / max(1.0 - erosion, 1e-3), 0.0, 1.0);
+  float d = clamp((envelope - erosion) / max(1.0 - erosion, 1e-3), 0.0, 1.0);
   if (detail && d > 0.0 && L.shape.z > 0.0) {
     float n = texture(cl_detail_noise, cl_detail_origin.xyz + x * cl_detail_origin.w).r;
     // Wisps at the base, billows at the top (Schneider): the detail erodes thin parts most.
@@ -79,28 +83,24 @@ float clouds_layer_density(CloudLayerGpu L, vec3 x, float h, bool detail) {
   return d * L.altitude.w;
 }
 
-// Total extinction of the layers at x (shadow_only: only layers that cast shadows).
-float clouds_density(vec3 x, bool detail, bool shadow_only) {
+// Total extinction of the layers at x (shadow_only: only layers that cast shadows); `empty` when no
+// layer's weather allows cloud there.
+float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
+  empty = true;
   float h = clouds_altitude(x);
   if (h < cl_shell.x || h > cl_shell.y) return 0.0;
-  float sum = 0.0;
+  float sum = 0.0, envelope;
   int n = int(cl_planet.w);
   for (int i = 0; i < n; ++i) {
     if (shadow_only && cl_layers[i].model.z < 0.5) continue;
-    sum += clouds_layer_density(cl_layers[i], x, h, detail);
+    sum += clouds_layer_density(cl_layers[i], x, h, detail, envelope);
+    empty = empty && envelope <= 0.0;
   }
   return sum;
 }
-
-// True when no layer's weather allows cloud at x (no noise fetched).
-bool clouds_empty(vec3 x) {
-  float h = clouds_altitude(x);
-  if (h < cl_shell.x || h > cl_shell.y) return true;
-  int n = int(cl_planet.w);
-  float t;
-  for (int i = 0; i < n; ++i)
-    if (clouds_layer_envelope(cl_layers[i], x, h, t) > 0.0) return false;
-  return true;
+float clouds_density(vec3 x, bool detail, bool shadow_only) {
+  bool empty;
+  return clouds_density(x, detail, shadow_only, empty);
 }
 
 // Distances along a ray from a camera-relative origin to the sphere at `altitude` above the

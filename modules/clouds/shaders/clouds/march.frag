@@ -13,7 +13,11 @@
 #include "welkin/view.glsl"
 
 in vec2 v_ndc;
-out vec4 o_color;
+layout(location = 0) out vec4 o_color;
+layout(location = 1) out vec2 o_distance;  // the clouds' opacity-weighted mean distance, and the first cloud's (m)
+// Temporal upscaling marches one pixel of each 2x2 block per frame: this fragment stands for
+// march pixel floor(gl_FragCoord) * x + (y, z); without it, x = 1 and the offset is 0.
+uniform ivec3 u_stride_offset;
 layout(binding = 3) uniform sampler2D u_depth;       // the scene's depth (reversed Z; 0 = nothing)
 layout(binding = 4) uniform sampler2D u_blue_noise;  // 64 x 64, void-and-cluster
 
@@ -41,7 +45,8 @@ float light_optical_depth(vec3 x, vec3 l) {
 struct Accumulated {
   vec3 color;           // light from the clouds (and, per sample, the air in front of them)
   float transmittance;  // of the clouds alone
-  float depth_weight, weighted_depth;  // for CLOUDS_AP_MODE 1
+  float depth_weight, weighted_depth;  // opacity-weighted mean distance (reprojection; CLOUDS_AP_MODE 1)
+  float front;                         // distance of the first cloud sample
   bool ap_taken;                       // CLOUDS_AP_MODE 2: the air's terms at the first cloud
   vec3 ap_inscattering, ap_transmittance;
   int steps;
@@ -63,14 +68,16 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
     step_m = min(step_m, segment.y - t);
     vec3 x = dir * (t + 0.5 * step_m);
     ++acc.steps;
-    // Empty space: the weather allows no cloud here, so skip ahead without fetching the noise, by
-    // up to a quarter of the weather's texel (it cannot rise from nothing to cloud much faster).
-    if (clouds_empty(x)) {
-      t += max(step_m, min(cl_steps.z, cl_shell.z));
+    bool empty;
+    float density = clouds_density(x, detail, false, empty);
+    if (density <= 0.0) {
+      // Empty space: skip ahead by up to a quarter of the weather's texel (the weather cannot rise
+      // from nothing to cloud much faster); where the noise eroded the cloud, the usual step.
+      t += empty ? max(step_m, min(cl_steps.z, cl_shell.z)) : step_m;
       continue;
     }
-    float density = clouds_density(x, detail, false);
-    if (density > 0.0) {
+    {
+      acc.front = min(acc.front, t);
       float sigma_t = density * extinction_per_density;
       vec3 up = normalize(cl_up.xyz * cl_planet.z + x);
       vec3 e_light = cl_phase.w > 0.5 ? welkin_moon_irradiance(x) : welkin_sun_irradiance(x);
@@ -108,12 +115,12 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
       acc.color += acc.transmittance * ap_t * step_light + ap_s * opacity;
 #else
       acc.color += acc.transmittance * step_light;
-      acc.weighted_depth += opacity * (t + 0.5 * step_m);
-      acc.depth_weight += opacity;
 #if CLOUDS_AP_MODE == 2
       if (!acc.ap_taken) acc.ap_inscattering = welkin_aerial_perspective(x, acc.ap_transmittance), acc.ap_taken = true;
 #endif
 #endif
+      acc.weighted_depth += opacity * (t + 0.5 * step_m);
+      acc.depth_weight += opacity;
       acc.transmittance *= step_transmittance;
     }
     t += step_m;
@@ -121,13 +128,15 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
 }
 
 void main() {
-  vec3 dir = view_ray_direction(cl_inverse_view_projection, v_ndc);
-  float t_max = min(cl_up.w, scene_distance(v_ndc));
+  ivec2 pixel = ivec2(gl_FragCoord.xy) * u_stride_offset.x + u_stride_offset.yz;
+  vec2 ndc = (vec2(pixel) + 0.5) / cl_frame.zw * 2.0 - 1.0;
+  vec3 dir = view_ray_direction(cl_inverse_view_projection, ndc);
+  float t_max = min(cl_up.w, scene_distance(ndc));
   vec2 ground = clouds_sphere(dir, 0.0);
   if (ground.x <= ground.y && ground.x > 0.0) t_max = min(t_max, ground.x);
   vec2 outer = clouds_sphere(dir, cl_shell.y), inner = clouds_sphere(dir, cl_shell.x);
-  Accumulated acc = Accumulated(vec3(0.0), 1.0, 0.0, 0.0, false, vec3(0.0), vec3(1.0), 0);
-  float jitter = fract(texelFetch(u_blue_noise, ivec2(gl_FragCoord.xy) % 64, 0).r + cl_frame.x * 0.618034);
+  Accumulated acc = Accumulated(vec3(0.0), 1.0, 0.0, 0.0, cl_up.w, false, vec3(0.0), vec3(1.0), 0);
+  float jitter = fract(texelFetch(u_blue_noise, pixel % 64, 0).r + cl_frame.x * 0.618034);
   jitter = 0.25 + 0.75 * jitter;  // the first step: never so short that it wastes a sample
   if (outer.x <= outer.y && outer.y > 0.0) {
     vec2 a = vec2(max(outer.x, 0.0), outer.y), b = vec2(1.0, -1.0);
@@ -149,4 +158,5 @@ void main() {
   acc.color = acc.color * acc.ap_transmittance + acc.ap_inscattering * (1.0 - acc.transmittance);
 #endif
   o_color = vec4(max(acc.color, vec3(0.0)), acc.transmittance);
+  o_distance = vec2(acc.depth_weight > 0.0 ? acc.weighted_depth / acc.depth_weight : cl_up.w, acc.front);
 }

@@ -2,6 +2,8 @@
 // Owning wrappers of GL objects (move-only, deleted with their owner) and texture descriptions.
 #include <epoxy/gl.h>
 
+#include <initializer_list>
+
 #include <string>
 #include <utility>
 
@@ -48,7 +50,7 @@ using GlProgramName = GlHandle<gl_delete::program>;
 using GlVertexArrayName = GlHandle<gl_delete::vertex_array>;
 using GlQueryName = GlHandle<gl_delete::query>;
 
-enum class TextureFormat { rgba8, rgba16f, rgba32f, r8, r32f, depth32f };
+enum class TextureFormat { rgba8, rgba16f, rgba32f, r8, r32f, rg32f, depth32f };
 GLenum gl_internal_format(TextureFormat f);
 const char* texture_format_name(TextureFormat f);
 
@@ -75,15 +77,18 @@ class Texture {
   GlTextureName name_;
 };
 
-// Framebuffer with one colour attachment and an optional depth attachment.
+// Framebuffer with one colour attachment (or several, drawn to by location) and an optional depth
+// attachment.
 class Framebuffer {
  public:
   Framebuffer() = default;
   Framebuffer(const Texture* color, const Texture* depth);
+  Framebuffer(std::initializer_list<const Texture*> colors, const Texture* depth);
   void bind() const;
   GLuint id() const { return name_.id(); }
 
  private:
+  void attach(const Texture* const* colors, int color_count, const Texture* depth);
   GlFramebufferName name_;
   int width_ = 0, height_ = 0;
 };

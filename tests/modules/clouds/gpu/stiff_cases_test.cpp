@@ -85,7 +85,7 @@ TEST(CloudsConvergence, ErrorShrinksAsStepsShrink) {
   test::Rendered r = test::render(test::noon(), 24, 14);
   auto march = [&](float step_m) {
     VolumetricClouds& c = r.clouds();
-    c.quality = Quality::custom, c.resolution_scale = 1.0f, c.max_steps = 4096;
+    c.quality = Quality::custom, c.resolution_scale = 1.0f, c.max_steps = 4096, c.temporal_upscaling = false;
     c.min_step_m = c.max_step_m = step_m, c.max_distance_m = 30000.0f;
     r.frame(24, 14);
     return r.renderer->read_hdr();

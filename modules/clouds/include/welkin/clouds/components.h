@@ -83,6 +83,10 @@ struct VolumetricClouds {
   float max_distance_m = 200000.0f;
   bool shape_detail = true;
   float resolution_scale = 0.5f;  // the march runs at this fraction of the frame's width and height
+  // March one pixel of each 2x2 block per frame and reproject the rest from the last frame, clipped
+  // to this frame's samples (off while the camera is within the layers' altitudes).
+  bool temporal_upscaling = true;
+  bool temporal_clipping = true;  // off: plain reprojection (for measuring what clipping saves)
   // Shadows on every material (a beer shadow map from the sun around the camera) and sky occlusion.
   bool shadows = true;
   int shadow_map_size = 256;

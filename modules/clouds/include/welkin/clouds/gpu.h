@@ -112,6 +112,13 @@ struct CloudsGpu {
   bool shadow_rebuild = false;  // this frame remakes it
   int shadow_builds = 0;
   FrameBlock block;      // this frame's, uploaded before the geometry
+  // Temporal upscaling: the last two results at the march resolution.
+  std::unique_ptr<Texture> history_color[2];
+  int history_index = 0;      // the one the next frame writes
+  bool history_valid = false;  // history_color[1 - history_index] holds the last frame
+  glm::mat4 previous_view_projection{1.0f};
+  glm::dvec3 previous_camera_m{0.0};
+  uint64_t temporal_frame = 0;
   bool has_layers = false;  // some layer can hold cloud this frame
 };
 

@@ -1,0 +1,62 @@
+// Temporal upscaling of the clouds: this frame marched one pixel of each 2x2 block (u_current, a
+// quarter of the march's pixels); the others come from the previous frame's result, reprojected
+// through the clouds' own distance, and clipped to the range of this frame's neighbouring samples
+// so that what moved or appeared does not leave ghosts. CLOUDS_CLIP 0 keeps plain reprojection
+// (for the ghosting comparison of `welkin accuracy clouds`). Where the ray starts inside a cloud (the
+// camera in it) nothing is reprojected: the history there would smear the cloud around the camera.
+#include "welkin/view.glsl"
+in vec2 v_ndc;
+out vec4 o_color;
+layout(binding = 0) uniform sampler2D u_current;           // quarter resolution: colour, transmittance
+layout(binding = 1) uniform sampler2D u_current_distance;  // quarter resolution: mean and first cloud distance (m)
+layout(binding = 2) uniform sampler2D u_history;           // the last result at the march resolution
+uniform ivec2 u_offset;            // the 2x2 position marched this frame
+uniform mat4 u_inverse_view_projection;
+uniform mat4 u_previous_view_projection;
+uniform vec3 u_camera_moved_m;     // this frame's camera minus the last one's
+uniform int u_history_valid;
+uniform float u_inside_cloud_m;  // a first cloud sample closer than this: the camera is in the cloud
+
+void main() {
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  ivec2 block = pixel / 2;
+  ivec2 current_size = textureSize(u_current, 0);
+  if (all(equal(pixel % 2, u_offset))) {
+    o_color = texelFetch(u_current, block, 0);
+    return;
+  }
+  // The neighbourhood of fresh samples around this pixel: its range bounds the history.
+  vec4 lo = vec4(1e30), hi = vec4(-1e30), nearest = vec4(0.0);
+  float distance_m = 0.0, front_m = 0.0;
+  vec2 fresh_pos = vec2(pixel - u_offset) * 0.5;  // in quarter-res texels (centres at integers)
+  float best = 1e30;
+  for (int y = -1; y <= 1; ++y)
+    for (int x = -1; x <= 1; ++x) {
+      ivec2 q = clamp(block + ivec2(x, y), ivec2(0), current_size - 1);
+      vec4 c = texelFetch(u_current, q, 0);
+      lo = min(lo, c), hi = max(hi, c);
+      float d = dot(vec2(q) - fresh_pos, vec2(q) - fresh_pos);
+      if (d < best) {
+        vec2 distances = texelFetch(u_current_distance, q, 0).rg;
+        best = d, nearest = c, distance_m = distances.x, front_m = distances.y;
+      }
+    }
+  vec4 upsampled = texture(u_current, (fresh_pos + 0.5) / vec2(current_size));
+  if (u_history_valid == 0 || front_m < u_inside_cloud_m) {
+    o_color = upsampled;
+    return;
+  }
+  // Where this pixel's clouds were last frame, seen from last frame's camera.
+  vec3 dir = view_ray_direction(u_inverse_view_projection, v_ndc);
+  vec4 clip = u_previous_view_projection * vec4(dir * distance_m + u_camera_moved_m, 1.0);
+  vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+  if (clip.w <= 0.0 || any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) {
+    o_color = upsampled;
+    return;
+  }
+  vec4 history = texture(u_history, uv);
+#if CLOUDS_CLIP
+  history = clamp(history, lo, hi);
+#endif
+  o_color = history;
+}
