@@ -108,6 +108,7 @@ bool upload_frame(World& world, const SystemContext& sc, const VolumetricClouds&
     gpu.layer_capacity = count;
   }
   if (!layers.layers.empty()) gpu.layer_buffer->upload(layers.layers.data(), layers.layers.size() * sizeof(LayerBlock));
+  gpu.layers = layers.layers;
 
   // The shadow map: a square around the camera across the sun's direction, anchored in the world
   // and rebuilt only when what it shows has changed (sun, settings, drift or camera by a texel).

@@ -95,7 +95,7 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
         // Single scattering, and the diffuse light of a conservative slab: what the two-stream
         // transmittance lets through beyond the direct beam, spread over the sphere of directions.
         float direct = exp(-tau);
-        scattered = clouds_phase(mu, 1.0) * direct + max(1.0 / (1.0 + 0.15 * tau) - direct, 0.0) / (2.0 * CLOUDS_PI);
+        scattered = clouds_phase(mu, 1.0) * direct + max(1.0 / (1.0 + 0.15 * tau) - 0.25 * direct, 0.0) / (2.0 * CLOUDS_PI);
       }
       scattered *= 1.0 - cl_light.z * exp(-2.0 * sigma_t * cl_light.x);  // powder (0: off)
       // Sky from above and the lit ground from below, diffused through the cloud: the two-stream

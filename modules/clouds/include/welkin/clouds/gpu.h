@@ -112,6 +112,7 @@ struct CloudsGpu {
   bool shadow_rebuild = false;  // this frame remakes it
   int shadow_builds = 0;
   FrameBlock block;      // this frame's, uploaded before the geometry
+  std::vector<LayerBlock> layers;  // and its packed layers (the CPU reference reads them)
   // Temporal upscaling: the last two results at the march resolution.
   std::unique_ptr<Texture> history_color[2];
   int history_index = 0;      // the one the next frame writes

@@ -1,0 +1,133 @@
+#include "probe.h"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "reference/medium.h"
+#include "reference/phase.h"
+#include "welkin/clouds/gpu.h"
+#include "welkin/core/module.h"
+#include "welkin/core/world.h"
+#include "welkin/gfx/debug_content.h"
+#include "welkin/gfx/gpu_measure.h"
+#include "welkin/gfx/renderer.h"
+#include "welkin/scene/json_fields.h"
+#include "welkin/scene/scene_file.h"
+
+namespace welkin::modules {
+const ModuleDefinition& clouds_module();
+}
+
+namespace welkin::clouds {
+
+namespace ref = reference;
+
+namespace {
+
+// The cloud field as the reference's medium: extinction from the field, the layers' shell as the
+// only stretch where it may be non-zero (cut at the ground), the sum of full densities its bound.
+class CloudMedium final : public ref::Medium {
+ public:
+  explicit CloudMedium(const CloudField& field) : field_(field) {
+    const FrameBlock& f = field.frame();
+    center_ = -glm::dvec3(f.up) * double(f.planet.z);
+    radius_ = f.planet.x;
+  }
+  double extinction(const glm::dvec3& p) const override { return field_.extinction(p); }
+  ref::MajorantSegments segments(const ref::Ray& ray) const override {
+    ref::MajorantSegments s = ref::spherical_shell_segments(ray, center_, radius_ + field_.lowest_m(),
+                                                            radius_ + field_.highest_m(), field_.majorant());
+    double t0, t1;
+    if (ref::intersect_sphere(ray, center_, radius_, t0, t1) && t0 > 0.0) {
+      ref::MajorantSegments cut;
+      for (ref::MajorantSegment g : s)
+        if (g.t0 < t0) g.t1 = std::min(g.t1, t0), cut.push_back(g);
+      return cut;
+    }
+    return s;
+  }
+
+ private:
+  const CloudField& field_;
+  glm::dvec3 center_;
+  double radius_;
+};
+
+}  // namespace
+
+CloudProbe::CloudProbe(const VolumetricClouds& clouds, double sun_azimuth_deg, double sun_elevation_deg) {
+  world_ = std::make_unique<World>();
+  world_->modules().add_static(welkin::modules::clouds_module());
+  VolumetricClouds c = clouds;
+  c.temporal_upscaling = false;
+  c.ground_albedo = 0.0f;
+  const nlohmann::json doc = {
+      {"welkin_scene", 1},
+      {"entities",
+       {{{"name", "camera"}, {"components", {{"core.Camera", {{"vertical_fov_deg", 1.0}}}}}},
+        {{"name", "sun"},
+         {"components",
+          {{"core.DirectionalLight",
+            {{"azimuth_deg", sun_azimuth_deg}, {"elevation_deg", sun_elevation_deg}, {"color", {1, 1, 1}},
+             {"illuminance_lux", kSunIlluminance}, {"ambient_fraction", 0.0}}}}}},
+        {{"name", "clouds"}, {"components", {{"clouds.VolumetricClouds", object_to_json(type_desc<VolumetricClouds>(), &c)}}}}}}};
+  load_scene(*world_, doc, "cloud probe");
+  renderer_ = std::make_unique<Renderer>(*world_);
+  sun_direction_ = direction_from_azimuth_elevation(sun_azimuth_deg, sun_elevation_deg);
+}
+
+CloudProbe::~CloudProbe() = default;
+
+VolumetricClouds& CloudProbe::clouds() {
+  Registry& reg = world_->registry();
+  return *reg.get<VolumetricClouds>(reg.first<VolumetricClouds>());
+}
+
+void CloudProbe::aim(const CloudView& view) {
+  Registry& reg = world_->registry();
+  Camera& cam = *reg.get<Camera>(reg.first<Camera>());
+  cam.position_m = {0.0, 0.0, view.altitude_m};
+  cam.heading_deg = float(view.heading_deg);
+  cam.pitch_deg = float(view.pitch_deg);
+}
+
+double CloudProbe::gpu_radiance(const CloudView& view) {
+  aim(view);
+  renderer_->render_frame(FrameInfo{.index = frame_++}, 1, 1);
+  return renderer_->read_hdr().rgba[1];
+}
+
+ref::CloudRadianceEstimate CloudProbe::reference_radiance(const CloudView& view, const ref::PathTraceSettings& settings) {
+  aim(view);
+  renderer_->render_frame(FrameInfo{.index = frame_++}, 1, 1);  // this view's frame block and layers
+  const CloudsGpu& gpu = world_->resource<CloudsGpu>();
+  const CloudField field(read_noise(gpu), gpu.block, gpu.layers);
+  CloudMedium medium(field);
+  const VolumetricClouds& c = clouds();
+  std::unique_ptr<ref::PhaseFunction> phase;
+  if (c.phase == PhaseModel::droplet_mie) phase = std::make_unique<ref::ApproximateMie>(c.droplet_diameter_um);
+  else phase = std::make_unique<ref::DualLobeHenyeyGreenstein>(c.phase_g_forward, c.phase_g_backward, 1.0 - c.phase_mix);
+  const double albedo = c.scattering_coefficient / std::max(double(c.scattering_coefficient + c.absorption_coefficient), 1e-12);
+  medium.single_scattering_albedo = albedo;
+  const glm::dvec3 dir = direction_from_azimuth_elevation(view.heading_deg, view.pitch_deg);
+  return ref::path_trace(medium, *phase, ref::Ray{glm::dvec3(0.0), dir},
+                         ref::Lighting{.sun_direction = sun_direction_, .sun_irradiance = kSunIlluminance}, settings);
+}
+
+CloudProbe::Cost CloudProbe::cost(const CloudView& view, int width, int height, int frames) {
+  aim(view);
+  for (int i = 0; i < 2; ++i) renderer_->render_frame(FrameInfo{.index = frame_++}, width, height);
+  std::vector<double> ms;
+  for (int i = 0; i < frames; ++i) {
+    const FrameResult r = renderer_->render_frame(FrameInfo{.index = frame_++}, width, height);
+    double sum = 0.0;
+    for (const PassTiming& t : r.timings)
+      if (t.name.rfind("clouds.", 0) == 0) sum += t.gpu_ms;
+    ms.push_back(sum);
+  }
+  std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
+  return {ms[ms.size() / 2], fullscreen_copy_floor_ms(renderer_->context().shaders, width, height)};
+}
+
+}  // namespace welkin::clouds

@@ -1,0 +1,52 @@
+#pragma once
+// The GPU march against the CPU reference on single view rays through the same cloud field: a world
+// with the clouds, a white sun (core.DirectionalLight, 100 klx, no sky light, no air, no ground
+// bounce) so that both see exactly the same light, and a 1x1 frame aimed along each ray.
+#include <memory>
+#include <string>
+
+#include "cloud_field.h"
+#include "reference/cloud_path_tracer.h"
+#include "welkin/clouds/components.h"
+
+namespace welkin {
+class World;
+class Renderer;
+}  // namespace welkin
+
+namespace welkin::clouds {
+
+struct CloudView {
+  std::string name;
+  double altitude_m = 100.0;
+  double heading_deg = 0.0;  // clockwise from north
+  double pitch_deg = 30.0;
+};
+
+class CloudProbe {
+ public:
+  // Requires a current GL 4.5 context. The clouds' temporal upscaling is turned off: one frame, one ray.
+  CloudProbe(const VolumetricClouds& clouds, double sun_azimuth_deg, double sun_elevation_deg);
+  ~CloudProbe();
+  static constexpr double kSunIlluminance = 100000.0;
+
+  // Radiance (cd/m^2, green channel) of the ray through the centre of a 1x1 frame.
+  double gpu_radiance(const CloudView& view);
+  // The path-traced radiance of the same ray through the same field (the noise read back).
+  reference::CloudRadianceEstimate reference_radiance(const CloudView& view, const reference::PathTraceSettings& settings);
+  // Median GPU milliseconds of the clouds' passes per frame of width x height, and of a copy.
+  struct Cost {
+    double clouds_ms = 0.0, copy_ms = 0.0;
+  };
+  Cost cost(const CloudView& view, int width, int height, int frames);
+  VolumetricClouds& clouds();
+
+ private:
+  void aim(const CloudView& view);
+  std::unique_ptr<World> world_;
+  std::unique_ptr<Renderer> renderer_;
+  glm::dvec3 sun_direction_;
+  uint64_t frame_ = 0;
+};
+
+}  // namespace welkin::clouds

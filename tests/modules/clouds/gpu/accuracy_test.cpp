@@ -1,0 +1,50 @@
+// The GPU march against the path-traced reference through the same field (validation/probe.h), on
+// rays from below, inside and above a cumulus layer. The full sweep with run times is
+// `welkin accuracy clouds`; here a handful of rays guard the figures the README states.
+#include <cstdio>
+
+#include "clouds_test_support.h"
+#include "validation/probe.h"
+
+namespace welkin::clouds {
+namespace {
+
+VolumetricClouds cumulus() {
+  VolumetricClouds c;
+  c.layers = {CloudLayer{.genus = Genus::cumulus, .base_altitude_m = 1500.0f, .thickness_m = 1200.0f, .coverage = 0.6f, .density_per_m = 0.03f}};
+  c.shadows = false;
+  return c;
+}
+
+// Sun 40 degrees up; views from below (the base), inside and above (the lit tops and the side away).
+const CloudView kViews[] = {{"below 60", 100, 0, 60}, {"below 30", 100, 90, 30}, {"below 85", 100, 180, 85},
+                            {"inside", 2000, 30, 10}, {"above", 4000, 0, -40},  {"above sun side", 4000, 200, -20}};
+
+TEST(CloudsAccuracy, DiffusionBeatsOctavesAndStaysWithinItsStatedError) {
+  test::gl_context().make_current();
+  CloudProbe probe(cumulus(), 200.0, 40.0);
+  reference::PathTraceSettings s;
+  s.samples = 2048;
+  double sum[2] = {0.0, 0.0}, worst[2] = {0.0, 0.0};
+  for (const CloudView& v : kViews) {
+    const auto ref = probe.reference_radiance(v, s);
+    ASSERT_LT(ref.scattered.ci95, 0.1 * ref.radiance()) << v.name;
+    for (int m = 0; m < 2; ++m) {
+      probe.clouds().multiple_scattering = MultipleScattering(m);
+      const double gpu = probe.gpu_radiance(v), e = (gpu - ref.radiance()) / ref.radiance();
+      sum[m] += e * e, worst[m] = std::max(worst[m], std::abs(e));
+      std::printf("%-16s %-9s gpu %9.1f  reference %9.1f +- %6.1f  (%+.1f%%)\n", v.name.c_str(), m ? "diffusion" : "octaves",
+                  gpu, ref.radiance(), ref.scattered.ci95, 100.0 * e);
+    }
+  }
+  const double n = double(std::size(kViews));
+  const double rmse_octaves = std::sqrt(sum[0] / n), rmse_diffusion = std::sqrt(sum[1] / n);
+  std::printf("relative RMSE: octaves %.1f%% (worst %.1f%%), diffusion %.1f%% (worst %.1f%%)\n", 100 * rmse_octaves,
+              100 * worst[0], 100 * rmse_diffusion, 100 * worst[1]);
+  EXPECT_LT(rmse_diffusion, rmse_octaves);
+  EXPECT_LT(rmse_diffusion, 0.20);
+  EXPECT_LT(worst[1], 0.30);
+}
+
+}  // namespace
+}  // namespace welkin::clouds
