@@ -74,6 +74,8 @@ void describe(TypeBuilder<VolumetricClouds>& t) {
   t.field("multiple_scattering", &VolumetricClouds::multiple_scattering).values({{"octaves", 0}, {"diffusion", 1}});
   t.field("multiscattering_octaves", &VolumetricClouds::multiscattering_octaves).range(1, 16);
   t.field("powder", &VolumetricClouds::powder).range(0, 1).tooltip("Darkens thin edges facing the sun (not physical; 0: off)");
+  t.field("aerial_perspective", &VolumetricClouds::aerial_perspective).values({{"per_sample", 0}, {"mean_depth", 1}})
+      .tooltip("Air in front of the clouds: per sample, or at their mean distance (cheaper, wrong where sparse clouds overlap)");
   t.field("ground_albedo", &VolumetricClouds::ground_albedo).range(0, 1).tooltip("Ground bounce on the cloud bases");
   t.field("max_steps", &VolumetricClouds::max_steps).range(1, 4096).tooltip("quality custom");
   t.field("min_step_m", &VolumetricClouds::min_step_m).unit("m").range(1, 100000).tooltip("quality custom");

@@ -252,7 +252,8 @@ void clouds_system(SystemContext& sc) {
   if (!gpu.has_layers) return;
   const int w = int(gpu.block.frame.z), h = int(gpu.block.frame.w);
   const FrameView& view = rc.view;
-  ShaderDefines defines = {{"CLOUDS_AP_MODE", camera_in_space(world, gpu.block) ? "2" : "0"}};
+  const char* ap_mode = camera_in_space(world, gpu.block) ? "2" : clouds->aerial_perspective == CloudAerialPerspective::mean_depth ? "1" : "0";
+  ShaderDefines defines = {{"CLOUDS_AP_MODE", ap_mode}};
   const bool temporal = clouds->temporal_upscaling && w >= 2 && h >= 2;
   const int qw = temporal ? (w + 1) / 2 : w, qh = temporal ? (h + 1) / 2 : h;
   static constexpr glm::ivec2 kOffsets[4] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};

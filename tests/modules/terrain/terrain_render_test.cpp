@@ -16,6 +16,7 @@ namespace welkin::modules {
 const ModuleDefinition& atmosphere_module();
 const ModuleDefinition& terrain_module();
 const ModuleDefinition& timeofday_module();
+const ModuleDefinition& clouds_module();
 }  // namespace welkin::modules
 
 namespace {
@@ -97,11 +98,12 @@ TEST_F(TerrainRender, SampleTerrainRendersWithItsMaterial) {
 }
 
 TEST_F(TerrainRender, DefaultDemoSceneMatchesGolden) {
-  // Terrain, sky, time of day and aerial perspective on the distant mountains, at a small size.
+  // Terrain, sky, clouds and their shadows, time of day and aerial perspective, at a small size.
   World world;
   world.modules().add_static(modules::atmosphere_module());
   world.modules().add_static(modules::terrain_module());
   world.modules().add_static(modules::timeofday_module());
+  world.modules().add_static(modules::clouds_module());
   json doc = read_json_file(WELKIN_SOURCE_DIR "/assets/scenes/default.json");
   for (auto& e : doc["entities"])  // the scene names the terrain relative to the repository root
     if (e["components"].contains("terrain.Terrain"))

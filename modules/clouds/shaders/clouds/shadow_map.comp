@@ -18,10 +18,13 @@ void main() {
   vec3 start = ((uv.x - 0.5) * u_axis_u + (uv.y - 0.5) * u_axis_v) * u_extent_m + u_light * u_start_m;
   vec3 dir = -u_light;
   vec2 outer = clouds_sphere_from(start, dir, cl_shell.y), inner = clouds_sphere_from(start, dir, cl_shell.x);
-  vec4 result = vec4(3.0e37, 0.0, 0.0, 0.0);
+  // No cloud: the front at the column's end and no optical depth, so that filtering between a cloudy
+  // texel and a clear one blends their optical depths instead of jumping at the texel's edge.
+  vec4 result = vec4(0.0);
   if (outer.x <= outer.y && outer.y > 0.0) {
     vec2 seg = vec2(max(outer.x, 0.0), outer.y);
     if (inner.x <= inner.y && inner.x > 0.0) seg.y = min(seg.y, inner.x);
+    result.x = seg.y;
     float step_m = (seg.y - seg.x) / float(u_steps);
     float tau = 0.0, front = -1.0, back = 0.0;
     for (int i = 0; i < u_steps; ++i) {

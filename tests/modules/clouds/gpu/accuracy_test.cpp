@@ -48,3 +48,4 @@ TEST(CloudsAccuracy, DiffusionBeatsOctavesAndStaysWithinItsStatedError) {
 
 }  // namespace
 }  // namespace welkin::clouds
+

@@ -57,6 +57,10 @@ enum class PhaseModel : int { dual_lobe_hg = 0, droplet_mie = 1 };
 // light, 1 / (1 + 0.75 (1 - g) tau), less its direct part), which stays right in thick decks where
 // the octaves' exponentials starve.
 enum class MultipleScattering : int { octaves = 0, diffusion = 1 };
+// How the air between the camera and the clouds is applied: at every sample (each sample's light
+// through the air in front of it, and the air's light in front of each opacity step), or once at the
+// opacity-weighted mean distance (takram's: cheaper, wrong where distant sparse clouds overlap).
+enum class CloudAerialPerspective : int { per_sample = 0, mean_depth = 1 };
 
 struct VolumetricClouds {
   static constexpr std::string_view kTypeName = "clouds.VolumetricClouds";
@@ -74,6 +78,7 @@ struct VolumetricClouds {
   int multiscattering_octaves = 8;   // Wrenninge's octaves (1: single scattering only)
   float powder = 0.0f;               // Schneider's "beer-powder" darkening of thin edges (0: off)
   float ground_albedo = 0.3f;        // ground bounce lighting the cloud bases
+  CloudAerialPerspective aerial_perspective = CloudAerialPerspective::per_sample;
   // Marching (quality custom; the presets set them otherwise).
   int max_steps = 384;
   float min_step_m = 40.0f;
