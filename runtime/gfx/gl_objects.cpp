@@ -1,5 +1,7 @@
 #include "welkin/gfx/gl_objects.h"
 
+#include <algorithm>
+
 #include "welkin/core/error.h"
 
 namespace welkin {
@@ -34,12 +36,15 @@ Texture::Texture(const TextureDesc& desc) : desc_(desc) {
   GLuint id = 0;
   glCreateTextures(target(), 1, &id);
   name_ = GlTextureName(id);
+  int levels = 1;
+  if (desc.mipmaps)
+    while ((std::max({desc.width, desc.height, is_3d() ? desc.depth : 1}) >> levels) > 0) ++levels;
   if (is_3d())
-    glTextureStorage3D(id, 1, gl_internal_format(desc.format), desc.width, desc.height, desc.depth);
+    glTextureStorage3D(id, levels, gl_internal_format(desc.format), desc.width, desc.height, desc.depth);
   else
-    glTextureStorage2D(id, 1, gl_internal_format(desc.format), desc.width, desc.height);
+    glTextureStorage2D(id, levels, gl_internal_format(desc.format), desc.width, desc.height);
   GLint filter = desc.linear_filter ? GL_LINEAR : GL_NEAREST;
-  glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, filter);
+  glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, desc.mipmaps && desc.linear_filter ? GL_LINEAR_MIPMAP_LINEAR : filter);
   glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, filter);
   GLint wrap = desc.clamp ? GL_CLAMP_TO_EDGE : GL_REPEAT;
   glTextureParameteri(id, GL_TEXTURE_WRAP_S, wrap);

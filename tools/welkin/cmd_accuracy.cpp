@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "error_plot.h"
 #include "session.h"
 #include "validation/accuracy_set.h"
 #include "validation/probe.h"
@@ -26,8 +27,6 @@
 #include "welkin/gfx/image.h"
 #include "welkin/scene/scene_file.h"
 
-// Debian's stb: a tiny vector font, enough for axis labels (static functions, one translation unit).
-#include <stb/stb_easy_font.h>
 
 namespace welkin::cli {
 
@@ -118,151 +117,21 @@ struct ConfigResult {
   atmosphere::FrameCost cost;
 };
 
-// ---- A log-log plot drawn by hand --------------------------------------------------------------
-
-struct Canvas {
-  ImageU8 image;
-  Canvas(int w, int h) : image{w, h, std::vector<uint8_t>(size_t(w) * h * 4, 255)} {}
-  void pixel(int x, int y, glm::u8vec3 c) {
-    if (x < 0 || y < 0 || x >= image.width || y >= image.height) return;
-    uint8_t* p = &image.rgba[(size_t(y) * image.width + x) * 4];
-    p[0] = c.r, p[1] = c.g, p[2] = c.b, p[3] = 255;
-  }
-  void rect(int x0, int y0, int x1, int y1, glm::u8vec3 c) {
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) pixel(x, y, c);
-  }
-  void line(double x0, double y0, double x1, double y1, glm::u8vec3 c, int width = 1) {
-    const int n = int(std::max(std::abs(x1 - x0), std::abs(y1 - y0))) + 1;
-    for (int i = 0; i <= n; ++i) {
-      const double t = double(i) / n;
-      const int x = int(std::lround(x0 + (x1 - x0) * t)), y = int(std::lround(y0 + (y1 - y0) * t));
-      rect(x - width / 2, y - width / 2, x - width / 2 + width, y - width / 2 + width, c);
-    }
-  }
-  void disc(double cx, double cy, double r, glm::u8vec3 c) {
-    for (int y = int(cy - r); y <= int(cy + r) + 1; ++y)
-      for (int x = int(cx - r); x <= int(cx + r) + 1; ++x)
-        if ((x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r) pixel(x, y, c);
-  }
-  void square(double cx, double cy, double r, glm::u8vec3 c) {
-    line(cx - r, cy - r, cx + r, cy - r, c, 2);
-    line(cx + r, cy - r, cx + r, cy + r, c, 2);
-    line(cx + r, cy + r, cx - r, cy + r, c, 2);
-    line(cx - r, cy + r, cx - r, cy - r, c, 2);
-  }
-  // stb_easy_font emits quads (4 vertices of x, y, z, colour); each is an axis-aligned rectangle.
-  void text(double x, double y, const std::string& s, glm::u8vec3 c, int scale = 1) {
-    static char buffer[60000];
-    std::string copy = s;
-    unsigned char colour[4] = {c.r, c.g, c.b, 255};
-    const int quads = stb_easy_font_print(0, 0, copy.data(), colour, buffer, sizeof buffer);
-    const float* v = reinterpret_cast<const float*>(buffer);
-    for (int q = 0; q < quads; ++q, v += 16) {
-      const int x0 = int(x + v[0] * scale), y0 = int(y + v[1] * scale);
-      const int x1 = int(x + v[8] * scale), y1 = int(y + v[9] * scale);
-      rect(std::min(x0, x1), std::min(y0, y1), std::max(x0, x1), std::max(y0, y1), c);
-    }
-  }
-  static int text_width(const std::string& s, int scale = 1) {
-    std::string copy = s;
-    return stb_easy_font_width(copy.data()) * scale;
-  }
-};
-
-double floor_decade(double v) {
-  return std::pow(10.0, std::floor(std::log10(v)));
-}
-double ceil_decade(double v) {
-  return std::pow(10.0, std::ceil(std::log10(v)));
-}
-
-std::string tick_label(double v, bool percent) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, percent ? "%g%%" : "%g", percent ? v * 100.0 : v);
-  return buf;
-}
-
+// The log-log plot of error against GPU time: one series per method.
 void write_plot(const std::string& path, const std::vector<ConfigResult>& results, const std::string& size,
                 const std::string& renderer) {
-  const int W = 760, H = 520, left = 70, right = 180, top = 70, bottom = 60;
-  Canvas c(W, H);
-  double x_lo = 1e30, x_hi = 0, y_lo = 1e30, y_hi = 0;
-  for (const ConfigResult& r : results) {
-    x_lo = std::min(x_lo, r.cost.atmosphere_ms), x_hi = std::max(x_hi, r.cost.atmosphere_ms);
-    y_lo = std::min(y_lo, std::max(r.all_orders_plotted.rmse(), 1e-4));
-    y_hi = std::max(y_hi, std::max(r.all_orders_plotted.max, 1e-4));
-  }
-  x_lo = floor_decade(x_lo), x_hi = ceil_decade(x_hi * 1.0001), y_lo = floor_decade(y_lo),
-  y_hi = ceil_decade(y_hi * 1.0001);
-  auto px = [&](double x) {
-    return left + (std::log10(x) - std::log10(x_lo)) / std::log10(x_hi / x_lo) * (W - left - right);
-  };
-  auto py = [&](double y) {
-    return H - bottom - (std::log10(y) - std::log10(y_lo)) / std::log10(y_hi / y_lo) * (H - top - bottom);
-  };
-  const glm::u8vec3 grid(225, 225, 225), axis(60, 60, 60), ink(20, 20, 20);
-  for (double d = x_lo; d <= x_hi * 1.0001; d *= 10)
-    for (int k = 1; k < 10 && d * k <= x_hi * 1.0001; ++k) {
-      c.line(px(d * k), top, px(d * k), H - bottom, k == 1 ? glm::u8vec3(190, 190, 190) : grid);
-      if (k == 1 || (k == 2 || k == 5)) {
-        const std::string l = tick_label(d * k, false);
-        c.text(px(d * k) - Canvas::text_width(l) / 2.0, H - bottom + 6, l, ink);
-      }
-    }
-  for (double d = y_lo; d <= y_hi * 1.0001; d *= 10)
-    for (int k = 1; k < 10 && d * k <= y_hi * 1.0001; ++k) {
-      c.line(left, py(d * k), W - right, py(d * k), k == 1 ? glm::u8vec3(190, 190, 190) : grid);
-      if (k == 1 || k == 2 || k == 5) {
-        const std::string l = tick_label(d * k, true);
-        c.text(left - 6 - Canvas::text_width(l), py(d * k) - 3, l, ink);
-      }
-    }
-  c.line(left, H - bottom, W - right, H - bottom, axis, 2);
-  c.line(left, top, left, H - bottom, axis, 2);
-  c.text(left, 10, "welkin accuracy atmosphere: error against GPU time per frame", ink, 2);
-  c.text(left, 32, "path-traced reference, all orders, sun >= 0 deg; " + size + ", " + renderer, axis);
-  const std::string xl = "GPU ms per frame, atmosphere passes (log)";
-  c.text(left + (W - left - right - Canvas::text_width(xl)) / 2.0, H - 24, xl, ink);
-  c.text(6, top - 14, "relative error (log)", ink);
-
-  const std::map<SkyMethod, glm::u8vec3> colour{{SkyMethod::lut, {31, 119, 180}},
-                                                {SkyMethod::raymarch, {214, 39, 40}}};
+  std::vector<PlotSeries> series;
   for (SkyMethod m : {SkyMethod::lut, SkyMethod::raymarch}) {
-    const ConfigResult* prev = nullptr;
-    for (const ConfigResult& r : results) {
-      if (r.config.method != m) continue;
-      const double x = px(r.cost.atmosphere_ms), y = py(std::max(r.all_orders_plotted.rmse(), y_lo));
-      if (prev)
-        c.line(px(prev->cost.atmosphere_ms), py(std::max(prev->all_orders_plotted.rmse(), y_lo)), x, y,
-               colour.at(m));
-      prev = &r;
-    }
-    int k = 0;
-    for (const ConfigResult& r : results) {
-      if (r.config.method != m) continue;
-      const double x = px(r.cost.atmosphere_ms);
-      const double y = py(std::max(r.all_orders_plotted.rmse(), y_lo)),
-                   ym = py(std::max(r.all_orders_plotted.max, y_lo));
-      c.disc(x, y, 4.5, colour.at(m));
-      c.square(x, ym, 4, colour.at(m));
-      // Neighbouring presets alternate above and below their point, so close ones stay legible.
-      c.text(x + 6, (k++ % 2 == 0) ? y - 14 : y + 6, quality_name(r.config.quality), colour.at(m));
-    }
+    PlotSeries s{.name = method_name(m), .colour = m == SkyMethod::lut ? glm::u8vec3(31, 119, 180) : glm::u8vec3(214, 39, 40)};
+    for (const ConfigResult& r : results)
+      if (r.config.method == m)
+        s.points.push_back({r.cost.atmosphere_ms, r.all_orders_plotted.rmse(), r.all_orders_plotted.max,
+                            quality_name(r.config.quality)});
+    if (!s.points.empty()) series.push_back(std::move(s));
   }
-  // Legend.
-  double ly = top + 10;
-  const double lx = W - right + 16;
-  for (SkyMethod m : {SkyMethod::lut, SkyMethod::raymarch}) {
-    c.disc(lx + 5, ly + 3, 4.5, colour.at(m));
-    c.text(lx + 16, ly, std::string(method_name(m)) + ": relative RMSE", ink);
-    ly += 16;
-    c.square(lx + 5, ly + 3, 4, colour.at(m));
-    c.text(lx + 16, ly, std::string(method_name(m)) + ": max error", ink);
-    ly += 22;
-  }
-  c.text(lx, ly, "labels: quality preset", axis);
-  write_png(path, c.image);
+  write_error_plot(path, "welkin accuracy atmosphere: error against GPU time per frame",
+                   "path-traced reference, all orders, sun >= 0 deg; " + size + ", " + renderer,
+                   "GPU ms per frame, atmosphere passes (log)", series);
 }
 
 // ---- The sweep ---------------------------------------------------------------------------------
@@ -287,8 +156,11 @@ std::string steps_of(const atmosphere::Atmosphere& a) {
 }
 
 int run_accuracy(const AccuracyOptions& o) {
+  if (o.technique == "clouds")
+    return run_cloud_accuracy({.out = o.out, .size = o.size, .qualities = o.qualities, .frames = o.frames,
+                               .quick = o.quick, .json = o.json});
   if (o.technique != "atmosphere")
-    throw Error(ErrorInfo{.path = "technique", .expected = "atmosphere", .found = "'" + o.technique + "'"});
+    throw Error(ErrorInfo{.path = "technique", .expected = "atmosphere or clouds", .found = "'" + o.technique + "'"});
   int width = 0, height = 0;
   parse_size(o.size, width, height);
   std::vector<Config> configs;
@@ -483,7 +355,7 @@ void add_accuracy_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<AccuracyOptions>();
   CLI::App* cmd = app.add_subcommand(
       "accuracy", "Error against run time of every method and quality preset of a technique (CSV and plot)");
-  cmd->add_option("technique", o->technique, "The technique to measure: atmosphere")->required();
+  cmd->add_option("technique", o->technique, "The technique to measure: atmosphere, clouds")->required();
   cmd->add_option("--out", o->out, "Folder for the CSVs and the plot")->capture_default_str();
   cmd->add_option(
       "--cache", o->cache,

@@ -91,7 +91,7 @@ FrameBlock make_frame_block(const VolumetricClouds& clouds, const CloudsContext&
               clouds.droplet_diameter_um};
   f.phase = {clouds.phase_g_forward, clouds.phase_g_backward, clouds.phase_mix, ctx.sun_up_for_clouds ? 0.0f : 1.0f};
   f.frame = {float(frame_index % 1024), q.shape_detail ? 1.0f : 0.0f, float(march_width), float(march_height)};
-  f.light_model = {float(int(clouds.multiple_scattering)), 0.0f, 0.0f, 0.0f};
+  f.light_model = {float(int(clouds.multiple_scattering)), view.vertical_fov_rad / float(std::max(march_height, 1)), 0.0f, 0.0f};
   f.inverse_view_projection = view.inverse_view_projection;
   return f;
 }

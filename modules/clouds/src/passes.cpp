@@ -154,11 +154,11 @@ void ensure_noise(World& world, int seed) {
   if (gpu.noise_seed == seed) return;
   auto& rc = world.resource<RenderContext>();
   ensure_texture(gpu.shape, {.width = kShapeNoiseSize, .height = kShapeNoiseSize, .depth = kShapeNoiseSize,
-                             .format = TextureFormat::r8, .clamp = false});
+                             .format = TextureFormat::r8, .clamp = false, .mipmaps = true});
   ensure_texture(gpu.detail, {.width = kDetailNoiseSize, .height = kDetailNoiseSize, .depth = kDetailNoiseSize,
-                              .format = TextureFormat::r8, .clamp = false});
+                              .format = TextureFormat::r8, .clamp = false, .mipmaps = true});
   ensure_texture(gpu.weather, {.width = kWeatherNoiseSize, .height = kWeatherNoiseSize, .depth = kWeatherNoiseSize,
-                               .format = TextureFormat::rgba8, .clamp = false});
+                               .format = TextureFormat::rgba8, .clamp = false, .mipmaps = true});
   const std::pair<Texture*, const char*> volumes[] = {{gpu.shape.get(), "0"}, {gpu.detail.get(), "1"}, {gpu.weather.get(), "2"}};
   for (auto [texture, kind] : volumes) {
     const Program& p = rc.shaders.compute("clouds/noise.comp", {{"CLOUDS_NOISE", kind}});
@@ -170,6 +170,8 @@ void ensure_noise(World& world, int seed) {
   }
   glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
   equalise_weather(*gpu.weather);
+  // Far away a pixel spans many texels: the march reads coarser levels there instead of aliasing.
+  for (Texture* t : {gpu.shape.get(), gpu.detail.get(), gpu.weather.get()}) glGenerateTextureMipmap(t->id());
   const std::vector<float> blue = void_and_cluster(kBlueNoiseSize, uint32_t(seed));
   ensure_texture(gpu.blue_noise, {.width = kBlueNoiseSize, .height = kBlueNoiseSize, .format = TextureFormat::r32f,
                                   .linear_filter = false, .clamp = false});

@@ -16,7 +16,7 @@ layout(std140, binding = 0) uniform CloudsFrame {
   vec4 cl_medium;          // scattering, absorption (per unit density), phase model, droplet diameter um
   vec4 cl_phase;           // g forward, g backward, forward weight, light marched (0 sun, 1 moon)
   vec4 cl_frame;           // frame index, shape detail on, march width, march height
-  vec4 cl_light_model;     // multiple scattering: 0 octaves, 1 diffusion
+  vec4 cl_light_model;     // multiple scattering: 0 octaves, 1 diffusion; y: march pixel angle (rad)
   mat4 cl_inverse_view_projection;
 };
 
@@ -34,6 +34,11 @@ layout(binding = 0) uniform sampler3D cl_shape_noise;
 layout(binding = 1) uniform sampler3D cl_detail_noise;
 layout(binding = 2) uniform sampler3D cl_weather_noise;
 
+// The width a sample stands for (a pixel's footprint at its distance): the noise is read at the
+// mip level whose texels match it, so distant clouds average instead of aliasing. Set by the caller.
+float clouds_footprint_m = 0.0;
+float clouds_lod(float texel_m) { return log2(max(clouds_footprint_m / texel_m, 1.0)); }
+
 float clouds_altitude(vec3 x) {
   float r_c = cl_planet.z;
   float d = 2.0 * r_c * dot(cl_up.xyz, x) + dot(x, x);  // r^2 - r_camera^2
@@ -47,7 +52,7 @@ float clouds_layer_envelope(CloudLayerGpu L, vec3 x, float h, out float t) {
   t = 0.0;
   // Outside the layer's reach (its base can move by the variation): no texture fetch at all.
   if (h < L.altitude.x - L.altitude.z || h > L.altitude.x + L.altitude.y + L.altitude.z) return 0.0;
-  vec4 w4 = texture(cl_weather_noise, L.weather.xyz + x * L.weather.w);
+  vec4 w4 = textureLod(cl_weather_noise, L.weather.xyz + x * L.weather.w, clouds_lod(1.0 / (L.weather.w * 64.0)));
   int channel = int(L.model.y);
   float w = channel == 0 ? w4.r : channel == 1 ? w4.g : w4.b;
   float base = L.altitude.x + L.altitude.z * (w4.a - 0.5) * 2.0;
@@ -71,11 +76,11 @@ float clouds_layer_density(CloudLayerGpu L, vec3 x, float h, bool detail, out fl
   float t;
   envelope = clouds_layer_envelope(L, x, h, t);
   if (envelope <= 0.0) return 0.0;
-  float s = texture(cl_shape_noise, cl_shape_origin.xyz + x * cl_shape_origin.w).r;
+  float s = textureLod(cl_shape_noise, cl_shape_origin.xyz + x * cl_shape_origin.w, clouds_lod(1.0 / (cl_shape_origin.w * 128.0))).r;
   float erosion = (1.0 - s) * L.shape.y;
   float d = clamp((envelope - erosion) / max(1.0 - erosion, 1e-3), 0.0, 1.0);
   if (detail && d > 0.0 && L.shape.z > 0.0) {
-    float n = texture(cl_detail_noise, cl_detail_origin.xyz + x * cl_detail_origin.w).r;
+    float n = textureLod(cl_detail_noise, cl_detail_origin.xyz + x * cl_detail_origin.w, clouds_lod(1.0 / (cl_detail_origin.w * 32.0))).r;
     // Wisps at the base, billows at the top (Schneider): the detail erodes thin parts most.
     float e = mix(n, 1.0 - n, clamp(t * 4.0, 0.0, 1.0)) * L.shape.z * 0.35 * (1.0 - d);
     d = clamp((d - e) / max(1.0 - e, 1e-3), 0.0, 1.0);

@@ -68,6 +68,7 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
     step_m = min(step_m, segment.y - t);
     vec3 x = dir * (t + 0.5 * step_m);
     ++acc.steps;
+    clouds_footprint_m = (t + 0.5 * step_m) * cl_light_model.y;
     bool empty;
     float density = clouds_density(x, detail, false, empty);
     if (density <= 0.0) {
@@ -131,7 +132,7 @@ void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy) * u_stride_offset.x + u_stride_offset.yz;
   vec2 ndc = (vec2(pixel) + 0.5) / cl_frame.zw * 2.0 - 1.0;
   vec3 dir = view_ray_direction(cl_inverse_view_projection, ndc);
-  float t_max = min(cl_up.w, scene_distance(ndc));
+  float t_max = scene_distance(ndc);
   vec2 ground = clouds_sphere(dir, 0.0);
   if (ground.x <= ground.y && ground.x > 0.0) t_max = min(t_max, ground.x);
   vec2 outer = clouds_sphere(dir, cl_shell.y), inner = clouds_sphere(dir, cl_shell.x);
@@ -144,6 +145,9 @@ void main() {
       b = vec2(max(inner.y, 0.0), outer.y);
       a.y = min(a.y, inner.x);
     }
+    // The march reaches max distance beyond where the ray enters the layers (from orbit, that is
+    // a thousand kilometres away).
+    t_max = min(t_max, (a.x < a.y ? a.x : b.x) + cl_up.w);
     a.y = min(a.y, t_max), b.y = min(b.y, t_max);
     if (a.x < a.y) march_segment(dir, a, jitter, acc);
     if (b.x < b.y) march_segment(dir, b, jitter, acc);

@@ -59,6 +59,7 @@ struct TextureDesc {
   TextureFormat format = TextureFormat::rgba16f;
   bool linear_filter = true;
   bool clamp = true;
+  bool mipmaps = false;  // a full chain, filtered trilinearly (fill it with glGenerateTextureMipmap)
   friend bool operator==(const TextureDesc&, const TextureDesc&) = default;
 };
 

@@ -1,10 +1,10 @@
-// The GPU march against the path-traced reference through the same field (validation/probe.h), on
+// The GPU march against the path-traced reference through the same field (validation/cloud_probe.h), on
 // rays from below, inside and above a cumulus layer. The full sweep with run times is
 // `welkin accuracy clouds`; here a handful of rays guard the figures the README states.
 #include <cstdio>
 
 #include "clouds_test_support.h"
-#include "validation/probe.h"
+#include "validation/cloud_probe.h"
 
 namespace welkin::clouds {
 namespace {

@@ -1,4 +1,4 @@
-#include "probe.h"
+#include "cloud_probe.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,130 @@
+// welkin accuracy clouds [--out DIR] [--size WxH] [--frames N] [--qualities ...] [--quick] [--json]
+// The clouds' "error against run time": each quality preset and multiple-scattering model marched
+// on view rays from below, inside and above a cumulus layer and from orbit, against the path-traced
+// radiance of the same rays through the same field (validation/cloud_probe.h), next to the GPU time of the
+// clouds' passes per frame at a stated size. Writes a summary CSV, a per-ray CSV and a log-log plot.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "error_plot.h"
+#include "session.h"
+#include "validation/cloud_probe.h"
+#include "welkin/core/error.h"
+#include "welkin/gfx/gl_context.h"
+
+namespace welkin::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using clouds::CloudView;
+using clouds::MultipleScattering;
+using clouds::Quality;
+
+struct CloudConfig {
+  Quality quality;
+  MultipleScattering model;
+  std::string name;
+};
+
+// Sun 40 degrees up; a cumulus layer 1.5-2.7 km with 60% coverage.
+clouds::VolumetricClouds measured_clouds() {
+  clouds::VolumetricClouds c;
+  c.layers = {clouds::CloudLayer{.genus = clouds::Genus::cumulus, .base_altitude_m = 1500.0f, .thickness_m = 1200.0f,
+                                 .coverage = 0.6f, .density_per_m = 0.03f}};
+  c.shadows = false;
+  return c;
+}
+
+std::vector<CloudView> measured_views(bool quick) {
+  std::vector<CloudView> v;
+  for (double heading : {0.0, 90.0, 180.0, 270.0})
+    for (double pitch : {30.0, 60.0, 85.0}) v.push_back({"below", 100.0, heading, pitch});
+  for (double heading : {30.0, 150.0, 250.0}) v.push_back({"inside", 2000.0, heading, 10.0});
+  for (double heading : {0.0, 120.0, 200.0}) v.push_back({"above", 4000.0, heading, -40.0});
+  for (double heading : {20.0, 200.0}) v.push_back({"orbit", 1.0e6, heading, -88.0});
+  if (quick) v = {v[0], v[12], v[15], v[18]};
+  return v;
+}
+
+}  // namespace
+
+int run_cloud_accuracy(const CloudAccuracyOptions& o) {
+  int width = 0, height = 0;
+  parse_size(o.size, width, height);
+  const std::map<std::string, Quality> names{{"low", Quality::low}, {"medium", Quality::medium}, {"high", Quality::high}, {"ultra", Quality::ultra}};
+  std::vector<CloudConfig> configs;
+  for (MultipleScattering m : {MultipleScattering::diffusion, MultipleScattering::octaves})
+    for (const std::string& q : o.qualities) {
+      if (!names.count(q)) throw Error(ErrorInfo{.path = "--qualities", .expected = "low, medium, high or ultra", .found = "'" + q + "'"});
+      configs.push_back({names.at(q), m, std::string(m == MultipleScattering::diffusion ? "diffusion" : "octaves") + "/" + q});
+    }
+  fs::create_directories(o.out);
+  std::unique_ptr<GlContext> gl = create_headless_context();
+  const std::string renderer = gl->info().renderer;
+  clouds::CloudProbe probe(measured_clouds(), 200.0, 40.0);
+  const std::vector<CloudView> views = measured_views(o.quick);
+
+  // References once per ray (they do not depend on the GPU's settings).
+  clouds::reference::PathTraceSettings settings;
+  settings.samples = o.quick ? 1024 : 8192;
+  std::vector<clouds::reference::CloudRadianceEstimate> refs;
+  for (size_t i = 0; i < views.size(); ++i) {
+    refs.push_back(probe.reference_radiance(views[i], settings));
+    std::fprintf(stderr, "\rreference %zu/%zu", i + 1, views.size());
+  }
+  std::fprintf(stderr, "\n");
+
+  std::ofstream rays_csv(fs::path(o.out) / "accuracy-clouds-rays.csv");
+  rays_csv << "config,view,altitude_m,heading_deg,pitch_deg,gpu,reference,reference_ci95,relative_error\n";
+  std::ofstream csv(fs::path(o.out) / "accuracy-clouds.csv");
+  csv << "config,clouds_ms,copy_ms,ratio_to_copy,relative_rmse,max_relative_error\n";
+  std::map<MultipleScattering, PlotSeries> series;
+  nlohmann::json results = nlohmann::json::array();
+  std::printf("errors relative to the mean reference radiance over the rays\n");
+  std::printf("| model / quality | clouds ms | x copy | relative RMSE | worst |\n|---|---|---|---|---|\n");
+  for (const CloudConfig& cfg : configs) {
+    clouds::VolumetricClouds& c = probe.clouds();
+    c.quality = cfg.quality;
+    c.multiple_scattering = cfg.model;
+    // Errors relative to the mean reference radiance: a ray that grazes a thin edge (a few percent of
+    // the others' light, with a noisy reference) weighs what its light weighs.
+    double mean_reference = 0.0;
+    for (const auto& r : refs) mean_reference += r.radiance() / double(refs.size());
+    double sum = 0.0, worst = 0.0;
+    for (size_t i = 0; i < views.size(); ++i) {
+      const double gpu = probe.gpu_radiance(views[i]), r = refs[i].radiance();
+      const double e = (gpu - r) / mean_reference;
+      sum += e * e, worst = std::max(worst, std::abs(e));
+      rays_csv << cfg.name << "," << views[i].name << "," << views[i].altitude_m << "," << views[i].heading_deg << ","
+               << views[i].pitch_deg << "," << gpu << "," << r << "," << refs[i].scattered.ci95 << "," << e << "\n";
+    }
+    const double rmse = std::sqrt(sum / double(views.size()));
+    c.temporal_upscaling = true;
+    const clouds::CloudProbe::Cost cost = probe.cost({"cost", 100.0, 210.0, 8.0}, width, height, o.frames);
+    c.temporal_upscaling = false;
+    csv << cfg.name << "," << cost.clouds_ms << "," << cost.copy_ms << "," << cost.clouds_ms / cost.copy_ms << "," << rmse << "," << worst << "\n";
+    std::printf("| %s | %.1f | %.0f | %.1f%% | %.1f%% |\n", cfg.name.c_str(), cost.clouds_ms, cost.clouds_ms / cost.copy_ms,
+                100 * rmse, 100 * worst);
+    PlotSeries& s = series[cfg.model];
+    s.name = cfg.model == MultipleScattering::diffusion ? "diffusion" : "octaves";
+    s.colour = cfg.model == MultipleScattering::diffusion ? glm::u8vec3(31, 119, 180) : glm::u8vec3(214, 39, 40);
+    s.points.push_back({cost.clouds_ms, rmse, worst, cfg.name.substr(cfg.name.find('/') + 1)});
+    results.push_back({{"config", cfg.name}, {"clouds_ms", cost.clouds_ms}, {"copy_ms", cost.copy_ms}, {"relative_rmse", rmse}, {"max", worst}});
+  }
+  const std::string png = (fs::path(o.out) / "accuracy-clouds.png").string();
+  write_error_plot(png, "welkin accuracy clouds: error against GPU time per frame",
+                   "path-traced reference through the same field, " + std::to_string(views.size()) + " rays; " + o.size + ", " + renderer,
+                   "GPU ms per frame, clouds passes (log)", {series[MultipleScattering::diffusion], series[MultipleScattering::octaves]});
+  if (o.json) std::printf("%s\n", nlohmann::json{{"rays", views.size()}, {"results", results}, {"plot", png}}.dump(2).c_str());
+  std::printf("\nwrote %s, %s and %s\n", (fs::path(o.out) / "accuracy-clouds.csv").string().c_str(),
+              (fs::path(o.out) / "accuracy-clouds-rays.csv").string().c_str(), png.c_str());
+  return kOk;
+}
+
+}  // namespace welkin::cli
