@@ -80,6 +80,7 @@ void describe(TypeBuilder<VolumetricClouds>& t) {
   t.field("max_steps", &VolumetricClouds::max_steps).range(1, 4096).tooltip("quality custom");
   t.field("min_step_m", &VolumetricClouds::min_step_m).unit("m").range(1, 100000).tooltip("quality custom");
   t.field("max_step_m", &VolumetricClouds::max_step_m).unit("m").range(1, 100000).tooltip("quality custom");
+  t.field("step_growth", &VolumetricClouds::step_growth).range(0, 0.1).tooltip("quality custom: metres of step per metre of distance");
   t.field("light_steps", &VolumetricClouds::light_steps).range(0, 64).tooltip("quality custom");
   t.field("light_step_m", &VolumetricClouds::light_step_m).unit("m").range(1, 100000).tooltip("quality custom");
   t.field("max_distance_m", &VolumetricClouds::max_distance_m).unit("m").range(100, 1e8);
@@ -100,13 +101,14 @@ void describe(TypeBuilder<VolumetricClouds>& t) {
 
 ResolvedQuality resolve_quality(const VolumetricClouds& c) {
   switch (c.quality) {
-    case Quality::low: return {96, 120.0f, 1500.0f, 2, 150.0f, false, 0.25f};
-    case Quality::medium: return {192, 70.0f, 1000.0f, 3, 100.0f, true, 0.5f};
-    case Quality::high: return {384, 40.0f, 800.0f, 4, 80.0f, true, 0.5f};
-    case Quality::ultra: return {768, 20.0f, 500.0f, 6, 50.0f, true, 1.0f};
+    case Quality::low: return {64, 120.0f, 2000.0f, 2, 150.0f, false, 0.25f, 0.012f};
+    case Quality::medium: return {128, 70.0f, 1200.0f, 3, 100.0f, true, 0.4f, 0.008f};
+    case Quality::high: return {256, 40.0f, 800.0f, 4, 80.0f, true, 0.5f, 0.005f};
+    case Quality::ultra: return {768, 20.0f, 500.0f, 6, 50.0f, true, 1.0f, 0.002f};
     case Quality::custom: break;
   }
-  return {c.max_steps, c.min_step_m, c.max_step_m, c.light_steps, c.light_step_m, c.shape_detail, c.resolution_scale};
+  return {c.max_steps, c.min_step_m, c.max_step_m, c.light_steps, c.light_step_m, c.shape_detail, c.resolution_scale,
+          c.step_growth};
 }
 
 void validate(const VolumetricClouds& c) {

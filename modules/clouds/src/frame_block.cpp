@@ -18,6 +18,23 @@ glm::vec3 tile_origin(const glm::dvec3& p_m, double period_m) {
 
 }  // namespace
 
+std::vector<glm::vec2> altitude_bands(std::vector<glm::vec2> ranges, int max_bands) {
+  std::sort(ranges.begin(), ranges.end(), [](const glm::vec2& a, const glm::vec2& b) { return a.x < b.x; });
+  std::vector<glm::vec2> bands;
+  for (const glm::vec2& r : ranges) {
+    if (!bands.empty() && r.x <= bands.back().y) bands.back().y = std::max(bands.back().y, r.y);
+    else bands.push_back(r);
+  }
+  while (int(bands.size()) > max_bands) {
+    size_t closest = 0;
+    for (size_t i = 1; i + 1 < bands.size(); ++i)
+      if (bands[i + 1].x - bands[i].y < bands[closest + 1].x - bands[closest].y) closest = i;
+    bands[closest].y = bands[closest + 1].y;
+    bands.erase(bands.begin() + long(closest) + 1);
+  }
+  return bands;
+}
+
 GenusModel genus_model(Genus genus) {
   switch (genus) {
     case Genus::cumulus: return {1.0f, 2.5f};
@@ -57,6 +74,7 @@ PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& ct
     out.layers.push_back(b);
     out.source_index.push_back(int(i));
     const float lo = L.base_altitude_m - L.base_variation_m, hi = L.base_altitude_m + L.thickness_m + L.base_variation_m;
+    out.ranges.push_back({lo, hi});
     out.lowest_m = first ? lo : std::min(out.lowest_m, lo);
     out.highest_m = first ? hi : std::max(out.highest_m, hi);
     first = false;
@@ -82,7 +100,9 @@ FrameBlock make_frame_block(const VolumetricClouds& clouds, const CloudsContext&
   // z: the empty-space step, a quarter of the finest weather texel of the layers.
   float finest_weather_m = clouds.weather_period_m;
   for (const LayerBlock& b : layers.layers) finest_weather_m = std::min(finest_weather_m, 1.0f / b.weather.w);
-  f.shell = {layers.lowest_m, layers.highest_m, 0.25f * finest_weather_m / float(kWeatherNoiseSize), 0.0f};
+  float largest_block_m = 0.0f;
+  for (const LayerBlock& b : layers.layers) largest_block_m = std::max(largest_block_m, 1.0f / (b.weather.w * float(kWeatherOccupancySize)));
+  f.shell = {layers.lowest_m, layers.highest_m, 0.25f * finest_weather_m / float(kWeatherNoiseSize), largest_block_m};
   f.shape_origin = glm::vec4(tile_origin(p - drift, clouds.shape_period_m), 1.0f / clouds.shape_period_m);
   f.detail_origin = glm::vec4(tile_origin(p - drift, clouds.detail_period_m), 1.0f / clouds.detail_period_m);
   f.steps = {float(q.max_steps), q.min_step_m, q.max_step_m, float(q.light_steps)};
@@ -91,7 +111,10 @@ FrameBlock make_frame_block(const VolumetricClouds& clouds, const CloudsContext&
               clouds.droplet_diameter_um};
   f.phase = {clouds.phase_g_forward, clouds.phase_g_backward, clouds.phase_mix, ctx.sun_up_for_clouds ? 0.0f : 1.0f};
   f.frame = {float(frame_index % 1024), q.shape_detail ? 1.0f : 0.0f, float(march_width), float(march_height)};
-  f.light_model = {float(int(clouds.multiple_scattering)), view.vertical_fov_rad / float(std::max(march_height, 1)), 0.0f, 0.0f};
+  const std::vector<glm::vec2> bands = altitude_bands(layers.ranges);
+  f.light_model = {float(int(clouds.multiple_scattering)), view.vertical_fov_rad / float(std::max(march_height, 1)),
+                   float(bands.size()), q.step_growth};
+  for (size_t i = 0; i < bands.size(); ++i) f.band_low[int(i)] = bands[i].x, f.band_high[int(i)] = bands[i].y;
   f.inverse_view_projection = view.inverse_view_projection;
   return f;
 }

@@ -51,7 +51,7 @@ CloudsContext read_context(World& world, const FrameInfo& frame) {
 
 // Equalises each coverage channel of the weather volume to a uniform distribution, so that a
 // layer's coverage c covers a fraction c of the sky whatever the noise's own histogram.
-void equalise_weather(Texture& weather) {
+std::vector<uint8_t> equalise_weather(Texture& weather) {
   const int n = weather.desc().width * weather.desc().height * weather.desc().depth;
   std::vector<uint8_t> data(size_t(n) * 4);
   glGetTextureImage(weather.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(data.size()), data.data());
@@ -68,6 +68,30 @@ void equalise_weather(Texture& weather) {
   }
   glTextureSubImage3D(weather.id(), 0, 0, 0, 0, weather.desc().width, weather.desc().height, weather.desc().depth,
                       GL_RGBA, GL_UNSIGNED_BYTE, data.data());
+  return data;
+}
+
+// The coarse occupancy the march skips empty space with: for each block of 4^3 weather texels, the
+// largest coverage signal of each channel over the block and the texels a linear filter reads beside
+// it. The march leaves a block whose maximum allows no cloud at the block's far side.
+std::vector<uint8_t> weather_maximum(const std::vector<uint8_t>& weather, int size) {
+  const int b = kWeatherOccupancySize, per = size / b;
+  auto at = [&](int x, int y, int z, int c) {
+    auto w = [size](int v) { return ((v % size) + size) % size; };
+    return weather[((size_t(w(z)) * size + size_t(w(y))) * size + size_t(w(x))) * 4 + size_t(c)];
+  };
+  std::vector<uint8_t> out(size_t(b) * b * b * 4, 0);
+  for (int z = 0; z < b; ++z)
+    for (int y = 0; y < b; ++y)
+      for (int x = 0; x < b; ++x)
+        for (int c = 0; c < 3; ++c) {
+          uint8_t m = 0;
+          for (int k = -1; k <= per; ++k)
+            for (int j = -1; j <= per; ++j)
+              for (int i = -1; i <= per; ++i) m = std::max(m, at(x * per + i, y * per + j, z * per + k, c));
+          out[((size_t(z) * b + y) * b + x) * 4 + size_t(c)] = m;
+        }
+  return out;
 }
 
 void bind_field(const CloudsGpu& gpu) {
@@ -76,6 +100,7 @@ void bind_field(const CloudsGpu& gpu) {
   glBindTextureUnit(0, gpu.shape->id());
   glBindTextureUnit(1, gpu.detail->id());
   glBindTextureUnit(2, gpu.weather->id());
+  glBindTextureUnit(5, gpu.weather_maximum->id());
 }
 
 bool camera_in_space(World& world, const FrameBlock& f) {
@@ -169,7 +194,11 @@ void ensure_noise(World& world, int seed) {
     dispatch_compute(p, g, g, g);
   }
   glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
-  equalise_weather(*gpu.weather);
+  const std::vector<uint8_t> weather = equalise_weather(*gpu.weather);
+  ensure_texture(gpu.weather_maximum, {.width = kWeatherOccupancySize, .height = kWeatherOccupancySize, .depth = kWeatherOccupancySize,
+                                       .format = TextureFormat::rgba8, .linear_filter = false, .clamp = false});
+  glTextureSubImage3D(gpu.weather_maximum->id(), 0, 0, 0, 0, kWeatherOccupancySize, kWeatherOccupancySize, kWeatherOccupancySize,
+                      GL_RGBA, GL_UNSIGNED_BYTE, weather_maximum(weather, kWeatherNoiseSize).data());
   // Far away a pixel spans many texels: the march reads coarser levels there instead of aliasing.
   for (Texture* t : {gpu.shape.get(), gpu.detail.get(), gpu.weather.get()}) glGenerateTextureMipmap(t->id());
   const std::vector<float> blue = void_and_cluster(kBlueNoiseSize, uint32_t(seed));

@@ -1,24 +1,44 @@
 #pragma once
 // The cloud density field, shared by the march, the light march and the shadow map (and mirrored in
-// C++ by src/cloud_field.cpp for the CPU reference). Points are camera-relative metres; lengths in
+// C++ by validation/cloud_field.cpp for the CPU reference). Points are camera-relative metres; lengths in
 // the planet-centred frame come from the camera's radius so that float precision does not depend on
 // the planet's size (altitude h = h_camera + (r^2 - r_camera^2) / (r + r_camera)).
 
 // Per frame (src/frame_block.cpp mirrors it, std140).
 layout(std140, binding = 0) uniform CloudsFrame {
-  vec4 cl_planet;          // planet radius m, camera altitude m, camera radius m, layer count
-  vec4 cl_up;              // xyz: planet-centred up at the camera; w: max march distance m
-  vec4 cl_shell;           // lowest base, highest top (altitudes, m) of the layers; empty-space step m
-  vec4 cl_shape_origin;    // camera in shape periods (fraction, drift applied); w: 1 / period
-  vec4 cl_detail_origin;   // the same for the detail noise
-  vec4 cl_steps;           // max steps, min step m, max step m, light steps
-  vec4 cl_light;           // first light step m, octaves, powder, ground albedo
-  vec4 cl_medium;          // scattering, absorption (per unit density), phase model, droplet diameter um
-  vec4 cl_phase;           // g forward, g backward, forward weight, light marched (0 sun, 1 moon)
-  vec4 cl_frame;           // frame index, shape detail on, march width, march height
-  vec4 cl_light_model;     // multiple scattering: 0 octaves, 1 diffusion; y: march pixel angle (rad)
-  mat4 cl_inverse_view_projection;
+  vec4 clb_planet;          // planet radius m, camera altitude m, camera radius m, layer count
+  vec4 clb_up;              // xyz: planet-centred up at the camera; w: max march distance m
+  vec4 clb_shell;           // lowest base, highest top (altitudes, m) of the layers; empty-space step m
+  vec4 clb_shape_origin;    // camera in shape periods (fraction, drift applied); w: 1 / period
+  vec4 clb_detail_origin;   // the same for the detail noise
+  vec4 clb_steps;           // max steps, min step m, max step m, light steps
+  vec4 clb_light;           // first light step m, octaves, powder, ground albedo
+  vec4 clb_medium;          // scattering, absorption (per unit density), phase model, droplet diameter um
+  vec4 clb_phase;           // g forward, g backward, forward weight, light marched (0 sun, 1 moon)
+  vec4 clb_frame;           // frame index, shape detail on, march width, march height
+  vec4 clb_light_model;     // multiple scattering: 0 octaves, 1 diffusion; y: march pixel angle (rad); z: bands; w: step growth
+  vec4 clb_band_low;        // the altitude bands that hold layers (m): lower bounds
+  vec4 clb_band_high;       // and upper bounds
+  mat4 clb_inverse_view_projection;
 };
+// The block's values in private variables, loaded once per invocation (clouds_load): software
+// rasterisers reload uniform and storage blocks at every use inside a loop.
+vec4 cl_planet;
+vec4 cl_up;
+vec4 cl_shell;
+vec4 cl_shape_origin;
+vec4 cl_detail_origin;
+vec4 cl_steps;
+vec4 cl_light;
+vec4 cl_medium;
+vec4 cl_phase;
+vec4 cl_frame;
+vec4 cl_light_model;
+vec4 cl_band_low;
+vec4 cl_band_high;
+mat4 cl_inverse_view_projection;
+const int CLOUDS_MAX_BANDS = 4;
+
 
 // One layer (src/frame_block.cpp packs them, std430).
 struct CloudLayerGpu {
@@ -29,10 +49,37 @@ struct CloudLayerGpu {
   vec4 model;     // dome (0 sheet .. 1 dome), weather channel, casts shadow, -
 };
 layout(std430, binding = 0) readonly buffer CloudLayers { CloudLayerGpu cl_layers[]; };
+// Up to four layers are copied into private variables too; more are read from the buffer.
+const int CLOUDS_LOCAL_LAYERS = 4;
+CloudLayerGpu cl_local_layers[CLOUDS_LOCAL_LAYERS];
+int cl_layer_count = 0;
+
+// Call first in every shader that uses the field.
+void clouds_load() {
+  cl_planet = clb_planet;
+  cl_up = clb_up;
+  cl_shell = clb_shell;
+  cl_shape_origin = clb_shape_origin;
+  cl_detail_origin = clb_detail_origin;
+  cl_steps = clb_steps;
+  cl_light = clb_light;
+  cl_medium = clb_medium;
+  cl_phase = clb_phase;
+  cl_frame = clb_frame;
+  cl_light_model = clb_light_model;
+  cl_band_low = clb_band_low;
+  cl_band_high = clb_band_high;
+  cl_inverse_view_projection = clb_inverse_view_projection;
+  cl_layer_count = int(cl_planet.w);
+  for (int i = 0; i < CLOUDS_LOCAL_LAYERS; ++i)
+    if (i < cl_layer_count) cl_local_layers[i] = cl_layers[i];
+}
+
 
 layout(binding = 0) uniform sampler3D cl_shape_noise;
 layout(binding = 1) uniform sampler3D cl_detail_noise;
 layout(binding = 2) uniform sampler3D cl_weather_noise;
+layout(binding = 5) uniform sampler3D cl_weather_maximum;  // 16^3 blocks: the largest signal near each
 
 // The width a sample stands for (a pixel's footprint at its distance): the noise is read at the
 // mip level whose texels match it, so distant clouds average instead of aliasing. Set by the caller.
@@ -95,8 +142,15 @@ float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
   float h = clouds_altitude(x);
   if (h < cl_shell.x || h > cl_shell.y) return 0.0;
   float sum = 0.0, envelope;
-  int n = int(cl_planet.w);
-  for (int i = 0; i < n; ++i) {
+  if (cl_layer_count <= CLOUDS_LOCAL_LAYERS) {
+    for (int i = 0; i < CLOUDS_LOCAL_LAYERS; ++i) {
+      if (i >= cl_layer_count || (shadow_only && cl_local_layers[i].model.z < 0.5)) continue;
+      sum += clouds_layer_density(cl_local_layers[i], x, h, detail, envelope);
+      empty = empty && envelope <= 0.0;
+    }
+    return sum;
+  }
+  for (int i = 0; i < cl_layer_count; ++i) {
     if (shadow_only && cl_layers[i].model.z < 0.5) continue;
     sum += clouds_layer_density(cl_layers[i], x, h, detail, envelope);
     empty = empty && envelope <= 0.0;
@@ -106,6 +160,36 @@ float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
 float clouds_density(vec3 x, bool detail, bool shadow_only) {
   bool empty;
   return clouds_density(x, detail, shadow_only, empty);
+}
+
+// How far the march may go from x along dir without passing any cloud: to the far side of the
+// occupancy block x lies in, when no layer within reach (altitudes widened by the largest block) can
+// hold cloud anywhere in its block. 0 when one might.
+float clouds_skip_layer(CloudLayerGpu L, vec3 x, vec3 dir, float h, float skip) {
+  float reach = 1.8 * cl_shell.w;
+  if (h < L.altitude.x - L.altitude.z - reach || h > L.altitude.x + L.altitude.y + L.altitude.z + reach) return skip;
+  vec3 cells = fract(L.weather.xyz + x * L.weather.w) * 16.0;
+  vec4 m = texelFetch(cl_weather_maximum, clamp(ivec3(cells), ivec3(0), ivec3(15)), 0);
+  int channel = int(L.model.y);
+  float w = channel == 0 ? m.r : channel == 1 ? m.g : m.b;
+  float fw = L.shape.w, c = L.shape.x;
+  if (w > (1.0 - c) * (1.0 + fw) - fw) return 0.0;
+  // Metres to the block's far side along dir (cells per metre: 16 x the layer's 1 / period).
+  vec3 f = fract(cells);
+  vec3 rate = abs(dir) * (16.0 * L.weather.w) + 1e-12;
+  vec3 to_side = mix(f, 1.0 - f, step(0.0, dir)) / rate;
+  return min(skip, min(to_side.x, min(to_side.y, to_side.z)) + 1.0);
+}
+
+float clouds_empty_skip(vec3 x, vec3 dir) {
+  float h = clouds_altitude(x), skip = cl_shell.w;
+  if (cl_layer_count <= CLOUDS_LOCAL_LAYERS) {
+    for (int i = 0; i < CLOUDS_LOCAL_LAYERS; ++i)
+      if (i < cl_layer_count && skip > 0.0) skip = clouds_skip_layer(cl_local_layers[i], x, dir, h, skip);
+    return skip;
+  }
+  for (int i = 0; i < cl_layer_count && skip > 0.0; ++i) skip = clouds_skip_layer(cl_layers[i], x, dir, h, skip);
+  return skip;
 }
 
 // Distances along a ray from a camera-relative origin to the sphere at `altitude` above the

@@ -61,14 +61,26 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
   float albedo = cl_medium.x / max(extinction_per_density, 1e-9);
   float t = segment.x;
   bool first = true;
+  // The light arriving at the clouds varies over kilometres, not metres: it is looked up at the first
+  // cloud sample and again every 4 km along the ray (a software rasteriser runs these lookups for a
+  // whole group of pixels whenever one of them is in a cloud, so their count sets the cost).
+  float light_at = -1e30;
+  vec3 e_light = vec3(0.0), e_sky = vec3(0.0), up = cl_up.xyz;
+  float phase_single = clouds_phase(mu, 1.0);
   while (t < segment.y && acc.steps < int(cl_steps.x) && acc.transmittance > 0.01) {
     // Steps grow with distance (a pixel's footprint grows with it), within [min, max].
-    float step_m = clamp(cl_steps.y + t * 0.004, cl_steps.y, cl_steps.z);
+    float step_m = clamp(cl_steps.y + t * cl_light_model.w, cl_steps.y, cl_steps.z);
     if (first) step_m *= jitter, first = false;
     step_m = min(step_m, segment.y - t);
     vec3 x = dir * (t + 0.5 * step_m);
     ++acc.steps;
     clouds_footprint_m = (t + 0.5 * step_m) * cl_light_model.y;
+    // Whole blocks of empty weather are skipped without reading the noise.
+    float skip = clouds_empty_skip(x, dir);
+    if (skip > 0.0) {
+      t += 0.5 * step_m + skip;  // from the sample to past the block's side
+      continue;
+    }
     bool empty;
     float density = clouds_density(x, detail, false, empty);
     if (density <= 0.0) {
@@ -80,8 +92,12 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
     {
       acc.front = min(acc.front, t);
       float sigma_t = density * extinction_per_density;
-      vec3 up = normalize(cl_up.xyz * cl_planet.z + x);
-      vec3 e_light = cl_phase.w > 0.5 ? welkin_moon_irradiance(x) : welkin_sun_irradiance(x);
+      if (t - light_at > 4000.0) {
+        light_at = t;
+        up = normalize(cl_up.xyz * cl_planet.z + x);
+        e_light = cl_phase.w > 0.5 ? welkin_moon_irradiance(x) : welkin_sun_irradiance(x);
+        e_sky = welkin_sky_irradiance(up);
+      }
       float tau = light_optical_depth(x, l) * extinction_per_density;
       float scattered = 0.0;
       if (cl_light_model.x < 0.5) {
@@ -96,13 +112,12 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
         // Single scattering, and the diffuse light of a conservative slab: what the two-stream
         // transmittance lets through beyond the direct beam, spread over the sphere of directions.
         float direct = exp(-tau);
-        scattered = clouds_phase(mu, 1.0) * direct + max(1.0 / (1.0 + 0.15 * tau) - 0.25 * direct, 0.0) / (2.0 * CLOUDS_PI);
+        scattered = phase_single * direct + max(1.0 / (1.0 + 0.15 * tau) - 0.25 * direct, 0.0) / (2.0 * CLOUDS_PI);
       }
       scattered *= 1.0 - cl_light.z * exp(-2.0 * sigma_t * cl_light.x);  // powder (0: off)
       // Sky from above and the lit ground from below, diffused through the cloud: the two-stream
       // transmittance 1 / (1 + 0.75 (1 - g) tau) with g = 0.8, tau the optical depth toward the light
       // (no extra samples: on software rasterisers each density sample is most of a step's cost).
-      vec3 e_sky = welkin_sky_irradiance(up);
       vec3 e_ground = cl_light.w * (e_light * max(dot(l, up), 0.0) * exp(-tau) + e_sky);
       vec3 ambient = (e_sky + e_ground) / (2.0 * CLOUDS_PI * (1.0 + 0.15 * tau));
       vec3 source = albedo * (e_light * scattered + ambient);  // per unit extinction
@@ -129,28 +144,45 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
 }
 
 void main() {
+  clouds_load();
   ivec2 pixel = ivec2(gl_FragCoord.xy) * u_stride_offset.x + u_stride_offset.yz;
   vec2 ndc = (vec2(pixel) + 0.5) / cl_frame.zw * 2.0 - 1.0;
   vec3 dir = view_ray_direction(cl_inverse_view_projection, ndc);
   float t_max = scene_distance(ndc);
   vec2 ground = clouds_sphere(dir, 0.0);
   if (ground.x <= ground.y && ground.x > 0.0) t_max = min(t_max, ground.x);
-  vec2 outer = clouds_sphere(dir, cl_shell.y), inner = clouds_sphere(dir, cl_shell.x);
   Accumulated acc = Accumulated(vec3(0.0), 1.0, 0.0, 0.0, cl_up.w, false, vec3(0.0), vec3(1.0), 0);
   float jitter = fract(texelFetch(u_blue_noise, pixel % 64, 0).r + cl_frame.x * 0.618034);
   jitter = 0.25 + 0.75 * jitter;  // the first step: never so short that it wastes a sample
-  if (outer.x <= outer.y && outer.y > 0.0) {
+  // The ray's stretches through each altitude band that holds layers (two per band at most: in
+  // front of and behind the band's inner sphere), in order along the ray: the gaps between bands
+  // (kilometres between a cumulus and a cirrus layer) are never stepped through.
+  vec2 segments[2 * CLOUDS_MAX_BANDS];
+  int count = 0;
+  float first = 3.4e38;
+  for (int i = 0; i < CLOUDS_MAX_BANDS; ++i) {
+    if (i >= int(cl_light_model.z)) break;
+    vec2 outer = clouds_sphere(dir, cl_band_high[i]), inner = clouds_sphere(dir, cl_band_low[i]);
+    if (outer.x > outer.y || outer.y <= 0.0) continue;
     vec2 a = vec2(max(outer.x, 0.0), outer.y), b = vec2(1.0, -1.0);
     if (inner.x <= inner.y && inner.y > 0.0) {
       b = vec2(max(inner.y, 0.0), outer.y);
       a.y = min(a.y, inner.x);
     }
-    // The march reaches max distance beyond where the ray enters the layers (from orbit, that is
-    // a thousand kilometres away).
-    t_max = min(t_max, (a.x < a.y ? a.x : b.x) + cl_up.w);
-    a.y = min(a.y, t_max), b.y = min(b.y, t_max);
-    if (a.x < a.y) march_segment(dir, a, jitter, acc);
-    if (b.x < b.y) march_segment(dir, b, jitter, acc);
+    if (a.x < a.y) segments[count++] = a, first = min(first, a.x);
+    if (b.x < b.y) segments[count++] = b, first = min(first, b.x);
+  }
+  // The march reaches max distance beyond where the ray first enters a band (from orbit, that is a
+  // thousand kilometres away).
+  t_max = min(t_max, first + cl_up.w);
+  for (int i = 1; i < count; ++i)
+    for (int j = i; j > 0 && segments[j].x < segments[j - 1].x; --j) {
+      vec2 swap = segments[j];
+      segments[j] = segments[j - 1], segments[j - 1] = swap;
+    }
+  for (int i = 0; i < count; ++i) {
+    vec2 segment = vec2(segments[i].x, min(segments[i].y, t_max));
+    if (segment.x < segment.y) march_segment(dir, segment, jitter, acc);
   }
 #if CLOUDS_AP_MODE == 1
   if (acc.depth_weight > 0.0) {

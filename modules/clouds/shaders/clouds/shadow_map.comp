@@ -11,6 +11,7 @@ uniform float u_start_m;     // columns start this far toward the sun from the p
 uniform int u_steps;
 
 void main() {
+  clouds_load();
   ivec2 id = ivec2(gl_GlobalInvocationID.xy);
   ivec2 size = imageSize(u_map);
   if (any(greaterThanEqual(id, size))) return;

@@ -83,6 +83,7 @@ struct VolumetricClouds {
   int max_steps = 384;
   float min_step_m = 40.0f;
   float max_step_m = 800.0f;
+  float step_growth = 0.004f;  // steps lengthen by this many metres per metre of distance
   int light_steps = 4;
   float light_step_m = 80.0f;  // first step toward the sun; each next one doubles
   float max_distance_m = 200000.0f;
@@ -117,6 +118,7 @@ struct ResolvedQuality {
   float light_step_m;
   bool shape_detail;
   float resolution_scale;  // of the march; the composite upsamples
+  float step_growth;       // metres of step per metre of distance (a pixel's footprint grows so)
 };
 ResolvedQuality resolve_quality(const VolumetricClouds& clouds);
 

@@ -21,7 +21,7 @@ namespace welkin::clouds {
 struct FrameBlock {
   glm::vec4 planet{0.0f};         // planet radius m, camera altitude m, camera radius m, layer count
   glm::vec4 up{0.0f};             // planet-centred up at the camera; w: max march distance m
-  glm::vec4 shell{0.0f};          // lowest base, highest top of the layers (altitude m), empty-space step m
+  glm::vec4 shell{0.0f};          // lowest base, highest top (altitude m), empty-space step m, largest occupancy block m
   glm::vec4 shape_origin{0.0f};   // camera in shape periods (fraction); w: 1 / period
   glm::vec4 detail_origin{0.0f};
   glm::vec4 steps{0.0f};          // max steps, min step m, max step m, light steps
@@ -29,10 +29,12 @@ struct FrameBlock {
   glm::vec4 medium{0.0f};         // scattering, absorption, phase model, droplet diameter um
   glm::vec4 phase{0.0f};          // g forward, g backward, forward weight, light marched (0 sun, 1 moon)
   glm::vec4 frame{0.0f};          // frame index, shape detail, march width, march height
-  glm::vec4 light_model{0.0f};    // multiple scattering (0 octaves, 1 diffusion)
+  glm::vec4 light_model{0.0f};    // multiple scattering (0 octaves, 1 diffusion), march pixel angle, bands, step growth
+  glm::vec4 band_low{0.0f};       // altitude bands holding layers (m, at most kMaxBands)
+  glm::vec4 band_high{0.0f};
   glm::mat4 inverse_view_projection{1.0f};
 };
-static_assert(sizeof(FrameBlock) == 240, "FrameBlock must match the std140 CloudsFrame block");
+static_assert(sizeof(FrameBlock) == 272, "FrameBlock must match the std140 CloudsFrame block");
 
 // std430 mirror of CloudLayerGpu.
 struct LayerBlock {
@@ -52,9 +54,14 @@ struct CloudsContext {
   bool sun_up_for_clouds = true;     // the sun still lights cloud tops (else the moon is marched)
 };
 
+inline constexpr int kMaxBands = 4;
+// The layers' altitude ranges merged into at most kMaxBands disjoint bands (closest gaps closed first).
+std::vector<glm::vec2> altitude_bands(std::vector<glm::vec2> ranges, int max_bands = kMaxBands);
+
 // The layers that can hold cloud this frame (coverage, thickness and density above zero), packed.
 struct PackedLayers {
   std::vector<LayerBlock> layers;
+  std::vector<glm::vec2> ranges;  // each packed layer's altitude range, its base's variation included
   std::vector<int> source_index;  // the component's layer index of each packed layer
   float lowest_m = 0.0f, highest_m = 0.0f;
   float lowest_shadow_m = 0.0f, highest_shadow_m = 0.0f;
@@ -99,10 +106,12 @@ struct ShadowKey {
 
 // Noise volumes, generated on the GPU once per seed (sizes fixed by the module).
 inline constexpr int kShapeNoiseSize = 128, kDetailNoiseSize = 32, kWeatherNoiseSize = 64, kBlueNoiseSize = 64;
+inline constexpr int kWeatherOccupancySize = 16;  // blocks of 4^3 weather texels
 
 struct CloudsGpu {
   static constexpr std::string_view kTypeName = "clouds.Gpu";
   std::unique_ptr<Texture> shape, detail, weather, blue_noise, shadow_map, march;
+  std::unique_ptr<Texture> weather_maximum;  // the coarse occupancy for empty-space skipping
   int noise_seed = -1;   // the seed the noise was made from (-1: none yet)
   int noise_builds = 0;  // how often the noise was generated (tests, stats)
   std::unique_ptr<Buffer> frame_buffer, layer_buffer, shadow_buffer;
