@@ -41,6 +41,7 @@ using atmosphere::SkyMethod;
 
 struct AccuracyOptions {
   std::string technique, out = "out/accuracy", cache, size = "640x360";
+  std::string ghosting_scene = "assets/scenes/clouds-peer.json";
   std::vector<std::string> methods{"lut", "raymarch"}, qualities{"low", "medium", "high", "ultra"};
   int frames = 7, threads = 2;
   bool quick = false, json = false;
@@ -157,8 +158,8 @@ std::string steps_of(const atmosphere::Atmosphere& a) {
 
 int run_accuracy(const AccuracyOptions& o) {
   if (o.technique == "clouds")
-    return run_cloud_accuracy({.out = o.out, .size = o.size, .qualities = o.qualities, .frames = o.frames,
-                               .quick = o.quick, .json = o.json});
+    return run_cloud_accuracy({.out = o.out, .size = o.size, .ghosting_scene = o.ghosting_scene,
+                               .qualities = o.qualities, .frames = o.frames, .quick = o.quick, .json = o.json});
   if (o.technique != "atmosphere")
     throw Error(ErrorInfo{.path = "technique", .expected = "atmosphere or clouds", .found = "'" + o.technique + "'"});
   int width = 0, height = 0;
@@ -361,6 +362,8 @@ void add_accuracy_command(CLI::App& app, int& exit_code) {
       "--cache", o->cache,
       "Path-traced reference cache (default: the atmosphere module's validation/ folder, else --out)");
   cmd->add_option("-s,--size", o->size, "Frame size WxH for GPU time")->capture_default_str();
+  cmd->add_option("--ghosting-scene", o->ghosting_scene, "clouds: the scene the temporal upscaling flies through")
+      ->capture_default_str();
   cmd->add_option("-n,--frames", o->frames, "Frames per GPU time (median)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();

@@ -16,6 +16,7 @@ void add_accuracy_command(CLI::App& app, int& exit_code);
 // multiple-scattering model, with GPU time; writes a CSV and a plot into `out`.
 struct CloudAccuracyOptions {
   std::string out = "out/accuracy", size = "640x360";
+  std::string ghosting_scene = "assets/scenes/clouds-peer.json";  // the temporal upscaling's flight
   std::vector<std::string> qualities{"low", "medium", "high", "ultra"};
   int frames = 5;
   bool quick = false, json = false;

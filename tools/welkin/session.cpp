@@ -9,6 +9,7 @@
 
 namespace welkin::modules {
 const ModuleDefinition& atmosphere_module();
+const ModuleDefinition& clouds_module();
 }
 
 namespace welkin::cli {
@@ -20,9 +21,11 @@ std::vector<std::string> module_search_dirs() {
 std::unique_ptr<World> make_world() {
   auto world = std::make_unique<World>();
   for (const auto& d : module_search_dirs()) world->modules().add_search_dir(d);
-  // `probe` and `accuracy` call into the atmosphere directly, so it is linked in; registering the
-  // linked copy keeps one copy of its code in the process (it is still loaded only on demand).
+  // `probe` and `accuracy` call into the atmosphere and the clouds directly, so they are linked in;
+  // registering the linked copies keeps one copy of their code in the process (they are still loaded
+  // only on demand).
   world->modules().add_static(welkin::modules::atmosphere_module());
+  world->modules().add_static(welkin::modules::clouds_module());
   return world;
 }
 

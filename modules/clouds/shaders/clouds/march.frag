@@ -14,7 +14,7 @@
 
 in vec2 v_ndc;
 layout(location = 0) out vec4 o_color;
-layout(location = 1) out vec2 o_distance;  // the clouds' opacity-weighted mean distance, and the first cloud's (m)
+layout(location = 1) out vec2 o_distance;  // the clouds' opacity-weighted mean distance, and where they turn opaque (m)
 // Temporal upscaling marches one pixel of each 2x2 block per frame: this fragment stands for
 // march pixel floor(gl_FragCoord) * x + (y, z); without it, x = 1 and the offset is 0.
 uniform ivec3 u_stride_offset;
@@ -46,7 +46,7 @@ struct Accumulated {
   vec3 color;           // light from the clouds (and, per sample, the air in front of them)
   float transmittance;  // of the clouds alone
   float depth_weight, weighted_depth;  // opacity-weighted mean distance (reprojection; CLOUDS_AP_MODE 1)
-  float front;                         // distance of the first cloud sample
+  float front;                         // distance where the clouds' transmittance first fell below 0.9
   bool ap_taken;                       // CLOUDS_AP_MODE 2: the air's terms at the first cloud
   vec3 ap_inscattering, ap_transmittance;
   int steps;
@@ -90,7 +90,6 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
       continue;
     }
     {
-      acc.front = min(acc.front, t);
       float sigma_t = density * extinction_per_density;
       if (t - light_at > 4000.0) {
         light_at = t;
@@ -138,6 +137,8 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
       acc.weighted_depth += opacity * (t + 0.5 * step_m);
       acc.depth_weight += opacity;
       acc.transmittance *= step_transmittance;
+      // Where the clouds become substantial (haze the camera flies through does not count).
+      if (acc.transmittance < 0.9) acc.front = min(acc.front, t);
     }
     t += step_m;
   }
