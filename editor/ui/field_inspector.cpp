@@ -213,13 +213,22 @@ class FieldDrawer {
     decorate(f, defaults, value, path);
     if (!open) return;
     const void* element_defaults = f.element->defaults.get();
-    std::optional<size_t> remove;
+    std::optional<size_t> remove, move_up;  // move_up: element i swaps with i - 1
     for (size_t i = 0; i < n; ++i) {
       ImGui::PushID(int(i));
       std::string element = path + "/" + std::to_string(i);
       bool element_open = ImGui::TreeNodeEx(element.c_str(), ImGuiTreeNodeFlags_DefaultOpen, "%s %zu", f.element->name.c_str(), i);
       ImGui::SameLine();
       if (ImGui::SmallButton("remove")) remove = i;
+      // Order matters to what draws first and to sequences' paths: elements move one place at a time.
+      ImGui::SameLine();
+      ImGui::BeginDisabled(i == 0);
+      if (ImGui::SmallButton("up")) move_up = i;
+      ImGui::EndDisabled();
+      ImGui::SameLine();
+      ImGui::BeginDisabled(i + 1 == n);
+      if (ImGui::SmallButton("down")) move_up = i + 1;
+      ImGui::EndDisabled();
       if (element_open) {
         draw_object(*f.element, f.array.at(value, i), element_defaults, element + "/");
         ImGui::TreePop();
@@ -229,6 +238,9 @@ class FieldDrawer {
     json whole = field_to_json(f, value);
     if (remove) {
       whole.erase(*remove);
+      edit_ = PendingEdit{path, whole, false};
+    } else if (move_up) {
+      std::swap(whole[*move_up], whole[*move_up - 1]);
       edit_ = PendingEdit{path, whole, false};
     }
     ImGui::BeginDisabled(n >= f.max_count);
