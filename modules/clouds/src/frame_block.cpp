@@ -62,8 +62,10 @@ PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& ct
     if (!(L.thickness_m > 0.0f) || !(coverage > 0.0f) || !(L.density_per_m > 0.0f)) continue;
     const GenusModel g = genus_model(L.genus);
     const double period = double(clouds.weather_period_m) / g.weather_frequency;
-    // Each layer reads its own part of the weather volume, so layers sharing a channel differ.
-    const glm::dvec3 offset = glm::dvec3(0.37 * double(i), 0.61 * double(i), 0.13 * double(i)) * period;
+    // Layers i, i + 1, i + 2 read three independent channels at one place (one fetch serves them when
+    // their genus and wind agree); every further three read another part of the volume.
+    const double group = double(i / 3);
+    const glm::dvec3 offset = glm::dvec3(0.37 * group, 0.61 * group, 0.13 * group) * period;
     const glm::dvec3 drift = glm::dvec3(L.wind_mps, 0.0) * ctx.time_s;
     LayerBlock b;
     b.altitude = {L.base_altitude_m, L.thickness_m, L.base_variation_m, L.density_per_m};

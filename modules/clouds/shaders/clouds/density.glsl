@@ -95,11 +95,21 @@ float clouds_altitude(vec3 x) {
 
 // What a layer's weather and vertical envelope allow at x, before the noise erodes it (also the
 // coarse occupancy that lets the march skip empty space without fetching the shape noise).
+// One sample's noise, read once and shared by the layers: the shape and detail noise are the same for
+// every layer, and layers of one genus read the weather at the same place (in other channels).
+// Reset by clouds_density for each new point.
+float clouds_shape_sample = -1.0, clouds_detail_sample = -1.0;
+vec4 clouds_weather_at = vec4(-1.0), clouds_weather_sample = vec4(0.0);
+
 float clouds_layer_envelope(CloudLayerGpu L, vec3 x, float h, out float t) {
   t = 0.0;
   // Outside the layer's reach (its base can move by the variation): no texture fetch at all.
   if (h < L.altitude.x - L.altitude.z || h > L.altitude.x + L.altitude.y + L.altitude.z) return 0.0;
-  vec4 w4 = textureLod(cl_weather_noise, L.weather.xyz + x * L.weather.w, clouds_lod(1.0 / (L.weather.w * 64.0)));
+  if (L.weather != clouds_weather_at) {
+    clouds_weather_at = L.weather;
+    clouds_weather_sample = textureLod(cl_weather_noise, L.weather.xyz + x * L.weather.w, clouds_lod(1.0 / (L.weather.w * 64.0)));
+  }
+  vec4 w4 = clouds_weather_sample;
   int channel = int(L.model.y);
   float w = channel == 0 ? w4.r : channel == 1 ? w4.g : w4.b;
   float base = L.altitude.x + L.altitude.z * (w4.a - 0.5) * 2.0;
@@ -123,11 +133,15 @@ float clouds_layer_density(CloudLayerGpu L, vec3 x, float h, bool detail, out fl
   float t;
   envelope = clouds_layer_envelope(L, x, h, t);
   if (envelope <= 0.0) return 0.0;
-  float s = textureLod(cl_shape_noise, cl_shape_origin.xyz + x * cl_shape_origin.w, clouds_lod(1.0 / (cl_shape_origin.w * 128.0))).r;
+  if (clouds_shape_sample < 0.0)
+    clouds_shape_sample = textureLod(cl_shape_noise, cl_shape_origin.xyz + x * cl_shape_origin.w, clouds_lod(1.0 / (cl_shape_origin.w * 128.0))).r;
+  float s = clouds_shape_sample;
   float erosion = (1.0 - s) * L.shape.y;
   float d = clamp((envelope - erosion) / max(1.0 - erosion, 1e-3), 0.0, 1.0);
   if (detail && d > 0.0 && L.shape.z > 0.0) {
-    float n = textureLod(cl_detail_noise, cl_detail_origin.xyz + x * cl_detail_origin.w, clouds_lod(1.0 / (cl_detail_origin.w * 32.0))).r;
+    if (clouds_detail_sample < 0.0)
+      clouds_detail_sample = textureLod(cl_detail_noise, cl_detail_origin.xyz + x * cl_detail_origin.w, clouds_lod(1.0 / (cl_detail_origin.w * 32.0))).r;
+    float n = clouds_detail_sample;
     // Wisps at the base, billows at the top (Schneider): the detail erodes thin parts most.
     float e = mix(n, 1.0 - n, clamp(t * 4.0, 0.0, 1.0)) * L.shape.z * 0.35 * (1.0 - d);
     d = clamp((d - e) / max(1.0 - e, 1e-3), 0.0, 1.0);
@@ -139,6 +153,7 @@ float clouds_layer_density(CloudLayerGpu L, vec3 x, float h, bool detail, out fl
 // layer's weather allows cloud there.
 float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
   empty = true;
+  clouds_shape_sample = -1.0, clouds_detail_sample = -1.0, clouds_weather_at = vec4(-1.0);
   float h = clouds_altitude(x);
   if (h < cl_shell.x || h > cl_shell.y) return 0.0;
   float sum = 0.0, envelope;

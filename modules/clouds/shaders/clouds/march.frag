@@ -2,8 +2,9 @@
 // camera from the clouds and from the air in front of them (rgb), and the clouds' transmittance (a).
 // The composite adds rgb and scales what lies behind by a. Light at every sample comes from the
 // light environment: the sun or moon through the atmosphere's transmittance, the sky's irradiance.
-//   CLOUDS_AP_MODE 0: aerial perspective per sample (each sample's light is attenuated by the air
-//                     in front of it, and the air in front of each opacity step is added)
+//   CLOUDS_AP_MODE 0: aerial perspective along the ray (each sample's light is attenuated by the air
+//                     in front of it, and the air in front of each opacity step is added; the air's
+//                     terms are interpolated between the ends of each segment through the layers)
 //                  1: once at the transmittance-weighted mean depth (takram's approximation, kept
 //                     for comparison: it fails where distant sparse clouds overlap)
 //                  2: once at the first cloud sample (the camera in space: the froxels cover no vacuum)
@@ -61,11 +62,19 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
   float albedo = cl_medium.x / max(extinction_per_density, 1e-9);
   float t = segment.x;
   bool first = true;
-  // The light arriving at the clouds varies over kilometres, not metres: it is looked up at the first
-  // cloud sample and again every 4 km along the ray (a software rasteriser runs these lookups for a
-  // whole group of pixels whenever one of them is in a cloud, so their count sets the cost).
-  float light_at = -1e30;
-  vec3 e_light = vec3(0.0), e_sky = vec3(0.0), up = cl_up.xyz;
+  // The light reaching the clouds and the air in front of them change over kilometres, not metres:
+  // they are looked up at both ends of the segment and interpolated along it. (A software rasteriser
+  // runs a lookup inside the loop for a whole group of pixels whenever any one of them needs it.)
+  vec3 x0 = dir * segment.x, x1 = dir * segment.y;
+  vec3 up0 = normalize(cl_up.xyz * cl_planet.z + x0), up1 = normalize(cl_up.xyz * cl_planet.z + x1);
+  vec3 e_light0 = cl_phase.w > 0.5 ? welkin_moon_irradiance(x0) : welkin_sun_irradiance(x0);
+  vec3 e_light1 = cl_phase.w > 0.5 ? welkin_moon_irradiance(x1) : welkin_sun_irradiance(x1);
+  vec3 e_sky0 = welkin_sky_irradiance(up0), e_sky1 = welkin_sky_irradiance(up1);
+#if CLOUDS_AP_MODE == 0
+  vec3 ap_t0, ap_t1;
+  vec3 ap_s0 = welkin_aerial_perspective(x0, ap_t0), ap_s1 = welkin_aerial_perspective(x1, ap_t1);
+#endif
+  float inverse_length = 1.0 / max(segment.y - segment.x, 1e-3);
   float phase_single = clouds_phase(mu, 1.0);
   while (t < segment.y && acc.steps < int(cl_steps.x) && acc.transmittance > 0.01) {
     // Steps grow with distance (a pixel's footprint grows with it), within [min, max].
@@ -91,12 +100,9 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
     }
     {
       float sigma_t = density * extinction_per_density;
-      if (t - light_at > 4000.0) {
-        light_at = t;
-        up = normalize(cl_up.xyz * cl_planet.z + x);
-        e_light = cl_phase.w > 0.5 ? welkin_moon_irradiance(x) : welkin_sun_irradiance(x);
-        e_sky = welkin_sky_irradiance(up);
-      }
+      float along = clamp((t - segment.x) * inverse_length, 0.0, 1.0);
+      vec3 up = normalize(mix(up0, up1, along));
+      vec3 e_light = mix(e_light0, e_light1, along), e_sky = mix(e_sky0, e_sky1, along);
       float tau = light_optical_depth(x, l) * extinction_per_density;
       float scattered = 0.0;
       if (cl_light_model.x < 0.5) {
@@ -125,8 +131,7 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
       vec3 step_light = source * (1.0 - step_transmittance);
       float opacity = acc.transmittance * (1.0 - step_transmittance);
 #if CLOUDS_AP_MODE == 0
-      vec3 ap_t;
-      vec3 ap_s = welkin_aerial_perspective(x, ap_t);
+      vec3 ap_s = mix(ap_s0, ap_s1, along), ap_t = mix(ap_t0, ap_t1, along);
       acc.color += acc.transmittance * ap_t * step_light + ap_s * opacity;
 #else
       acc.color += acc.transmittance * step_light;
