@@ -99,6 +99,9 @@ float clouds_altitude(vec3 x) {
 // every layer, and layers of one genus read the weather at the same place (in other channels).
 // Reset by clouds_density for each new point.
 float clouds_shape_sample = -1.0, clouds_detail_sample = -1.0;
+// The cloud below the last point clouds_density evaluated: its layers' depth under the point (m),
+// weighted by their density there (the light reflected up from it).
+float clouds_depth_below_m = 0.0;
 vec4 clouds_weather_at = vec4(-1.0), clouds_weather_sample = vec4(0.0);
 
 float clouds_layer_envelope(CloudLayerGpu L, vec3 x, float h, out float t) {
@@ -146,6 +149,7 @@ float clouds_layer_density(CloudLayerGpu L, vec3 x, float h, bool detail, out fl
     float e = mix(n, 1.0 - n, clamp(t * 4.0, 0.0, 1.0)) * L.shape.z * 0.35 * (1.0 - d);
     d = clamp((d - e) / max(1.0 - e, 1e-3), 0.0, 1.0);
   }
+  clouds_depth_below_m += d * L.altitude.w * t * L.altitude.y;
   return d * L.altitude.w;
 }
 
@@ -154,6 +158,7 @@ float clouds_layer_density(CloudLayerGpu L, vec3 x, float h, bool detail, out fl
 float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
   empty = true;
   clouds_shape_sample = -1.0, clouds_detail_sample = -1.0, clouds_weather_at = vec4(-1.0);
+  clouds_depth_below_m = 0.0;
   float h = clouds_altitude(x);
   if (h < cl_shell.x || h > cl_shell.y) return 0.0;
   float sum = 0.0, envelope;
@@ -163,6 +168,7 @@ float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
       sum += clouds_layer_density(cl_local_layers[i], x, h, detail, envelope);
       empty = empty && envelope <= 0.0;
     }
+    clouds_depth_below_m /= max(sum, 1e-12);
     return sum;
   }
   for (int i = 0; i < cl_layer_count; ++i) {
@@ -170,6 +176,7 @@ float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
     sum += clouds_layer_density(cl_layers[i], x, h, detail, envelope);
     empty = empty && envelope <= 0.0;
   }
+  clouds_depth_below_m /= max(sum, 1e-12);
   return sum;
 }
 float clouds_density(vec3 x, bool detail, bool shadow_only) {

@@ -99,6 +99,7 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
       continue;
     }
     {
+      float depth_below_m = clouds_depth_below_m;  // before the light march evaluates other points
       float sigma_t = density * extinction_per_density;
       float along = clamp((t - segment.x) * inverse_length, 0.0, 1.0);
       vec3 up = normalize(mix(up0, up1, along));
@@ -116,8 +117,13 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
       } else {
         // Single scattering, and the diffuse light of a conservative slab: what the two-stream
         // transmittance lets through beyond the direct beam, spread over the sphere of directions.
+        // The cloud below reflects part of that light back up (the two-stream reflectance of a
+        // conservative slab, 0.15 tau / (1 + 0.15 tau), of the depth below at this density).
         float direct = exp(-tau);
-        scattered = phase_single * direct + max(1.0 / (1.0 + 0.15 * tau) - 0.25 * direct, 0.0) / (2.0 * CLOUDS_PI);
+        float tau_below = sigma_t * depth_below_m;
+        float reflected = 0.15 * tau_below / (1.0 + 0.15 * tau_below);
+        scattered = phase_single * direct +
+                    max(1.0 / (1.0 + 0.15 * tau) - 0.25 * direct, 0.0) * (1.0 + 0.5 * reflected) / (2.0 * CLOUDS_PI);
       }
       scattered *= 1.0 - cl_light.z * exp(-2.0 * sigma_t * cl_light.x);  // powder (0: off)
       // Sky from above and the lit ground from below, diffused through the cloud: the two-stream
