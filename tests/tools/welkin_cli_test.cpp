@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -129,6 +130,39 @@ TEST(WelkinCli, SequenceRendersFramesThatGoFromNightToDay) {
   r = run("sequence " WELKIN_SOURCE_DIR "/assets/scenes/flight.json " + bad.string() + " --size 8x8 --out " + dir.string());
   EXPECT_EQ(r.code, 3);
   EXPECT_NE(r.out.find(bad.string() + ": at /tracks/0"), std::string::npos) << r.out;
+}
+
+// Shell quoting for the test's own command line (run_welkin goes through popen).
+std::string shell_quoted(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+TEST(WelkinCli, SequenceVideoPassesFileNamesToFfmpegLiterally) {
+  // A stand-in ffmpeg on PATH that records its arguments, one a line.
+  fs::path bin = tmp("fake-bin");
+  fs::create_directories(bin);
+  fs::path args_file = tmp("ffmpeg-args.txt");
+  fs::path injected = tmp("injected");
+  fs::remove(args_file);
+  fs::remove(injected);
+  std::ofstream(bin / "ffmpeg") << "#!/bin/sh\nprintf '%s\\n' \"$@\" > " + args_file.string() + "\n";
+  fs::permissions(bin / "ffmpeg", fs::perms::owner_all);
+  const std::string old_path = std::getenv("PATH") ? std::getenv("PATH") : "";
+  setenv("PATH", (bin.string() + ":" + old_path).c_str(), 1);
+
+  const std::string video = tmp("v';touch " + injected.string() + ";'$(touch " + injected.string() + ").mp4").string();
+  CliRun r = run("sequence " WELKIN_SOURCE_DIR "/assets/scenes/flight.json " WELKIN_SOURCE_DIR
+                 "/assets/sequences/dawn-to-noon.json --fps 0.125 --size 8x8 --out " + tmp("video-frames").string() +
+                 " --video " + shell_quoted(video));
+  setenv("PATH", old_path.c_str(), 1);
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_FALSE(fs::exists(injected)) << "the file name ran a shell command";
+  std::ifstream args(args_file);
+  std::string line, last;
+  while (std::getline(args, line)) last = line;
+  EXPECT_EQ(last, video) << "ffmpeg's last argument is the output file, unchanged";
 }
 
 }  // namespace

@@ -1,11 +1,16 @@
 // welkin sequence SCENE SEQUENCE --out DIR [--fps N] [--size WxH] [--from S] [--to S] [--exr]
 //                 [--video out.mp4] [--contact-sheet sheet.png]
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <spawn.h>
+#include <string>
+#include <sys/wait.h>
+#include <vector>
 
 #include "commands.h"
 #include "session.h"
@@ -24,6 +29,26 @@ struct SequenceOptions {
   double fps = 24.0, from = 0.0, to = -1.0;
   bool exr = false;
 };
+
+extern "C" char** environ;
+
+// Runs a program found on PATH with an argument vector, never through a shell, so file names are
+// passed to it literally. Returns its exit status, or -1 where it could not be started (not installed).
+int run_program(const std::vector<std::string>& args) {
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0) return -1;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) return -1;
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+// A file argument starting with '-' would read as an ffmpeg option.
+std::string literal_file_argument(const std::string& path) { return path.starts_with('-') ? "./" + path : path; }
 
 // Sequence duration without loading the module's code: the document's own keys.
 double sequence_duration(const std::string& path) {
@@ -95,13 +120,14 @@ int run_sequence(const SequenceOptions& o) {
   }
   if (!o.video.empty()) {
     if (o.exr) throw Error(ErrorInfo{.path = "--video", .message = "needs PNG frames (drop --exr)"});
-    if (std::system("command -v ffmpeg >/dev/null 2>&1") != 0) {
+    const int status = run_program({"ffmpeg", "-loglevel", "error", "-y", "-framerate", std::to_string(o.fps), "-i",
+                                    literal_file_argument(o.out_dir + "/frame_%05d.png"), "-pix_fmt", "yuv420p", "-vf",
+                                    "scale=trunc(iw/2)*2:trunc(ih/2)*2", literal_file_argument(o.video)});
+    if (status < 0) {
       std::fprintf(stderr, "welkin: ffmpeg is not installed; frames are in %s, no video written\n", o.out_dir.c_str());
       return kFailure;
     }
-    std::string cmd = "ffmpeg -loglevel error -y -framerate " + std::to_string(o.fps) + " -i '" + o.out_dir +
-                      "/frame_%05d.png' -pix_fmt yuv420p -vf 'scale=trunc(iw/2)*2:trunc(ih/2)*2' '" + o.video + "'";
-    if (std::system(cmd.c_str()) != 0) throw Error(ErrorInfo{.file = o.video, .message = "ffmpeg failed"});
+    if (status != 0) throw Error(ErrorInfo{.file = o.video, .message = "ffmpeg failed"});
     std::printf("wrote %s\n", o.video.c_str());
   }
   return kOk;
