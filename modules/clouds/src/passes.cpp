@@ -286,10 +286,17 @@ void clouds_system(SystemContext& sc) {
   const char* ap_mode = camera_in_space(world, gpu.block) ? "2" : clouds->aerial_perspective == CloudAerialPerspective::mean_depth ? "1" : "0";
   ShaderDefines defines = {{"CLOUDS_AP_MODE", ap_mode}};
   const bool temporal = clouds->temporal_upscaling && w >= 2 && h >= 2;
-  const int qw = temporal ? (w + 1) / 2 : w, qh = temporal ? (h + 1) / 2 : h;
+  if (temporal)
+    for (int i = 0; i < 2; ++i)
+      if (ensure_texture(gpu.history_color[i], {.width = w, .height = h, .format = TextureFormat::rgba16f}))
+        gpu.history_valid = false;
+  // Without a history (the first frame, a new size, after a frame without upscaling) every pixel is
+  // marched once and becomes the history; then a quarter of them per frame.
+  const bool quarter = temporal && gpu.history_valid;
+  const int qw = quarter ? (w + 1) / 2 : w, qh = quarter ? (h + 1) / 2 : h;
   static constexpr glm::ivec2 kOffsets[4] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
-  const glm::ivec2 offset = temporal ? kOffsets[gpu.temporal_frame++ % 4] : glm::ivec2(0);
-  const glm::ivec3 stride_offset(temporal ? 2 : 1, offset.x, offset.y);
+  const glm::ivec2 offset = quarter ? kOffsets[gpu.temporal_frame++ % 4] : glm::ivec2(0);
+  const glm::ivec3 stride_offset(quarter ? 2 : 1, offset.x, offset.y);
 
   const FrameTargets t = *sc.targets;
   RenderGraph& g = *sc.graph;
@@ -324,9 +331,6 @@ void clouds_system(SystemContext& sc) {
   ResourceHandle result = (*current)[0];
   if (temporal) {
     const int write = gpu.history_index, read = 1 - write;
-    for (int i = 0; i < 2; ++i) {
-      if (ensure_texture(gpu.history_color[i], {.width = w, .height = h, .format = TextureFormat::rgba16f})) gpu.history_valid = false;
-    }
     const ResourceHandle out_color = g.import("clouds.history_color", *gpu.history_color[write]);
     const ResourceHandle history = g.import("clouds.history_previous", *gpu.history_color[read]);
     const glm::vec3 moved = glm::vec3(view.camera_position_m - gpu.previous_camera_m);
@@ -343,7 +347,7 @@ void clouds_system(SystemContext& sc) {
           b.write(out_color);
         },
         [&rc, current, out_color, history, offset, moved, previous_vp, inverse_vp, valid,
-         resolve_defines, inside_cloud_m](PassContext& pc) {
+         resolve_defines, inside_cloud_m, quarter](PassContext& pc) {
           Framebuffer fb(&pc.texture(out_color), nullptr);
           fb.bind();
           glDisable(GL_DEPTH_TEST);
@@ -358,6 +362,7 @@ void clouds_system(SystemContext& sc) {
           p.set("u_previous_view_projection", previous_vp);
           p.set("u_camera_moved_m", moved);
           p.set("u_history_valid", valid ? 1 : 0);
+          p.set("u_full_frame", quarter ? 0 : 1);
           p.set("u_inside_cloud_m", inside_cloud_m);
           rc.draw_fullscreen_triangle();
         });

@@ -15,12 +15,17 @@ uniform mat4 u_inverse_view_projection;
 uniform mat4 u_previous_view_projection;
 uniform vec3 u_camera_moved_m;     // this frame's camera minus the last one's
 uniform int u_history_valid;
+uniform int u_full_frame;  // every pixel was marched this frame (no history yet): taken as it is
 uniform float u_inside_cloud_m;  // a first cloud sample closer than this: the camera is in the cloud
 
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   ivec2 block = pixel / 2;
   ivec2 current_size = textureSize(u_current, 0);
+  if (u_full_frame == 1) {
+    o_color = texelFetch(u_current, pixel, 0);
+    return;
+  }
   if (all(equal(pixel % 2, u_offset))) {
     o_color = texelFetch(u_current, block, 0);
     return;

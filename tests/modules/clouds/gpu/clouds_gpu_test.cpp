@@ -142,3 +142,22 @@ TEST(CloudsGpu, ShadowMapIsRebuiltOnlyWhenItsInputsChange) {
 
 }  // namespace
 }  // namespace welkin::clouds
+
+namespace welkin::clouds {
+namespace {
+
+// With no history yet (the first frame, as `welkin render` draws) every pixel is marched: the frame
+// equals one drawn without temporal upscaling, bit for bit.
+TEST(CloudsGpu, FirstTemporalFrameMarchesEveryPixel) {
+  test::Rendered with = test::render(test::noon(), 48, 27);
+  test::Rendered without = test::render(test::noon({{"temporal_upscaling", false}}), 48, 27);
+  const ImageF a = with.renderer->read_hdr(), b = without.renderer->read_hdr();
+  ASSERT_EQ(a.rgba.size(), b.rgba.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < a.rgba.size(); ++i) differing += a.rgba[i] != b.rgba[i];
+  EXPECT_EQ(differing, 0u);
+  EXPECT_TRUE(with.ran("clouds.resolve"));
+}
+
+}  // namespace
+}  // namespace welkin::clouds
