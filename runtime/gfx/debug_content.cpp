@@ -117,9 +117,7 @@ void add_default_light_term(World& world) {
         const glm::vec4 data[2] = {
             glm::vec4(glm::vec3(direction_from_azimuth_elevation(light.azimuth_deg, light.elevation_deg)), 0.0f),
             glm::vec4(light.color * light.illuminance_lux, light.ambient_fraction)};
-        if (!*buffer) *buffer = std::make_unique<Buffer>(sizeof(data));
-        (*buffer)->upload(data, sizeof(data));
-        glBindBufferBase(GL_UNIFORM_BUFFER, env.block("core.default_lights"), (*buffer)->id());
+        env.bind_block("core.default_lights", *buffer, data, sizeof(data));
       }});
 }
 

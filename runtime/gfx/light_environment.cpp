@@ -125,21 +125,23 @@ std::string LightEnvironment::composed_source() const {
     s += "vec3 welkin_moon_irradiance(vec3 p) { return vec3(0.0); }\n";
     s += "vec3 welkin_sky_irradiance(vec3 n) { return vec3(0.0); }\n";
   }
-  s += "// Fraction of light 0 (sun) or 1 (moon) reaching a camera-relative point with normal n.\n";
-  s += "float welkin_light_visibility(vec3 p, vec3 n, int light) {\n  float v = 1.0;\n";
-  for (const LightTerm& t : terms_)
-    if (!t.light_visibility.empty()) s += "  v *= " + t.light_visibility + "(p, n, light);\n";
-  s += "  return v;\n}\n";
-  s += "// Fraction of the sky's light reaching the point.\n";
-  s += "float welkin_sky_visibility(vec3 p, vec3 n) {\n  float v = 1.0;\n";
-  for (const LightTerm& t : terms_)
-    if (!t.sky_visibility.empty()) s += "  v *= " + t.sky_visibility + "(p, n);\n";
-  s += "  return v;\n}\n";
-  s += "// Diffuse irradiance the terms redirect onto the point.\n";
-  s += "vec3 welkin_added_irradiance(vec3 p, vec3 n) {\n  vec3 e = vec3(0.0);\n";
-  for (const LightTerm& t : terms_)
-    if (!t.added_irradiance.empty()) s += "  e += " + t.added_irradiance + "(p, n);\n";
-  s += "  return e;\n}\n";
+  // Functions that fold every term's contribution into one value: `variable` starts as `declaration`
+  // and each term applies `op` (a product or a sum).
+  auto fold = [&](const std::string& comment, const std::string& head, const std::string& declaration,
+                  const std::string& variable, const std::string& op, const std::string& args,
+                  std::string LightTerm::*function) {
+    s += "// " + comment + "\n" + head + " {\n  " + declaration + ";\n";
+    for (const LightTerm& t : terms_)
+      if (!(t.*function).empty()) s += "  " + variable + " " + op + " " + t.*function + "(" + args + ");\n";
+    s += "  return " + variable + ";\n}\n";
+  };
+  fold("Fraction of light 0 (sun) or 1 (moon) reaching a camera-relative point with normal n.",
+       "float welkin_light_visibility(vec3 p, vec3 n, int light)", "float v = 1.0", "v", "*=", "p, n, light",
+       &LightTerm::light_visibility);
+  fold("Fraction of the sky's light reaching the point.", "float welkin_sky_visibility(vec3 p, vec3 n)",
+       "float v = 1.0", "v", "*=", "p, n", &LightTerm::sky_visibility);
+  fold("Diffuse irradiance the terms redirect onto the point.", "vec3 welkin_added_irradiance(vec3 p, vec3 n)",
+       "vec3 e = vec3(0.0)", "e", "+=", "p, n", &LightTerm::added_irradiance);
   s += "// Light added between a camera-relative point and the camera, and that path's transmittance.\n";
   if (aerial)
     s += "vec3 welkin_aerial_perspective(vec3 p, out vec3 transmittance) { return " + aerial->aerial_perspective +
@@ -147,6 +149,13 @@ std::string LightEnvironment::composed_source() const {
   else
     s += "vec3 welkin_aerial_perspective(vec3 p, out vec3 transmittance) { transmittance = vec3(1.0); return vec3(0.0); }\n";
   return s;
+}
+
+void LightEnvironment::bind_block(std::string_view block_name, std::unique_ptr<Buffer>& buffer, const void* data,
+                                  size_t bytes) const {
+  if (!buffer || buffer->size() != bytes) buffer = std::make_unique<Buffer>(bytes);
+  buffer->upload(data, bytes);
+  glBindBufferBase(GL_UNIFORM_BUFFER, block(block_name), buffer->id());
 }
 
 void LightEnvironment::bind() const {

@@ -220,11 +220,9 @@ void add_light_term(World& world) {
       .blocks = {"clouds.shadow"},
       .bind = [&world](const LightEnvironment& env) {
         CloudsGpu& gpu = world.resource<CloudsGpu>();
-        if (!gpu.shadow_buffer) gpu.shadow_buffer = std::make_unique<Buffer>(sizeof(ShadowBlock));
         ShadowBlock s = gpu.shadow;
         if (!gpu.shadow_map) s.origin.w = 0.0f;
-        gpu.shadow_buffer->upload(&s, sizeof(s));
-        glBindBufferBase(GL_UNIFORM_BUFFER, env.block("clouds.shadow"), gpu.shadow_buffer->id());
+        env.bind_block("clouds.shadow", gpu.shadow_buffer, &s, sizeof(s));
         if (gpu.shadow_map) glBindTextureUnit(env.unit("clouds.shadow_map"), gpu.shadow_map->id());
       }});
 }

@@ -120,9 +120,7 @@ void add_light_term(World& world) {
       .blocks = {"terrain.cascades"},
       .bind = [&world](const LightEnvironment& env) {
         TerrainCache& cache = world.resource<TerrainCache>();
-        if (!cache.cascade_buffer) cache.cascade_buffer = std::make_unique<Buffer>(sizeof(cache.cascade_block));
-        cache.cascade_buffer->upload(&cache.cascade_block, sizeof(cache.cascade_block));
-        glBindBufferBase(GL_UNIFORM_BUFFER, env.block("terrain.cascades"), cache.cascade_buffer->id());
+        env.bind_block("terrain.cascades", cache.cascade_buffer, &cache.cascade_block, sizeof(cache.cascade_block));
         if (cache.shadow_atlas) glBindTextureUnit(env.unit("terrain.shadow_atlas"), cache.shadow_atlas->id());
       }});
 }

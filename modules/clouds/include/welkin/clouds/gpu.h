@@ -110,7 +110,7 @@ inline constexpr int kWeatherOccupancySize = 16;  // blocks of 4^3 weather texel
 
 struct CloudsGpu {
   static constexpr std::string_view kTypeName = "clouds.Gpu";
-  std::unique_ptr<Texture> shape, detail, weather, blue_noise, shadow_map, march;
+  std::unique_ptr<Texture> shape, detail, weather, blue_noise, shadow_map;
   std::unique_ptr<Texture> weather_maximum;  // the coarse occupancy for empty-space skipping
   int noise_seed = -1;   // the seed the noise was made from (-1: none yet)
   int noise_builds = 0;  // how often the noise was generated (tests, stats)
