@@ -86,7 +86,8 @@ void describe(TypeBuilder<VolumetricClouds>& t) {
   t.field("max_distance_m", &VolumetricClouds::max_distance_m).unit("m").range(100, 1e8);
   t.field("shape_detail", &VolumetricClouds::shape_detail).tooltip("quality custom");
   t.field("resolution_scale", &VolumetricClouds::resolution_scale).range(0.0625, 1).tooltip("quality custom: fraction of the frame marched");
-  t.field("temporal_upscaling", &VolumetricClouds::temporal_upscaling).tooltip("March a quarter of the pixels per frame, reproject the rest");
+  t.field("temporal_upscaling", &VolumetricClouds::temporal_upscaling).tooltip("March one pixel of each block per frame, reproject the rest");
+  t.field("temporal_block", &VolumetricClouds::temporal_block).range(2, 4).tooltip("quality custom: 2 (a quarter of the pixels per frame) or 4 (a sixteenth)");
   t.field("temporal_clipping", &VolumetricClouds::temporal_clipping).tooltip("Clip reprojected history to this frame's samples (against ghosting)");
   t.field("shadows", &VolumetricClouds::shadows).tooltip("Cloud shadows and sky occlusion on every material");
   t.field("shadow_map_size", &VolumetricClouds::shadow_map_size).unit("px").range(16, 4096);
@@ -101,17 +102,19 @@ void describe(TypeBuilder<VolumetricClouds>& t) {
 
 ResolvedQuality resolve_quality(const VolumetricClouds& c) {
   switch (c.quality) {
-    case Quality::low: return {64, 120.0f, 2000.0f, 2, 150.0f, false, 0.25f, 0.012f};
-    case Quality::medium: return {128, 70.0f, 1200.0f, 3, 100.0f, true, 0.4f, 0.008f};
-    case Quality::high: return {256, 40.0f, 800.0f, 4, 80.0f, true, 0.5f, 0.005f};
-    case Quality::ultra: return {768, 20.0f, 500.0f, 6, 50.0f, true, 1.0f, 0.002f};
+    case Quality::low: return {64, 120.0f, 2000.0f, 2, 150.0f, false, 0.25f, 0.012f, 4};
+    case Quality::medium: return {128, 70.0f, 1200.0f, 3, 100.0f, true, 0.4f, 0.008f, 4};
+    case Quality::high: return {256, 40.0f, 800.0f, 4, 80.0f, true, 0.5f, 0.005f, 2};
+    case Quality::ultra: return {768, 20.0f, 500.0f, 6, 50.0f, true, 1.0f, 0.002f, 2};
     case Quality::custom: break;
   }
-  return {c.max_steps, c.min_step_m, c.max_step_m, c.light_steps, c.light_step_m, c.shape_detail, c.resolution_scale,
-          c.step_growth};
+  return {c.max_steps,        c.min_step_m,  c.max_step_m, c.light_steps, c.light_step_m, c.shape_detail,
+          c.resolution_scale, c.step_growth, c.temporal_block};
 }
 
 void validate(const VolumetricClouds& c) {
+  if (c.temporal_block != 2 && c.temporal_block != 4)
+    throw Error(ErrorInfo{.path = "/temporal_block", .expected = "2 or 4", .found = std::to_string(c.temporal_block)});
   if (c.max_step_m < c.min_step_m)
     throw Error(ErrorInfo{.path = "/max_step_m",
                           .expected = "at least min_step_m (" + std::to_string(c.min_step_m) + ")",

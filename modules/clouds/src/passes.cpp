@@ -200,7 +200,12 @@ void ensure_noise(World& world, int seed) {
   glTextureSubImage3D(gpu.weather_maximum->id(), 0, 0, 0, 0, kWeatherOccupancySize, kWeatherOccupancySize, kWeatherOccupancySize,
                       GL_RGBA, GL_UNSIGNED_BYTE, weather_maximum(weather, kWeatherNoiseSize).data());
   // Far away a pixel spans many texels: the march reads coarser levels there instead of aliasing.
-  for (Texture* t : {gpu.shape.get(), gpu.detail.get(), gpu.weather.get()}) glGenerateTextureMipmap(t->id());
+  // Between levels the nearer one is read, not a blend of two: a 3D trilinear read costs 16 texels
+  // (twice a bilinear one), and on software rasterisers the march's texture reads are most of its cost.
+  for (Texture* t : {gpu.shape.get(), gpu.detail.get(), gpu.weather.get()}) {
+    glGenerateTextureMipmap(t->id());
+    glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
+  }
   const std::vector<float> blue = void_and_cluster(kBlueNoiseSize, uint32_t(seed));
   ensure_texture(gpu.blue_noise, {.width = kBlueNoiseSize, .height = kBlueNoiseSize, .format = TextureFormat::r32f,
                                   .linear_filter = false, .clamp = false});
@@ -289,12 +294,18 @@ void clouds_system(SystemContext& sc) {
       if (ensure_texture(gpu.history_color[i], {.width = w, .height = h, .format = TextureFormat::rgba16f}))
         gpu.history_valid = false;
   // Without a history (the first frame, a new size, after a frame without upscaling) every pixel is
-  // marched once and becomes the history; then a quarter of them per frame.
-  const bool quarter = temporal && gpu.history_valid;
-  const int qw = quarter ? (w + 1) / 2 : w, qh = quarter ? (h + 1) / 2 : h;
-  static constexpr glm::ivec2 kOffsets[4] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
-  const glm::ivec2 offset = quarter ? kOffsets[gpu.temporal_frame++ % 4] : glm::ivec2(0);
-  const glm::ivec3 stride_offset(quarter ? 2 : 1, offset.x, offset.y);
+  // marched once and becomes the history; then one pixel of each block per frame, in the order of a
+  // Bayer matrix (each next pixel as far as it can be from those marched just before).
+  const bool partial = temporal && gpu.history_valid;
+  const int n = partial ? resolve_quality(*clouds).temporal_block : 1;
+  const int qw = (w + n - 1) / n, qh = (h + n - 1) / n;
+  static constexpr glm::ivec2 kOffsets2[4] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
+  static constexpr glm::ivec2 kOffsets4[16] = {{0, 0}, {2, 2}, {2, 0}, {0, 2}, {1, 1}, {3, 3}, {3, 1}, {1, 3},
+                                               {1, 0}, {3, 2}, {3, 0}, {1, 2}, {0, 1}, {2, 3}, {2, 1}, {0, 3}};
+  const glm::ivec2 offset = !partial ? glm::ivec2(0)
+                            : n == 4 ? kOffsets4[gpu.temporal_frame++ % 16]
+                                     : kOffsets2[gpu.temporal_frame++ % 4];
+  const glm::ivec3 stride_offset(n, offset.x, offset.y);
 
   const FrameTargets t = *sc.targets;
   RenderGraph& g = *sc.graph;
@@ -345,7 +356,7 @@ void clouds_system(SystemContext& sc) {
           b.write(out_color);
         },
         [&rc, current, out_color, history, offset, moved, previous_vp, inverse_vp, valid,
-         resolve_defines, inside_cloud_m, quarter](PassContext& pc) {
+         resolve_defines, inside_cloud_m, partial, n](PassContext& pc) {
           Framebuffer fb(&pc.texture(out_color), nullptr);
           fb.bind();
           glDisable(GL_DEPTH_TEST);
@@ -356,11 +367,12 @@ void clouds_system(SystemContext& sc) {
           const Program& p = rc.shaders.graphics("fullscreen.vert", "clouds/resolve.frag", resolve_defines);
           p.use();
           glProgramUniform2i(p.id(), p.location("u_offset"), offset.x, offset.y);
+          glProgramUniform1i(p.id(), p.location("u_block"), n);
           p.set("u_inverse_view_projection", inverse_vp);
           p.set("u_previous_view_projection", previous_vp);
           p.set("u_camera_moved_m", moved);
           p.set("u_history_valid", valid ? 1 : 0);
-          p.set("u_full_frame", quarter ? 0 : 1);
+          p.set("u_full_frame", partial ? 0 : 1);
           p.set("u_inside_cloud_m", inside_cloud_m);
           rc.draw_fullscreen_triangle();
         });

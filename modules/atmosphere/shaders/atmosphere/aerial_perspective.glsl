@@ -33,8 +33,10 @@ AtmosphereAerialPerspective atm_aerial_perspective_froxels(vec3 camera_relative_
   float w = sqrt(d_km / atm_aerial_params.x);
   // Slice 0's centre is at w = 0.5 / N; closer than that, fade towards no air at all.
   float fade = clamp(w * float(atm_aerial_size.z) * 2.0, 0.0, 1.0);
-  vec3 s = texture(atm_aerial_inscattering, vec3(uv, w)).rgb;
-  vec3 t = texture(atm_aerial_transmittance, vec3(uv, w)).rgb;
+  // Level 0 named: the volume has no other, and a shader that samples it sparsely (the clouds'
+  // march, one pixel in four or sixteen) must read what a dense one reads.
+  vec3 s = textureLod(atm_aerial_inscattering, vec3(uv, w), 0.0).rgb;
+  vec3 t = textureLod(atm_aerial_transmittance, vec3(uv, w), 0.0).rgb;
   return AtmosphereAerialPerspective(s * fade, mix(vec3(1.0), t, fade));
 }
 

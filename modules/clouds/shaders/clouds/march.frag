@@ -16,7 +16,7 @@
 in vec2 v_ndc;
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec2 o_distance;  // the clouds' opacity-weighted mean distance, and where they turn opaque (m)
-// Temporal upscaling marches one pixel of each 2x2 block per frame: this fragment stands for
+// Temporal upscaling marches one pixel of each N x N block per frame: this fragment stands for
 // march pixel floor(gl_FragCoord) * x + (y, z); without it, x = 1 and the offset is 0.
 uniform ivec3 u_stride_offset;
 layout(binding = 3) uniform sampler2D u_depth;       // the scene's depth (reversed Z; 0 = nothing)
@@ -24,7 +24,7 @@ layout(binding = 4) uniform sampler2D u_blue_noise;  // 64 x 64, void-and-cluste
 
 // Distance to the scene's geometry along this pixel's ray (infinite where there is none).
 float scene_distance(vec2 ndc) {
-  float depth = texture(u_depth, ndc * 0.5 + 0.5).r;
+  float depth = textureLod(u_depth, ndc * 0.5 + 0.5, 0.0).r;
   if (depth <= 0.0) return 3.4e38;
   vec4 p = cl_inverse_view_projection * vec4(ndc, depth, 1.0);
   return length(p.xyz / p.w);

@@ -1,5 +1,5 @@
-// Temporal upscaling of the clouds: this frame marched one pixel of each 2x2 block (u_current, a
-// quarter of the march's pixels); the others come from the previous frame's result, reprojected
+// Temporal upscaling of the clouds: this frame marched one pixel of each N x N block (u_current,
+// N = 2 or 4); the others come from the previous frame's result, reprojected
 // through the clouds' own distance, and clipped to the range of this frame's neighbouring samples
 // so that what moved or appeared does not leave ghosts. CLOUDS_CLIP 0 keeps plain reprojection
 // (for the ghosting comparison of `welkin accuracy clouds`). Where the ray starts inside a cloud (the
@@ -7,10 +7,11 @@
 #include "welkin/view.glsl"
 in vec2 v_ndc;
 out vec4 o_color;
-layout(binding = 0) uniform sampler2D u_current;           // quarter resolution: colour, transmittance
-layout(binding = 1) uniform sampler2D u_current_distance;  // quarter resolution: mean and first cloud distance (m)
+layout(binding = 0) uniform sampler2D u_current;           // one pixel per block: colour, transmittance
+layout(binding = 1) uniform sampler2D u_current_distance;  // one pixel per block: mean and first cloud distance (m)
 layout(binding = 2) uniform sampler2D u_history;           // the last result at the march resolution
-uniform ivec2 u_offset;            // the 2x2 position marched this frame
+uniform int u_block;               // N
+uniform ivec2 u_offset;            // the position in the block marched this frame
 uniform mat4 u_inverse_view_projection;
 uniform mat4 u_previous_view_projection;
 uniform vec3 u_camera_moved_m;     // this frame's camera minus the last one's
@@ -20,20 +21,20 @@ uniform float u_inside_cloud_m;  // a first cloud sample closer than this: the c
 
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
-  ivec2 block = pixel / 2;
+  ivec2 block = pixel / u_block;
   ivec2 current_size = textureSize(u_current, 0);
   if (u_full_frame == 1) {
     o_color = texelFetch(u_current, pixel, 0);
     return;
   }
-  if (all(equal(pixel % 2, u_offset))) {
+  if (all(equal(pixel % u_block, u_offset))) {
     o_color = texelFetch(u_current, block, 0);
     return;
   }
   // The neighbourhood of fresh samples around this pixel: its range bounds the history.
   vec4 lo = vec4(1e30), hi = vec4(-1e30), nearest = vec4(0.0);
   float distance_m = 0.0, front_m = 0.0;
-  vec2 fresh_pos = vec2(pixel - u_offset) * 0.5;  // in quarter-res texels (centres at integers)
+  vec2 fresh_pos = vec2(pixel - u_offset) / float(u_block);  // in u_current's texels (centres at integers)
   float best = 1e30;
   for (int y = -1; y <= 1; ++y)
     for (int x = -1; x <= 1; ++x) {
@@ -59,7 +60,13 @@ void main() {
     o_color = upsampled;
     return;
   }
-  vec4 history = texture(u_history, uv);
+  // Where the camera did not move, the pixel lands on its own texel's centre up to rounding: that
+  // texel is read as it is, or the history would be filtered again every frame and blur.
+  vec2 texel = uv * vec2(textureSize(u_history, 0)) - 0.5;
+  vec2 centre = round(texel);
+  vec4 history = all(lessThan(abs(texel - centre), vec2(0.125)))
+                     ? texelFetch(u_history, ivec2(centre), 0)
+                     : texture(u_history, uv);
 #if CLOUDS_CLIP
   history = clamp(history, lo, hi);
 #endif

@@ -161,3 +161,53 @@ TEST(CloudsGpu, FirstTemporalFrameMarchesEveryPixel) {
 
 }  // namespace
 }  // namespace welkin::clouds
+
+namespace welkin::clouds {
+namespace {
+
+// Temporal upscaling with 4 x 4 blocks: after the clouds change (here their density, with clipping
+// off so that stale history would stay as it was), each of the next 16 frames marches one pixel of
+// each block, in Bayer order, and after them every pixel equals the full march of the frame in which
+// it was marched (same jitter, same frame index), to half precision. A static camera reads its own
+// history texel back unfiltered, so what was marched stays as it was.
+TEST(CloudsGpu, FourByFourBlocksRenewEveryPixelOnceIn16Frames) {
+  const int w = 32, h = 18;
+  const nlohmann::json march = {{"quality", "custom"}, {"resolution_scale", 1.0}, {"temporal_block", 4},
+                                {"temporal_clipping", false}};
+  test::Rendered upscaled = test::render(test::noon(march), w, h);  // frame 0: every pixel (history)
+  nlohmann::json full_march = march;
+  full_march["temporal_upscaling"] = false;
+  test::Rendered full = test::render(test::noon(full_march), w, h);
+  for (test::Rendered* r : {&upscaled, &full})
+    for (CloudLayer& layer : r->clouds().layers) layer.density_per_m *= 3.0f;
+  std::vector<ImageF> full_frames;
+  for (int k = 1; k <= 16; ++k) {
+    upscaled.frame(w, h);
+    full.frame(w, h);
+    full_frames.push_back(full.renderer->read_hdr());
+  }
+  // Frame k (from 1) marched the block position of Bayer index k - 1.
+  static constexpr int kBayer[4][4] = {{0, 8, 2, 10}, {12, 4, 14, 6}, {3, 11, 1, 9}, {15, 7, 13, 5}};
+  const ImageF result = upscaled.renderer->read_hdr();
+  const ImageF stale = test::render(test::noon(march), w, h).renderer->read_hdr();
+  size_t differing = 0, changed = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int gl_y = h - 1 - y;  // images are read top row first
+      const ImageF& expected = full_frames[size_t(kBayer[gl_y % 4][x % 4])];
+      for (int c = 0; c < 4; ++c) {
+        const size_t i = (size_t(y) * w + x) * 4 + c;
+        // One step of half precision: the composite's bilinear read of the history lands on texel
+        // centres up to rounding, and its vanishing weights on the neighbours (marched in other
+        // frames) can tip the last bit.
+        const float ulp = std::abs(expected.rgba[i]) / 1024.0f;
+        differing += std::abs(result.rgba[i] - expected.rgba[i]) > ulp;
+        changed += std::abs(result.rgba[i] - stale.rgba[i]) > 8.0f * ulp;
+      }
+    }
+  EXPECT_EQ(differing, 0u);
+  EXPECT_GT(changed, size_t(w * h));  // the density change is visible: the comparison can fail
+}
+
+}  // namespace
+}  // namespace welkin::clouds

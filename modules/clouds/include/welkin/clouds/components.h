@@ -89,9 +89,10 @@ struct VolumetricClouds {
   float max_distance_m = 200000.0f;
   bool shape_detail = true;
   float resolution_scale = 0.5f;  // the march runs at this fraction of the frame's width and height
-  // March one pixel of each 2x2 block per frame and reproject the rest from the last frame, clipped
-  // to this frame's samples (off while the camera is within the layers' altitudes).
+  // March one pixel of each block (temporal_block x temporal_block: 2 or 4) per frame and reproject
+  // the rest from the last frame, clipped to this frame's samples (not where the camera is in a cloud).
   bool temporal_upscaling = true;
+  int temporal_block = 2;  // quality custom
   bool temporal_clipping = true;  // off: plain reprojection (for measuring what clipping saves)
   // Shadows on every material (a beer shadow map from the sun around the camera) and sky occlusion.
   bool shadows = true;
@@ -119,6 +120,7 @@ struct ResolvedQuality {
   bool shape_detail;
   float resolution_scale;  // of the march; the composite upsamples
   float step_growth;       // metres of step per metre of distance (a pixel's footprint grows so)
+  int temporal_block;      // with temporal upscaling, one pixel of each block this wide is marched per frame
 };
 ResolvedQuality resolve_quality(const VolumetricClouds& clouds);
 
