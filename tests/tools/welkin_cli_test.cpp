@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <set>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -163,6 +164,31 @@ TEST(WelkinCli, SequenceVideoPassesFileNamesToFfmpegLiterally) {
   std::string line, last;
   while (std::getline(args, line)) last = line;
   EXPECT_EQ(last, video) << "ffmpeg's last argument is the output file, unchanged";
+}
+
+// The benchmark divides each frame by a copy timed right after it, and runs only what changed: with
+// a still camera and sun the per-frame LUTs are kept, a turning camera rebuilds the aerial
+// perspective (it follows the view) but not the sky-view LUT (laid out around the camera's position).
+TEST(WelkinCli, BenchReportsRatiosAndRunsOnlyWhatChanged) {
+  auto passes_of = [](const CliRun& r) {
+    std::set<std::string> names;
+    const nlohmann::json report = nlohmann::json::parse(r.out);
+    for (const auto& p : report["passes"]) names.insert(p["name"].get<std::string>());
+    return names;
+  };
+  const std::string scene = WELKIN_SOURCE_DIR "/assets/scenes/atmosphere-noon.json --size 32x18 --frames 3 --json";
+  CliRun still = run("bench " + scene, false);
+  ASSERT_EQ(still.code, 0) << still.out;
+  const auto j = nlohmann::json::parse(still.out);
+  EXPECT_GT(j["copy_floor_ms"].get<double>(), 0.0);
+  EXPECT_GT(j["frame_ratio_to_copy"].get<double>(), 1.0) << "a frame costs more than one copy";
+  EXPECT_FALSE(passes_of(still).count("atmosphere.sky_view"));
+  EXPECT_FALSE(passes_of(still).count("atmosphere.aerial_perspective"));
+  CliRun turning = run("bench " + scene + " --turn-deg 2", false);
+  ASSERT_EQ(turning.code, 0) << turning.out;
+  EXPECT_FALSE(passes_of(turning).count("atmosphere.sky_view"));
+  EXPECT_TRUE(passes_of(turning).count("atmosphere.aerial_perspective"));
+  EXPECT_NE(run("bench " + scene + " --turn-deg 400").code, 0);
 }
 
 }  // namespace

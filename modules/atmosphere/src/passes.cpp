@@ -227,7 +227,12 @@ void lut_system(SystemContext& sc) {
   }
   // The sky-view LUT serves the LUT method inside the atmosphere only; from space, and with method
   // raymarch, the sky is marched per pixel instead.
-  if (!space && !raymarch) {
+  // A LUT rebuilt below stays invalid if its pass is culled before it runs.
+  const bool sky_view_stale = rebuild || !gpu.sky_view_valid || sky_view_differs(u, gpu.sky_view_uniforms);
+  const bool aerial_stale = rebuild || !gpu.aerial_valid || aerial_perspective_differs(u, gpu.aerial_uniforms);
+  if (sky_view_stale) gpu.sky_view_valid = false;
+  if (aerial_stale) gpu.aerial_valid = false;
+  if (!space && !raymarch && sky_view_stale) {
     g.add_pass(
         "atmosphere.sky_view",
         [&](PassBuilder& b) {
@@ -235,14 +240,17 @@ void lut_system(SystemContext& sc) {
           b.read(ms);
           b.write(sky_view);
         },
-        [gp, rcp, q, moon_defs](PassContext&) {
+        [gp, rcp, q, moon_defs, u](PassContext&) {
           bind_for_materials(*gp);
           bind_image_for_write(0, *gp->sky_view);
           dispatch_compute(rcp->shaders.compute("atmosphere/sky_view_lut.comp", moon_defs),
                    group_count(q.sky_view_width, 8), group_count(q.sky_view_height, 8));
+          gp->sky_view_uniforms = u;
+          gp->sky_view_valid = true;
+          ++gp->sky_view_builds;
         });
   }
-  if (!space) {
+  if (!space && aerial_stale) {
     g.add_pass(
         "atmosphere.aerial_perspective",
         [&](PassBuilder& b) {
@@ -251,12 +259,15 @@ void lut_system(SystemContext& sc) {
           b.write(ap_s);
           b.write(ap_t);
         },
-        [gp, rcp, q, moon_defs](PassContext&) {
+        [gp, rcp, q, moon_defs, u](PassContext&) {
           bind_for_materials(*gp);
           bind_image_for_write(0, *gp->aerial_inscattering);
           bind_image_for_write(1, *gp->aerial_transmittance);
           dispatch_compute(rcp->shaders.compute("atmosphere/aerial_perspective_volume.comp", moon_defs),
                    group_count(q.aerial_perspective_width, 8), group_count(q.aerial_perspective_height, 8));
+          gp->aerial_uniforms = u;
+          gp->aerial_valid = true;
+          ++gp->aerial_builds;
         });
   }
   g.add_pass(

@@ -133,4 +133,17 @@ bool luts_differ(const GpuUniforms& a, const GpuUniforms& b) {
          a.multiscattering_size != b.multiscattering_size;
 }
 
+bool sky_view_differs(const GpuUniforms& a, const GpuUniforms& b) {
+  GpuUniforms view_free = b;
+  view_free.inverse_view_projection = a.inverse_view_projection;
+  view_free.view_projection = a.view_projection;
+  view_free.aerial_size = a.aerial_size;
+  view_free.aerial_params = a.aerial_params;
+  return std::memcmp(&a, &view_free, sizeof(GpuUniforms)) != 0;
+}
+
+bool aerial_perspective_differs(const GpuUniforms& a, const GpuUniforms& b) {
+  return std::memcmp(&a, &b, sizeof(GpuUniforms)) != 0;
+}
+
 }  // namespace welkin::atmosphere

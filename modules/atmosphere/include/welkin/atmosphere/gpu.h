@@ -52,6 +52,11 @@ GpuUniforms make_uniforms(const Atmosphere& atmosphere, const Sun* sun, const Mo
                           const FrameView& view);
 // True when two frames' uniforms need different transmittance/multi-scattering LUTs.
 bool luts_differ(const GpuUniforms& a, const GpuUniforms& b);
+// True when they need a different sky-view LUT: everything but the view's orientation and the
+// aerial-perspective volume's settings (the LUT is laid out around the camera's position and the sun).
+bool sky_view_differs(const GpuUniforms& a, const GpuUniforms& b);
+// True when they need a different aerial-perspective volume (it follows the view: any change).
+bool aerial_perspective_differs(const GpuUniforms& a, const GpuUniforms& b);
 
 // LUTs and the uniform buffer of one world (a world resource, so GL objects live with the world).
 struct AtmosphereGpu {
@@ -66,6 +71,11 @@ struct AtmosphereGpu {
   GpuUniforms lut_uniforms;  // what the persistent LUTs were built from
   bool luts_valid = false;
   int lut_builds = 0;  // transmittance + multi-scattering regenerations (tests, stats)
+  // The per-frame LUTs are kept while nothing they depend on changed (a still camera, a still sun):
+  // reusing them is exact, not an approximation.
+  GpuUniforms sky_view_uniforms, aerial_uniforms;
+  bool sky_view_valid = false, aerial_valid = false;
+  int sky_view_builds = 0, aerial_builds = 0;
   // Where the light environment put the block and the LUTs (add_light_term fills them).
   struct Bindings {
     GLuint block = 0, transmittance = 0, multiscattering = 0, sky_view = 0, aerial_inscattering = 0,
