@@ -76,9 +76,12 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
 #endif
   float inverse_length = 1.0 / max(segment.y - segment.x, 1e-3);
   float phase_single = clouds_phase(mu, 1.0);
+  // At least eight samples through each stretch: a layer crossed far away and steeply (seen from
+  // orbit) would otherwise get one or two, and the jitter would decide whether the cloud is there.
+  float longest_m = max(min(cl_steps.z, (segment.y - segment.x) * 0.125), cl_steps.y);
   while (t < segment.y && acc.steps < int(cl_steps.x) && acc.transmittance > 0.01) {
     // Steps grow with distance (a pixel's footprint grows with it), within [min, max].
-    float step_m = clamp(cl_steps.y + t * cl_light_model.w, cl_steps.y, cl_steps.z);
+    float step_m = clamp(cl_steps.y + t * cl_light_model.w, cl_steps.y, longest_m);
     if (first) step_m *= jitter, first = false;
     step_m = min(step_m, segment.y - t);
     vec3 x = dir * (t + 0.5 * step_m);
