@@ -101,24 +101,39 @@ Ghosting measure_ghosting(const std::string& scene, int frames, int width, int h
   return g;
 }
 
-// Aerial perspective along the ray against takram's single mean depth: sparse clouds from 2 to 60 km
-// in hazy air, the same march (30 m steps, every pixel) with each. Writes the two frames and the
-// relative difference (x10, red) side by side.
+// Aerial perspective along the ray against takram's single mean depth, in hazy air, the same march
+// (30 m steps, every pixel) with each. Two scenes: sparse clouds from 2 to 60 km, and one built for the
+// failure: a translucent sheet 10-20 km away in front of an opaque deck 30-60 km away, so that most
+// pixels see two clouds at very different depths and the mean depth lies between them. Writes the two
+// frames and the relative difference (x10, red) side by side.
 struct ApComparison {
   double mean = 0.0, worst = 0.0;
   int cloud_pixels = 0;
 };
 
-ApComparison compare_aerial_perspective(const std::string& png, int width, int height) {
+struct ApCase {
+  const char* name;
+  double altitude_m, pitch_deg;
+  nlohmann::json layers;
+};
+
+const ApCase kSparseClouds{"sparse clouds 2-60 km", 300.0, 3.0,
+                           {{{"genus", "cumulus"}, {"base_altitude_m", 1200}, {"thickness_m", 1000}, {"coverage", 0.12}, {"density_per_m", 0.01}},
+                            {{"genus", "altocumulus"}, {"base_altitude_m", 3500}, {"thickness_m", 600}, {"coverage", 0.15}, {"density_per_m", 0.004}}}};
+const ApCase kSheetOverDeck{"a translucent sheet 10-20 km in front of a deck 30-60 km", 300.0, 6.0,
+                            {{{"genus", "stratus"}, {"base_altitude_m", 1500}, {"thickness_m", 100}, {"coverage", 0.9},
+                              {"density_per_m", 0.0006}, {"base_variation_m", 0}, {"casts_shadow", false}},
+                             {{"genus", "stratocumulus"}, {"base_altitude_m", 4000}, {"thickness_m", 600}, {"coverage", 0.8}, {"density_per_m", 0.01}}}};
+
+ApComparison compare_aerial_perspective(const ApCase& scene, const std::string& png, int width, int height) {
   const nlohmann::json clouds = {
       {"quality", "custom"}, {"temporal_upscaling", false}, {"resolution_scale", 1.0}, {"max_steps", 4096},
       {"min_step_m", 30.0}, {"max_step_m", 30.0}, {"step_growth", 0.0}, {"max_distance_m", 80000.0}, {"shadows", false},
-      {"layers", {{{"genus", "cumulus"}, {"base_altitude_m", 1200}, {"thickness_m", 1000}, {"coverage", 0.12}, {"density_per_m", 0.01}},
-                  {{"genus", "altocumulus"}, {"base_altitude_m", 3500}, {"thickness_m", 600}, {"coverage", 0.15}, {"density_per_m", 0.004}}}}};
+      {"layers", scene.layers}};
   const nlohmann::json doc = {
       {"welkin_scene", 1},
       {"entities",
-       {{{"name", "camera"}, {"components", {{"core.Camera", {{"position_m", {0, 0, 300}}, {"heading_deg", 30}, {"pitch_deg", 3}, {"vertical_fov_deg", 30}, {"ev100", 14}}}}}},
+       {{{"name", "camera"}, {"components", {{"core.Camera", {{"position_m", {0, 0, scene.altitude_m}}, {"heading_deg", 30}, {"pitch_deg", scene.pitch_deg}, {"vertical_fov_deg", 30}, {"ev100", 14}}}}}},
         {{"name", "air"}, {"components", {{"atmosphere.Atmosphere", {{"mie_scattering", {0.021, 0.021, 0.021}}, {"mie_extinction", {0.0231, 0.0231, 0.0231}}}}}}},
         {{"name", "sun"}, {"components", {{"atmosphere.Sun", {{"azimuth_deg", 200}, {"elevation_deg", 25}}}}}},
         {{"name", "clouds"}, {"components", {{"clouds.VolumetricClouds", clouds}}}}}}};
@@ -230,11 +245,14 @@ int run_cloud_accuracy(const CloudAccuracyOptions& o) {
   std::printf("\ntemporal upscaling on a flying, turning camera (peer scene, high), per-frame relative L1 against\n"
               "marching every pixel: clipped history %.2f%% mean, %.2f%% worst; plain reprojection %.2f%% mean, %.2f%% worst\n",
               100 * ghost.clipped_mean, 100 * ghost.clipped_worst, 100 * ghost.plain_mean, 100 * ghost.plain_worst);
-  const std::string ap_png = (fs::path(o.out) / "aerial-perspective-clouds.png").string();
-  const ApComparison ap = compare_aerial_perspective(ap_png, o.quick ? 96 : 320, o.quick ? 54 : 180);
-  std::printf("aerial perspective at the clouds' mean depth against along the ray (sparse clouds 2-60 km, hazy\n"
-              "air, %d cloud pixels): %.2f%% mean, %.1f%% worst pixel; frames and difference in %s\n",
-              ap.cloud_pixels, 100 * ap.mean, 100 * ap.worst, ap_png.c_str());
+  std::printf("aerial perspective at the clouds' mean depth against along the ray, hazy air:\n");
+  for (const auto& [scene, file] : {std::pair{&kSparseClouds, "aerial-perspective-clouds.png"},
+                                    std::pair{&kSheetOverDeck, "aerial-perspective-overlap.png"}}) {
+    const std::string ap_png = (fs::path(o.out) / file).string();
+    const ApComparison ap = compare_aerial_perspective(*scene, ap_png, o.quick ? 96 : 320, o.quick ? 54 : 180);
+    std::printf("  %s (%d cloud pixels): %.2f%% mean, %.1f%% worst pixel; frames and difference in %s\n",
+                scene->name, ap.cloud_pixels, 100 * ap.mean, 100 * ap.worst, ap_png.c_str());
+  }
   if (o.json) std::printf("%s\n", nlohmann::json{{"rays", views.size()}, {"results", results}, {"plot", png}}.dump(2).c_str());
   std::printf("\nwrote %s, %s and %s\n", (fs::path(o.out) / "accuracy-clouds.csv").string().c_str(),
               (fs::path(o.out) / "accuracy-clouds-rays.csv").string().c_str(), png.c_str());
