@@ -40,6 +40,8 @@ void describe(TypeBuilder<CloudLayer>& t) {
   t.field("profile_constant_term", &CloudLayer::profile_constant_term).range(-100, 100);
   t.field("wind_mps", &CloudLayer::wind_mps).unit("m/s").range(-200, 200).tooltip("Drift of the layer's weather (east, north)");
   t.field("casts_shadow", &CloudLayer::casts_shadow).tooltip("Included in the shadow map on materials");
+  t.field("visible", &CloudLayer::visible).tooltip("Drawn (and casting its shadow)");
+  t.field("solo", &CloudLayer::solo).tooltip("While any layer is soloed, only soloed layers are drawn");
 }
 
 std::vector<CloudLayer> VolumetricClouds::default_layers() {

@@ -55,8 +55,10 @@ PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& ct
   PackedLayers out;
   const glm::dvec3 p = camera_m - ctx.planet_center_m;
   bool first = true, first_shadow = true;
+  const bool any_solo = std::any_of(clouds.layers.begin(), clouds.layers.end(), [](const CloudLayer& L) { return L.solo; });
   for (size_t i = 0; i < clouds.layers.size(); ++i) {
     const CloudLayer& L = clouds.layers[i];
+    if (!L.visible || (any_solo && !L.solo)) continue;
     const float coverage = std::clamp(L.coverage * clouds.coverage, 0.0f, 1.0f);
     // A layer that cannot hold cloud is not marched at all.
     if (!(L.thickness_m > 0.0f) || !(coverage > 0.0f) || !(L.density_per_m > 0.0f)) continue;

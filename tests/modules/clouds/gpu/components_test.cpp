@@ -2,6 +2,7 @@
 // anything is drawn. Round trips keep every field.
 #include "clouds_test_support.h"
 #include "welkin/core/error.h"
+#include <cstring>
 #include <filesystem>
 
 #include "welkin/scene/json_fields.h"
@@ -77,6 +78,34 @@ TEST(CloudsPresets, EveryPresetFileLoadsAndEachGenusHasOne) {
     EXPECT_NO_THROW(object_from_json(type_desc<CloudLayer>(), &layer, read_json_file((dir / "genera" / (name + ".json")).string())));
     EXPECT_EQ(int(layer.genus), g) << name;
   }
+}
+
+}  // namespace
+}  // namespace welkin::clouds
+
+namespace welkin::clouds {
+namespace {
+
+// Solo and visible, as in a mixer: a soloed layer is drawn alone and exactly as it is among the
+// others (its block, weather channel included, does not change); a hidden one is not packed.
+TEST(CloudsComponents, SoloAndHiddenLayersPackAsInAMixer) {
+  VolumetricClouds c;
+  c.layers = {CloudLayer{}, CloudLayer{.genus = Genus::altostratus, .base_altitude_m = 5000}, CloudLayer{.base_altitude_m = 8000}};
+  const CloudsContext ctx;
+  const glm::dvec3 camera(0.0, 0.0, 100.0);
+  const PackedLayers all = pack_layers(c, ctx, camera);
+  ASSERT_EQ(all.source_index, (std::vector<int>{0, 1, 2}));
+  c.layers[1].solo = true;
+  const PackedLayers solo = pack_layers(c, ctx, camera);
+  ASSERT_EQ(solo.source_index, (std::vector<int>{1}));
+  EXPECT_EQ(std::memcmp(&solo.layers[0], &all.layers[1], sizeof(LayerBlock)), 0);
+  c.layers[2].solo = true;
+  EXPECT_EQ(pack_layers(c, ctx, camera).source_index, (std::vector<int>{1, 2}));
+  c.layers[1].solo = c.layers[2].solo = false;
+  c.layers[0].visible = false;
+  const PackedLayers hidden = pack_layers(c, ctx, camera);
+  ASSERT_EQ(hidden.source_index, (std::vector<int>{1, 2}));
+  EXPECT_EQ(std::memcmp(&hidden.layers[1], &all.layers[2], sizeof(LayerBlock)), 0);
 }
 
 }  // namespace

@@ -45,6 +45,10 @@ struct CloudLayer {
   float profile_constant_term = 0.25f;
   glm::vec2 wind_mps{0.0f, 0.0f};  // drift of this layer's weather (east, north)
   bool casts_shadow = true;
+  // Drawn or not, as in a mixer: while any layer is soloed, only soloed layers are drawn. A layer
+  // looks the same alone as among the others (it keeps its place in the weather).
+  bool visible = true;
+  bool solo = false;
 };
 void describe(TypeBuilder<CloudLayer>& t);
 

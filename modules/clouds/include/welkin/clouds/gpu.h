@@ -58,7 +58,8 @@ inline constexpr int kMaxBands = 4;
 // The layers' altitude ranges merged into at most kMaxBands disjoint bands (closest gaps closed first).
 std::vector<glm::vec2> altitude_bands(std::vector<glm::vec2> ranges, int max_bands = kMaxBands);
 
-// The layers that can hold cloud this frame (coverage, thickness and density above zero), packed.
+// The layers that can hold cloud this frame (visible, soloed when any is, coverage, thickness and
+// density above zero), packed.
 struct PackedLayers {
   std::vector<LayerBlock> layers;
   std::vector<glm::vec2> ranges;  // each packed layer's altitude range, its base's variation included
