@@ -97,12 +97,12 @@ FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height
     fb.bind();
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
-    const Program& p = ctx_.shaders.graphics("fullscreen.vert", "tonemap.frag");
+    const Program& p = ctx_.shaders.graphics("fullscreen.vert", "tonemap.frag",
+                                             {{"TONEMAPPER", std::to_string(int(view.tonemapper))}});
     p.use();
     glBindTextureUnit(0, pc.texture(targets.color).id());
     p.set("u_hdr", 0);
     p.set("u_exposure", view.exposure);
-    p.set("u_tonemapper", int(view.tonemapper));
     ctx_.draw_fullscreen_triangle();
   });
   graph.present(output);
