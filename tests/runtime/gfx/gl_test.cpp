@@ -2,6 +2,7 @@
 // and a golden image of the built-in debug scene.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -120,6 +121,35 @@ TEST_F(Gl, DebugSceneMatchesGolden) {
   EXPECT_EQ(passes, (std::vector<std::string>{"clear", "backdrop", "debug_shapes", "tonemap"}));
   auto res = welkin::testing::compare_with_golden(r.read_output(), "runtime/debug_scene", {.max_channel_difference = 6, .max_failing_fraction = 0.003});
   EXPECT_TRUE(res.passed) << res.message;
+}
+
+// Each tone curve is its own shader variant: the linear one is exactly the clamped sRGB encoding of
+// the exposed HDR frame (to the byte), and the three curves give three different images.
+TEST_F(Gl, EachToneCurveIsItsOwnVariant) {
+  World world;
+  load_scene_file(world, WELKIN_SOURCE_DIR "/assets/scenes/debug.json");
+  Renderer r(world);
+  Registry& reg = world.registry();
+  Camera& camera = *reg.get<Camera>(reg.first<Camera>());
+  camera.exposure_mode = ExposureMode::manual, camera.exposure = 3e-5f;
+  std::vector<ImageU8> outputs;
+  for (Tonemapper t : {Tonemapper::aces, Tonemapper::agx, Tonemapper::linear}) {
+    camera.tonemapper = t;
+    r.render_frame({}, 64, 36);
+    outputs.push_back(r.read_output());
+  }
+  const ImageF hdr = r.read_hdr();
+  int off = 0;
+  for (int y = 0; y < 36; ++y)
+    for (int x = 0; x < 64; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const int expected = linear_to_srgb8(std::clamp(hdr.pixel(x, y)[c] * 3e-5f, 0.0f, 1.0f));
+        off += std::abs(int(outputs[2].pixel(x, y)[c]) - expected) > 1;
+      }
+  EXPECT_EQ(off, 0);
+  EXPECT_NE(outputs[0].rgba, outputs[1].rgba);
+  EXPECT_NE(outputs[0].rgba, outputs[2].rgba);
+  EXPECT_NE(outputs[1].rgba, outputs[2].rgba);
 }
 
 TEST_F(Gl, SceneWithoutCameraIsAClearError) {
