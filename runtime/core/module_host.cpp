@@ -1,14 +1,14 @@
 #include <dlfcn.h>
 
 #include <algorithm>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "welkin/core/error.h"
+#include "welkin/core/files.h"
 #include "welkin/core/log.h"
 #include "welkin/core/module.h"
 #include "welkin/core/world.h"
+#include "welkin/scene/json_fields.h"
 
 namespace welkin {
 
@@ -47,12 +47,7 @@ std::vector<std::string> read_strings(const json& j, const char* key, const std:
 }  // namespace
 
 ModuleManifest parse_module_manifest(const std::string& text, const std::string& origin) {
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw Error(ErrorInfo{.file = origin, .message = std::string("malformed manifest: ") + e.what()});
-  }
+  const json j = parse_json_text(text, origin);  // bounded in size and depth, duplicate keys refused
   if (!j.is_object()) throw Error(ErrorInfo{.file = origin, .path = "/", .expected = "object", .found = json_type(j)});
   ModuleManifest m;
   m.origin = origin;
@@ -88,10 +83,7 @@ void ModuleHost::add_search_dir(const std::filesystem::path& dir) {
     if (entry.path().filename().string().ends_with(".module.json")) files.push_back(entry.path());
   std::sort(files.begin(), files.end());
   for (const auto& f : files) {
-    std::ifstream in(f);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    ModuleManifest m = parse_module_manifest(ss.str(), f.string());
+    ModuleManifest m = parse_module_manifest(read_file_text(f.string(), kMaxJsonBytes), f.string());
     if (!m.library.empty() && m.library.is_relative()) m.library = f.parent_path() / m.library;
     if (!m.data_dir.empty() && m.data_dir.is_relative()) m.data_dir = f.parent_path() / m.data_dir;
     if (!manifests_.count(m.name)) manifests_.emplace(m.name, std::move(m));

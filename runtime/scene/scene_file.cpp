@@ -1,9 +1,5 @@
 #include "welkin/scene/scene_file.h"
 
-#include <unistd.h>
-
-#include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "welkin/core/error.h"
@@ -130,26 +126,6 @@ json save_scene(const World& world) {
 
 void save_scene_file(const World& world, const std::string& path) {
   write_file_atomically(path, save_scene(world).dump(2) + "\n");
-}
-
-void write_file_atomically(const std::string& path, const std::string& text) {
-  std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-  {
-    std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw Error(ErrorInfo{.file = path, .message = "cannot write (temporary file " + tmp + " could not be created)"});
-    bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-    ok = std::fflush(f) == 0 && ok;
-    ok = ::fsync(fileno(f)) == 0 && ok;
-    ok = std::fclose(f) == 0 && ok;
-    if (!ok) {
-      std::remove(tmp.c_str());
-      throw Error(ErrorInfo{.file = path, .message = "write failed; the existing file was left untouched"});
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw Error(ErrorInfo{.file = path, .message = "cannot replace file; the existing file was left untouched"});
-  }
 }
 
 }  // namespace welkin

@@ -1,13 +1,14 @@
 #pragma once
 // Scene documents: JSON with entities and their named components. Loading validates every value
-// and loads the modules the components need; saving writes all fields and never loses the old
-// file (temporary file, then rename).
+// and loads the modules the components need; saving writes all fields through the atomic writer,
+// so it never loses the old file.
 //
 // { "welkin_scene": 1,
 //   "entities": [ { "name": "camera", "components": { "core.Camera": { "vertical_fov_deg": 60 } } } ] }
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 
+#include "welkin/core/files.h"  // write_file_atomically, used by every saver
 #include "welkin/core/world.h"
 
 namespace welkin {
@@ -29,9 +30,5 @@ void save_scene_file(const World& world, const std::string& path);
 
 // Component names a scene document uses, without loading anything (for `welkin info`).
 std::vector<std::string> scene_component_names(const nlohmann::json& doc, const std::string& file);
-
-// Writes `text` to `path` through a temporary file in the same folder and a rename, so a crash or
-// a full disk never leaves a half-written file in place of the old one.
-void write_file_atomically(const std::string& path, const std::string& text);
 
 }  // namespace welkin
