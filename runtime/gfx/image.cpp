@@ -109,6 +109,9 @@ ImageF read_exr(const std::string& path) {
   Imf::StdISStream in;
   in.str(read_file_text(path, kMaxImageFileBytes));
   try {
+    // OpenEXR sizes its tables from the header while opening: its own checks bound them first.
+    Imf::Header::setMaxImageSize(kMaxImageSide, kMaxImageSide);
+    Imf::Header::setMaxTileSize(kMaxImageSide, kMaxImageSide);
     Imf::InputFile file(in);
     Imath::Box2i dw = file.header().dataWindow();
     check_image_size(path, int64_t(dw.max.x) - dw.min.x + 1, int64_t(dw.max.y) - dw.min.y + 1);

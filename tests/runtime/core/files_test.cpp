@@ -188,6 +188,11 @@ TEST(BoundedRead, ImagesOverTheSizeBoundAreRefusedFromTheHeader) {
   welkin::write_png((d / "wide.png").string(), wide);
   std::string e = error_of([&] { welkin::read_png((d / "wide.png").string()); });
   EXPECT_NE(e.find("16385x1"), std::string::npos) << e;
+  welkin::ImageF wide_hdr{welkin::kMaxImageSide + 1, 1, std::vector<float>(size_t(welkin::kMaxImageSide + 1) * 4, 0.5f)};
+  welkin::write_exr((d / "wide.exr").string(), wide_hdr);
+  e = error_of([&] { welkin::read_exr((d / "wide.exr").string()); });
+  EXPECT_EQ(e.rfind((d / "wide.exr").string() + ": ", 0), 0u) << e;
+  EXPECT_NE(e.find("16384"), std::string::npos) << e;  // the bound, in our words or OpenEXR's
   ASSERT_EQ(::mkfifo((d / "pipe.exr").c_str(), 0644), 0);
   e = error_of([&] { welkin::read_exr((d / "pipe.exr").string()); });
   EXPECT_NE(e.find("FIFO"), std::string::npos) << e;
