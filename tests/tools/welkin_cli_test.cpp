@@ -221,4 +221,20 @@ TEST(WelkinCli, FrameCountsAndImageSizesAreCheckedBeforeUse) {
   EXPECT_FALSE(fs::exists(tmp("wide") / "frame_00000.png"));
 }
 
+TEST(WelkinCli, AMalformedModuleManifestIsReportedNotFatal) {
+  fs::path dir = tmp("bad-modules");
+  fs::create_directories(dir);
+  std::ofstream(dir / "zzz.module.json") << "{ not json";
+  setenv("WELKIN_MODULE_PATH", dir.c_str(), 1);
+  CliRun r = run("render " WELKIN_SOURCE_DIR "/assets/scenes/debug.json --size 16x16 --out " + tmp("despite.png").string());
+  CliRun info = run("info --modules --json", /*with_stderr=*/false);
+  unsetenv("WELKIN_MODULE_PATH");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("skipped module manifest: " + (dir / "zzz.module.json").string()), std::string::npos) << r.out;
+  ASSERT_EQ(info.code, 0) << info.out;
+  nlohmann::json j = nlohmann::json::parse(info.out);
+  ASSERT_EQ(j["skipped_manifests"].size(), 1u) << info.out;
+  EXPECT_FALSE(j["available_modules"].empty());
+}
+
 }  // namespace
