@@ -1,5 +1,6 @@
 #include "welkin/scene/scene_file.h"
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "welkin/core/error.h"
@@ -68,6 +69,9 @@ void load_scene(World& world, const json& doc, const std::string& file) {
         throw e.with_file(file).with_path_prefix("/modules/" + std::to_string(i));
       }
     }
+    std::vector<std::string>& listed = world.resource<SceneModules>().names;
+    for (const json& m : *mods)
+      if (std::find(listed.begin(), listed.end(), m.get<std::string>()) == listed.end()) listed.push_back(m.get<std::string>());
   }
   Registry& reg = world.registry();
   const json& ents = doc["entities"];
@@ -121,7 +125,10 @@ json save_scene(const World& world) {
     ej["components"] = std::move(comps);
     ents.push_back(std::move(ej));
   }
-  return json{{"welkin_scene", kSceneFormatVersion}, {"entities", std::move(ents)}};
+  json doc{{"welkin_scene", kSceneFormatVersion}, {"entities", std::move(ents)}};
+  if (const SceneModules* listed = world.find_resource<SceneModules>(); listed && !listed->names.empty())
+    doc["modules"] = listed->names;
+  return doc;
 }
 
 void save_scene_file(const World& world, const std::string& path) {

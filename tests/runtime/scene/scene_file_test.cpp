@@ -59,6 +59,21 @@ TEST(SceneFile, LoadSaveRoundTripsExactly) {
   EXPECT_EQ(b.registry().get<welkin::Name>(cam)->value, "camera");
 }
 
+TEST(SceneFile, TheExplicitModulesListSurvivesARoundTrip) {
+  // "core" is listed without a core component in the scene: only the list says it is wanted.
+  welkin::World a;
+  welkin::load_scene(a, json::parse(R"({"welkin_scene": 1, "modules": ["core"], "entities": [{"name": "x"}]})"), "m.json");
+  json saved = welkin::save_scene(a);
+  EXPECT_EQ(saved["modules"], json::array({"core"})) << saved.dump();
+  welkin::World b;
+  welkin::load_scene(b, saved, "saved.json");
+  EXPECT_EQ(welkin::save_scene(b), saved);
+  // A scene without the list saves without it.
+  welkin::World c;
+  welkin::load_scene(c, json::parse(R"({"welkin_scene": 1, "entities": []})"), "plain.json");
+  EXPECT_FALSE(welkin::save_scene(c).contains("modules"));
+}
+
 TEST(SceneFile, SaveIsAtomicAndKeepsTheOldFileOnFailure) {
   fs::path dir = temp_dir();
   fs::path f = dir / "keep.json";

@@ -7,6 +7,7 @@
 //   "entities": [ { "name": "camera", "components": { "core.Camera": { "vertical_fov_deg": 60 } } } ] }
 #include <nlohmann/json_fwd.hpp>
 #include <string>
+#include <vector>
 
 #include "welkin/core/files.h"  // write_file_atomically, used by every saver
 #include "welkin/core/world.h"
@@ -21,6 +22,13 @@ struct Name {
   std::string value;
 };
 void describe(TypeBuilder<Name>& t);
+
+// The scene's explicit "modules" list as loaded, so a save writes back everything the file held
+// (a module listed without a component in the scene would otherwise be dropped).
+struct SceneModules {
+  static constexpr std::string_view kTypeName = "core.SceneModules";
+  std::vector<std::string> names;
+};
 
 // Loads entities into `world`. `file` names the document in error messages.
 void load_scene(World& world, const nlohmann::json& doc, const std::string& file);
