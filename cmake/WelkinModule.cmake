@@ -46,8 +46,9 @@ extern "C" __attribute__((visibility("default"))) const welkin::ModuleDefinition
 
   add_library(welkin_${M_NAME} MODULE ${gen}/plugin_entry.cpp)
   target_link_libraries(welkin_${M_NAME} PRIVATE welkin_${M_NAME}_static)
+  file(RELATIVE_PATH module_to_lib /${WELKIN_INSTALL_MODULE_DIR} /${CMAKE_INSTALL_LIBDIR})
   set_target_properties(welkin_${M_NAME} PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${M_OUTPUT_DIR}
-    CXX_VISIBILITY_PRESET hidden)
+    CXX_VISIBILITY_PRESET hidden INSTALL_RPATH "$ORIGIN/${module_to_lib}")
   add_library(Welkin::${M_NAME} ALIAS welkin_${M_NAME}_static)
 
   # Manifests: the build tree points at the source folder for shaders and presets; the installed

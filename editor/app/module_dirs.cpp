@@ -22,7 +22,7 @@ fs::path executable_dir() {
 std::unique_ptr<World> make_world_with_plugins() {
   auto world = std::make_unique<World>();
   // The same places as the `welkin` CLI (tools/welkin/session.cpp), from the same compile definitions.
-  for (const auto& d : module_search_dirs(WELKIN_MODULE_DIR_FROM_BIN, WELKIN_BUILD_MODULE_DIR)) world->modules().add_search_dir(d);
+  for (const auto& d : module_search_dirs(WELKIN_MODULE_DIR_FROM_BIN, WELKIN_BUILD_MODULE_DIR, WELKIN_BUILD_BIN_DIR)) world->modules().add_search_dir(d);
   return world;
 }
 

@@ -2,12 +2,12 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <sstream>
 
 #include "model/preset_actions.h"
 #include "model/sequence.h"
 #include "welkin/core/error.h"
+#include "welkin/core/files.h"
 #include "welkin/scene/json_fields.h"
 #include "welkin/scene/scene_file.h"
 
@@ -16,6 +16,8 @@ namespace welkin::editor {
 using nlohmann::json;
 
 namespace {
+
+constexpr uint64_t kMaxScriptBytes = 16u << 20;  // an editor script file
 
 [[noreturn]] void line_error(const ScriptLine& line, const std::string& message) {
   throw Error(ErrorInfo{.file = line.where(), .message = message});
@@ -202,11 +204,7 @@ std::vector<ScriptLine> parse_script(const std::string& text, const std::string&
 }
 
 std::vector<ScriptLine> load_script(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(ErrorInfo{.file = path, .message = "cannot open script"});
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_script(ss.str(), path);
+  return parse_script(read_file_text(path, kMaxScriptBytes), path);
 }
 
 bool run_document_verb(EditorDocument& doc, PresetLibrary& presets, const ScriptLine& line, std::string& output) {

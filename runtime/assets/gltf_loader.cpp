@@ -12,6 +12,7 @@
 #include "internal.h"
 #include "tiny_gltf.h"
 #include "welkin/assets/glb_writer.h"
+#include "welkin/core/files.h"
 
 namespace welkin::assets {
 
@@ -284,24 +285,12 @@ fs::path resolve_external(const Source& src, const std::string& uri, const std::
 
 std::vector<uint8_t> read_file_limited(const Source& src, const fs::path& file, uint64_t max_bytes,
                                        const std::string& path) {
-  std::FILE* f = std::fopen(file.c_str(), "rb");
-  if (!f) fail(src, path, "a readable file", file.string() + ": " + std::strerror(errno));
-  struct stat st {};
-  if (::fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
-    std::fclose(f);
-    fail(src, path, "a regular file", file.string());
+  try {
+    return read_file_bytes(file.string(), max_bytes);  // regular files only, never past max_bytes
+  } catch (const Error& e) {
+    fail(src, path, "a readable regular file of at most " + std::to_string(max_bytes) + " bytes",
+         file.string() + ": " + e.info().message);
   }
-  if (uint64_t(st.st_size) > max_bytes) {
-    std::fclose(f);
-    fail(src, path, "a file of at most " + std::to_string(max_bytes) + " bytes",
-         std::to_string(st.st_size) + " bytes");
-  }
-  std::vector<uint8_t> data(size_t(st.st_size));
-  const size_t got = data.empty() ? 0 : std::fread(data.data(), 1, data.size(), f);
-  std::fclose(f);
-  if (got != data.size())
-    fail(src, path, std::to_string(data.size()) + " readable bytes", std::to_string(got));
-  return data;
 }
 
 Model load_checked(std::span<const uint8_t> bytes, const Source& src);

@@ -1,14 +1,14 @@
 #include <dlfcn.h>
 
 #include <algorithm>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "welkin/core/error.h"
+#include "welkin/core/files.h"
 #include "welkin/core/log.h"
 #include "welkin/core/module.h"
 #include "welkin/core/world.h"
+#include "welkin/scene/json_fields.h"
 
 namespace welkin {
 
@@ -47,12 +47,7 @@ std::vector<std::string> read_strings(const json& j, const char* key, const std:
 }  // namespace
 
 ModuleManifest parse_module_manifest(const std::string& text, const std::string& origin) {
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw Error(ErrorInfo{.file = origin, .message = std::string("malformed manifest: ") + e.what()});
-  }
+  const json j = parse_json_text(text, origin);  // bounded in size and depth, duplicate keys refused
   if (!j.is_object()) throw Error(ErrorInfo{.file = origin, .path = "/", .expected = "object", .found = json_type(j)});
   ModuleManifest m;
   m.origin = origin;
@@ -63,6 +58,12 @@ ModuleManifest parse_module_manifest(const std::string& text, const std::string&
   m.components = read_strings(j, "components", origin);
   m.library = read_string(j, "library", origin, false);
   m.data_dir = read_string(j, "data_dir", origin, false);
+  // The library is a file beside the manifest: a path could make a dropped-in manifest load any
+  // library on the machine (or, with no slash, whatever the loader's search finds).
+  const std::string lib = m.library.string();
+  if (!m.library.empty() && (lib.find_first_of("/\\") != std::string::npos || lib == "." || lib == ".."))
+    throw Error(ErrorInfo{.file = origin, .path = "/library", .expected = "a file name beside the manifest (no folders)",
+                          .found = "'" + lib + "'"});
   for (const auto& c : m.components)
     if (c.rfind(m.name + ".", 0) != 0)
       throw Error(ErrorInfo{.file = origin, .path = "/components", .expected = "names starting with '" + m.name + ".'", .found = "'" + c + "'"});
@@ -88,11 +89,16 @@ void ModuleHost::add_search_dir(const std::filesystem::path& dir) {
     if (entry.path().filename().string().ends_with(".module.json")) files.push_back(entry.path());
   std::sort(files.begin(), files.end());
   for (const auto& f : files) {
-    std::ifstream in(f);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    ModuleManifest m = parse_module_manifest(ss.str(), f.string());
-    if (!m.library.empty() && m.library.is_relative()) m.library = f.parent_path() / m.library;
+    // One bad manifest costs its own module only: it is reported and skipped, the others still load.
+    ModuleManifest m;
+    try {
+      m = parse_module_manifest(read_file_text(f.string(), kMaxJsonBytes), f.string());
+    } catch (const Error& e) {
+      problems_.emplace_back(e.what());
+      log::warn(std::string("skipped module manifest: ") + e.what());
+      continue;
+    }
+    if (!m.library.empty()) m.library = f.parent_path() / m.library;
     if (!m.data_dir.empty() && m.data_dir.is_relative()) m.data_dir = f.parent_path() / m.data_dir;
     if (!manifests_.count(m.name)) manifests_.emplace(m.name, std::move(m));
   }
@@ -101,7 +107,12 @@ void ModuleHost::add_search_dir(const std::filesystem::path& dir) {
 void ModuleHost::add_static(const ModuleDefinition& def) {
   ModuleManifest m = parse_module_manifest(def.manifest_json, "static module");
   m.origin = "static module '" + m.name + "'";
-  m.data_dir = def.data_dir ? def.data_dir : "";
+  // A manifest found in a search folder says where this installation keeps the module's data; the
+  // compiled-in source folder is the fallback (tests, programs run from the build tree).
+  auto found = manifests_.find(m.name);
+  m.data_dir = found != manifests_.end() && !found->second.data_dir.empty() ? found->second.data_dir
+               : def.data_dir                                               ? def.data_dir
+                                                                            : "";
   static_defs_[m.name] = &def;
   manifests_[m.name] = std::move(m);  // a static module wins over a plugin of the same name
 }
@@ -145,7 +156,9 @@ void ModuleHost::load_with_stack(std::string_view module, std::vector<std::strin
     for (const auto& d : search_dirs_) where += (where.empty() ? "" : ", ") + d.string();
     throw Error(ErrorInfo{.message = "module '" + std::string(module) + "' is not installed" +
                                      (stack.empty() ? "" : " (needed by '" + stack.back() + "')") +
-                                     "; searched: " + (where.empty() ? "no module folders" : where)});
+                                     "; searched: " + (where.empty() ? "no module folders" : where) +
+                                     (problems_.empty() ? "" : "; skipped " + std::to_string(problems_.size()) +
+                                                                   " unreadable manifest(s), the first: " + problems_.front())});
   }
   stack.emplace_back(module);
   for (const auto& dep : m->depends) load_with_stack(dep, stack);

@@ -6,9 +6,9 @@
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
-#include <unistd.h>
-
+#include <ImfStdIO.h>
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 
@@ -19,6 +19,7 @@
 #include <stb_image.h>
 
 #include "welkin/core/error.h"
+#include "welkin/core/files.h"
 #include "welkin/gfx/gl_objects.h"
 
 namespace welkin {
@@ -53,38 +54,25 @@ ImageF read_texture_float(const Texture& t, int layer) {
   return img;
 }
 
-namespace {
-std::string temp_name(const std::string& path) {
-  // Keep the extension: some writers pick the format from it.
-  auto dot = path.find_last_of('.');
-  std::string ext = dot == std::string::npos ? "" : path.substr(dot);
-  return path + ".tmp-" + std::to_string(::getpid()) + ext;
-}
-void commit(const std::string& tmp, const std::string& path) {
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw Error(ErrorInfo{.file = path, .message = "cannot replace the file"});
-  }
-}
-}  // namespace
+// Encoders write into memory; the one atomic writer puts the bytes on disk (so a full disk never
+// replaces a good image with a truncated one), and readers go through the bounded regular-file reader.
 
 void write_png(const std::string& path, const ImageU8& img) {
-  std::string tmp = temp_name(path);
-  if (!stbi_write_png(tmp.c_str(), img.width, img.height, 4, img.rgba.data(), img.width * 4)) {
-    std::remove(tmp.c_str());
-    throw Error(ErrorInfo{.file = path, .message = "cannot write PNG (does the folder exist?)"});
-  }
-  commit(tmp, path);
+  std::string bytes;
+  auto append = [](void* ctx, void* data, int size) { static_cast<std::string*>(ctx)->append(static_cast<char*>(data), size_t(size)); };
+  if (!stbi_write_png_to_func(append, &bytes, img.width, img.height, 4, img.rgba.data(), img.width * 4))
+    throw Error(ErrorInfo{.file = path, .message = "cannot encode PNG"});
+  write_file_atomically(path, bytes);
 }
 
 void write_exr(const std::string& path, const ImageF& img, ExrPrecision precision) {
-  std::string tmp = temp_name(path);
+  Imf::StdOSStream out;
   try {
     Imf::Header header(img.width, img.height);
     Imf::PixelType type = precision == ExrPrecision::half ? Imf::HALF : Imf::FLOAT;
     const char* names[] = {"R", "G", "B", "A"};
     for (const char* n : names) header.channels().insert(n, Imf::Channel(type));
-    Imf::OutputFile file(tmp.c_str(), header);
+    Imf::OutputFile file(out, header);  // finishes writing (the offset table) when destroyed
     Imf::FrameBuffer fb;
     std::vector<half> halves;
     if (type == Imf::HALF) {
@@ -101,35 +89,62 @@ void write_exr(const std::string& path, const ImageF& img, ExrPrecision precisio
     file.setFrameBuffer(fb);
     file.writePixels(img.height);
   } catch (const std::exception& e) {
-    std::remove(tmp.c_str());
-    throw Error(ErrorInfo{.file = path, .message = std::string("cannot write EXR: ") + e.what()});
+    throw Error(ErrorInfo{.file = path, .message = std::string("cannot encode EXR: ") + e.what()});
   }
-  commit(tmp, path);
+  write_file_atomically(path, out.str());
 }
 
+namespace {
+void check_image_size(const std::string& path, int64_t width, int64_t height) {
+  if (width <= 0 || height <= 0 || width > kMaxImageSide || height > kMaxImageSide ||
+      width * height > int64_t(kMaxImagePixels))
+    throw Error(ErrorInfo{.file = path,
+                          .expected = "an image of 1 to " + std::to_string(kMaxImageSide) + " pixels a side and at most " +
+                                      std::to_string(kMaxImagePixels) + " pixels",
+                          .found = std::to_string(width) + "x" + std::to_string(height)});
+}
+}  // namespace
+
 ImageF read_exr(const std::string& path) {
+  Imf::StdISStream in;
+  in.str(read_file_text(path, kMaxImageFileBytes));
   try {
-    Imf::InputFile file(path.c_str());
+    // OpenEXR sizes its tables from the header while opening: its own checks bound them first.
+    Imf::Header::setMaxImageSize(kMaxImageSide, kMaxImageSide);
+    Imf::Header::setMaxTileSize(kMaxImageSide, kMaxImageSide);
+    Imf::InputFile file(in);
     Imath::Box2i dw = file.header().dataWindow();
+    check_image_size(path, int64_t(dw.max.x) - dw.min.x + 1, int64_t(dw.max.y) - dw.min.y + 1);
     ImageF img{dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1, {}};
     img.rgba.assign(size_t(img.width) * img.height * 4, 1.0f);
     Imf::FrameBuffer fb;
     const char* names[] = {"R", "G", "B", "A"};
-    char* base = (char*)(img.rgba.data()) - (dw.min.x + size_t(dw.min.y) * img.width) * sizeof(float) * 4;
+    // The slice base is the address of pixel (0, 0), which lies outside the buffer for a data window
+    // not at the origin; compute it in integers so no out-of-range pointer arithmetic happens.
+    const intptr_t origin = intptr_t(img.rgba.data()) -
+                            (intptr_t(dw.min.x) + intptr_t(dw.min.y) * img.width) * intptr_t(sizeof(float) * 4);
     for (int c = 0; c < 4; ++c)
-      fb.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), sizeof(float) * 4,
-                                     sizeof(float) * 4 * img.width, 1, 1, c == 3 ? 1.0 : 0.0));
+      fb.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(origin + c * intptr_t(sizeof(float))),
+                                     sizeof(float) * 4, sizeof(float) * 4 * img.width, 1, 1, c == 3 ? 1.0 : 0.0));
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
     return img;
+  } catch (const Error&) {
+    throw;
   } catch (const std::exception& e) {
     throw Error(ErrorInfo{.file = path, .message = std::string("cannot read EXR: ") + e.what()});
   }
 }
 
 ImageU8 read_png(const std::string& path) {
+  const std::vector<uint8_t> bytes = read_file_bytes(path, kMaxImageFileBytes);
+  if (bytes.size() > size_t(INT_MAX)) throw Error(ErrorInfo{.file = path, .message = "PNG file too large"});
   int w = 0, h = 0, n = 0;
-  stbi_uc* data = stbi_load(path.c_str(), &w, &h, &n, 4);
+  // The header first: the pixel count is checked before anything is decoded.
+  if (!stbi_info_from_memory(bytes.data(), int(bytes.size()), &w, &h, &n))
+    throw Error(ErrorInfo{.file = path, .message = std::string("cannot read PNG: ") + stbi_failure_reason()});
+  check_image_size(path, w, h);
+  stbi_uc* data = stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &n, 4);
   if (!data) throw Error(ErrorInfo{.file = path, .message = std::string("cannot read PNG: ") + stbi_failure_reason()});
   ImageU8 img{w, h, std::vector<uint8_t>(data, data + size_t(w) * h * 4)};
   stbi_image_free(data);

@@ -1,11 +1,11 @@
 #include "welkin/gfx/shader.h"
 
-#include <fstream>
 #include <glm/gtc/type_ptr.hpp>
 #include <regex>
 #include <sstream>
 
 #include "welkin/core/error.h"
+#include "welkin/core/files.h"
 
 namespace welkin {
 
@@ -36,6 +36,7 @@ void ShaderLibrary::add_search_dir(const std::filesystem::path& dir, bool front)
 namespace {
 // Generated files are named "<generated>/file" so that they never resolve to a path on disk.
 constexpr std::string_view kGeneratedPrefix = "<generated>/";
+constexpr uint64_t kMaxShaderFileBytes = 4u << 20;  // one shader source file
 }  // namespace
 
 void ShaderLibrary::set_environment(std::map<std::string, std::string> generated_files, ShaderDefines global_defines,
@@ -58,14 +59,10 @@ std::filesystem::path ShaderLibrary::find(const std::string& file, const std::fi
 
 void ShaderLibrary::expand(const std::filesystem::path& path, ShaderSource& out, std::vector<std::string>& stack,
                            std::vector<std::string>& once) const {
-  std::istringstream generated;
-  std::ifstream file;
   const std::string name = path.string();
   const bool is_generated = name.rfind(kGeneratedPrefix, 0) == 0;
-  if (is_generated) generated.str(generated_.at(name.substr(kGeneratedPrefix.size())));
-  else file.open(path);
-  if (!is_generated && !file) throw Error(ErrorInfo{.file = path.string(), .message = "cannot read shader"});
-  std::istream& in = is_generated ? static_cast<std::istream&>(generated) : file;
+  std::istringstream in(is_generated ? generated_.at(name.substr(kGeneratedPrefix.size()))
+                                     : read_file_text(name, kMaxShaderFileBytes));
   int index = int(out.files.size());
   out.files.push_back(path.string());
   stack.push_back(path.string());

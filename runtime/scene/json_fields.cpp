@@ -2,11 +2,11 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
+#include <unordered_set>
 
 #include "welkin/core/error.h"
+#include "welkin/core/files.h"
 
 namespace welkin {
 
@@ -238,19 +238,102 @@ void object_from_json(const TypeDesc& type, void* object, const json& j) {
   if (type.validate) type.validate(object);
 }
 
-json parse_json_text(const std::string& text, const std::string& file) {
-  try {
-    return json::parse(text);
-  } catch (const json::parse_error& e) {
-    size_t line = 1, col = 1;
-    for (size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
-      if (text[i] == '\n') ++line, col = 1;
-      else ++col;
+namespace {
+
+// Byte offset of the first [ or { nested deeper than `max_depth`, or npos. Linear, no recursion.
+size_t too_deep_at(std::string_view text, int max_depth) {
+  int depth = 0;
+  bool in_string = false, escaped = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char ch = text[i];
+    if (in_string) {
+      if (escaped) escaped = false;
+      else if (ch == '\\') escaped = true;
+      else if (ch == '"') in_string = false;
+    } else if (ch == '"') {
+      in_string = true;
+    } else if (ch == '[' || ch == '{') {
+      if (++depth > max_depth) return i;
+    } else if (ch == ']' || ch == '}') {
+      --depth;
     }
+  }
+  return std::string::npos;
+}
+
+std::string line_column(const std::string& text, size_t byte) {
+  size_t line = 1, col = 1;
+  for (size_t i = 0; i < byte && i < text.size(); ++i) {
+    if (text[i] == '\n') ++line, col = 1;
+    else ++col;
+  }
+  return std::to_string(line) + ":" + std::to_string(col);
+}
+
+// nlohmann keeps the last of duplicate keys, silently: this parser callback refuses them instead,
+// with one hash set per open object (linear in the document) and the JSON path of the second key.
+struct DuplicateKey {
+  std::string path;
+};
+class DuplicateKeyCheck {
+ public:
+  bool operator()(int, json::parse_event_t event, json& parsed) {
+    using E = json::parse_event_t;
+    switch (event) {
+      case E::object_start: open_.push_back(Frame{.object = true}); break;
+      case E::array_start: open_.push_back(Frame{.object = false}); break;
+      case E::key: {
+        Frame& top = open_.back();
+        top.key = parsed.get<std::string>();
+        if (!top.keys.insert(top.key).second) throw DuplicateKey{path()};
+        break;
+      }
+      case E::object_end:
+      case E::array_end:
+        open_.pop_back();
+        [[fallthrough]];
+      case E::value:
+        if (!open_.empty() && !open_.back().object) ++open_.back().index;
+        break;
+    }
+    return true;
+  }
+
+ private:
+  struct Frame {
+    bool object = true;
+    std::unordered_set<std::string> keys;
+    std::string key;   // the member being parsed (objects)
+    size_t index = 0;  // the element being parsed (arrays)
+  };
+  std::string path() const {
+    std::string p;
+    for (const Frame& f : open_) p += "/" + (f.object ? f.key : std::to_string(f.index));
+    return p;
+  }
+  std::vector<Frame> open_;
+};
+
+}  // namespace
+
+json parse_json_text(const std::string& text, const std::string& file) {
+  if (text.size() > kMaxJsonBytes)
+    throw Error(ErrorInfo{.file = file, .expected = "JSON of at most " + std::to_string(kMaxJsonBytes) + " bytes",
+                          .found = std::to_string(text.size()) + " bytes"});
+  if (size_t at = too_deep_at(text, kMaxJsonDepth); at != std::string::npos)
+    throw Error(ErrorInfo{.file = file + ":" + line_column(text, at),
+                          .expected = "JSON nested at most " + std::to_string(kMaxJsonDepth) + " levels deep",
+                          .found = "deeper nesting"});
+  try {
+    return json::parse(text, DuplicateKeyCheck{});
+  } catch (const DuplicateKey& d) {
+    throw Error(ErrorInfo{.file = file, .path = d.path, .expected = "each key once per object", .found = "a duplicate key",
+                          .message = "duplicate key"});
+  } catch (const json::parse_error& e) {
     std::string what = e.what();
     if (auto pos = what.find("syntax error"); pos != std::string::npos) what = what.substr(pos);
     bool truncated = e.byte >= text.size();
-    throw Error(ErrorInfo{.file = file + ":" + std::to_string(line) + ":" + std::to_string(col),
+    throw Error(ErrorInfo{.file = file + ":" + line_column(text, e.byte ? e.byte - 1 : 0),
                           .message = std::string(truncated ? "truncated or malformed JSON: " : "malformed JSON: ") + what});
   } catch (const json::exception& e) {
     // e.g. a number too large for a double ("1e999"): nlohmann reports no position for these.
@@ -261,12 +344,9 @@ json parse_json_text(const std::string& text, const std::string& file) {
 }
 
 json read_json_file(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error(ErrorInfo{.file = file, .message = "cannot open file"});
-  std::stringstream ss;
-  ss << in.rdbuf();
-  if (ss.str().empty()) throw Error(ErrorInfo{.file = file, .message = "file is empty"});
-  return parse_json_text(ss.str(), file);
+  std::string text = read_file_text(file, kMaxJsonBytes);
+  if (text.empty()) throw Error(ErrorInfo{.file = file, .message = "file is empty"});
+  return parse_json_text(text, file);
 }
 
 }  // namespace welkin

@@ -1,9 +1,6 @@
 #include "welkin/scene/scene_file.h"
 
-#include <unistd.h>
-
-#include <cstdio>
-#include <fstream>
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "welkin/core/error.h"
@@ -72,6 +69,9 @@ void load_scene(World& world, const json& doc, const std::string& file) {
         throw e.with_file(file).with_path_prefix("/modules/" + std::to_string(i));
       }
     }
+    std::vector<std::string>& listed = world.resource<SceneModules>().names;
+    for (const json& m : *mods)
+      if (std::find(listed.begin(), listed.end(), m.get<std::string>()) == listed.end()) listed.push_back(m.get<std::string>());
   }
   Registry& reg = world.registry();
   const json& ents = doc["entities"];
@@ -125,31 +125,14 @@ json save_scene(const World& world) {
     ej["components"] = std::move(comps);
     ents.push_back(std::move(ej));
   }
-  return json{{"welkin_scene", kSceneFormatVersion}, {"entities", std::move(ents)}};
+  json doc{{"welkin_scene", kSceneFormatVersion}, {"entities", std::move(ents)}};
+  if (const SceneModules* listed = world.find_resource<SceneModules>(); listed && !listed->names.empty())
+    doc["modules"] = listed->names;
+  return doc;
 }
 
 void save_scene_file(const World& world, const std::string& path) {
   write_file_atomically(path, save_scene(world).dump(2) + "\n");
-}
-
-void write_file_atomically(const std::string& path, const std::string& text) {
-  std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-  {
-    std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw Error(ErrorInfo{.file = path, .message = "cannot write (temporary file " + tmp + " could not be created)"});
-    bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-    ok = std::fflush(f) == 0 && ok;
-    ok = ::fsync(fileno(f)) == 0 && ok;
-    ok = std::fclose(f) == 0 && ok;
-    if (!ok) {
-      std::remove(tmp.c_str());
-      throw Error(ErrorInfo{.file = path, .message = "write failed; the existing file was left untouched"});
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw Error(ErrorInfo{.file = path, .message = "cannot replace file; the existing file was left untouched"});
-  }
 }
 
 }  // namespace welkin

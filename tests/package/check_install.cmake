@@ -1,4 +1,6 @@
-# Installs the build tree into a scratch prefix, builds the consumer project against it, runs it.
+# Installs the build tree into a scratch prefix, builds the consumer project against it, runs it;
+# then runs the installed programs from the prefix as a user would: they must find their own
+# libraries (RPATH $ORIGIN/../lib), modules and shaders, and nothing in the build tree.
 file(REMOVE_RECURSE ${WORK})
 execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD} --prefix ${WORK}/prefix RESULT_VARIABLE rc OUTPUT_QUIET)
 if(rc)
@@ -16,4 +18,41 @@ endif()
 execute_process(COMMAND ${WORK}/build/consumer ${WORK}/consumer.png RESULT_VARIABLE rc)
 if(rc)
   message(FATAL_ERROR "consumer run failed")
+endif()
+
+set(prefix ${WORK}/prefix)
+# No help from the environment: what runs is what was installed.
+unset(ENV{LD_LIBRARY_PATH})
+unset(ENV{WELKIN_MODULE_PATH})
+execute_process(COMMAND ${prefix}/bin/welkin --help RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(rc OR NOT out MATCHES "render")
+  message(FATAL_ERROR "installed welkin --help failed (${rc}): ${out}${err}")
+endif()
+if(EXISTS ${prefix}/bin/welkin-editor)
+  execute_process(COMMAND ${prefix}/bin/welkin-editor --help RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(rc OR NOT out MATCHES "--script")
+    message(FATAL_ERROR "installed welkin-editor --help failed (${rc}): ${out}${err}")
+  endif()
+endif()
+execute_process(COMMAND ${prefix}/bin/welkin info --modules --json RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(rc)
+  message(FATAL_ERROR "installed welkin info failed (${rc}): ${err}")
+endif()
+# Module folders and data folders: the prefix's own, never the build tree's or the sources'.
+foreach(foreign ${BUILD}/lib/ ${SOURCE_ROOT}/modules/)
+  string(FIND "${out}" "${foreign}" at)
+  if(NOT at EQUAL -1)
+    message(FATAL_ERROR "installed welkin looks into ${foreign}:\n${out}")
+  endif()
+endforeach()
+string(JSON skipped LENGTH "${out}" skipped_manifests)
+if(NOT skipped EQUAL 0)
+  message(FATAL_ERROR "installed module manifests were skipped:\n${out}")
+endif()
+# The README's command, from the source root (the scene's terrain file is relative to it): a scene
+# that loads plugins (terrain, clouds, time of day) and the linked-in atmosphere.
+execute_process(COMMAND ${prefix}/bin/welkin render assets/scenes/default.json --size 32x18 --out ${WORK}/render.png
+  WORKING_DIRECTORY ${SOURCE_ROOT} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(rc OR NOT EXISTS ${WORK}/render.png)
+  message(FATAL_ERROR "installed welkin render failed (${rc}): ${out}${err}")
 endif()

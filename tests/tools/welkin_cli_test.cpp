@@ -4,6 +4,7 @@
 #include "cli_run.h"
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -189,6 +190,77 @@ TEST(WelkinCli, BenchReportsRatiosAndRunsOnlyWhatChanged) {
   EXPECT_FALSE(passes_of(turning).count("atmosphere.sky_view"));
   EXPECT_TRUE(passes_of(turning).count("atmosphere.aerial_perspective"));
   EXPECT_NE(run("bench " + scene + " --turn-deg 400").code, 0);
+}
+
+#define WELKIN_FLIGHT WELKIN_SOURCE_DIR "/assets/scenes/flight.json "
+#define WELKIN_DAWN WELKIN_SOURCE_DIR "/assets/sequences/dawn-to-noon.json "
+
+std::vector<std::string> names_in(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+TEST(WelkinCli, SequenceNeverMixesFramesOfTwoRuns) {
+  fs::path dir = tmp("two-runs");
+  fs::remove_all(dir);
+  // 24 s at 1/8 fps: frames 0..3.
+  CliRun r = run("sequence " WELKIN_FLIGHT WELKIN_DAWN "--fps 0.125 --size 8x8 --out " + dir.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  ASSERT_EQ(names_in(dir).size(), 4u);
+  std::ofstream(dir / "notes.txt") << "mine";
+  // A second, shorter run would leave frames 2 and 3 of the first one for ffmpeg to pick up.
+  r = run("sequence " WELKIN_FLIGHT WELKIN_DAWN "--fps 0.0625 --size 8x8 --out " + dir.string());
+  EXPECT_EQ(r.code, 3) << r.out;
+  EXPECT_NE(r.out.find(dir.string() + ": the output folder is not empty"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--overwrite"), std::string::npos) << r.out;
+  EXPECT_EQ(names_in(dir).size(), 5u) << "a refused run changes nothing";
+  // --overwrite removes this command's own frames only.
+  r = run("sequence " WELKIN_FLIGHT WELKIN_DAWN "--fps 0.0625 --size 8x8 --overwrite --out " + dir.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(names_in(dir), (std::vector<std::string>{"frame_00000.png", "frame_00001.png", "notes.txt"}));
+}
+
+TEST(WelkinCli, FrameCountsAndImageSizesAreCheckedBeforeUse) {
+  // 1e7 s at 1000 fps is 1e10 frames: more than an int holds, and more than any run should render.
+  CliRun r = run("sequence " WELKIN_FLIGHT WELKIN_DAWN "--fps 1000 --to 10000000 --size 8x8 --out " +
+                 tmp("many").string());
+  EXPECT_EQ(r.code, 3) << r.out;
+  EXPECT_NE(r.out.find("at most 100000 frames"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(tmp("many") / "frame_00000.png"));
+  // The same from a file: a sequence claiming 1e300 seconds.
+  fs::path endless = tmp("endless.json");
+  std::ofstream(endless) << R"({"welkin_sequence": 1, "duration_s": 1e300, "tracks": []})";
+  r = run("sequence " WELKIN_FLIGHT + endless.string() + " --size 8x8 --out " + tmp("endless").string());
+  EXPECT_EQ(r.code, 3) << r.out;
+  EXPECT_NE(r.out.find(endless.string() + ": at /duration_s: expected 0 to 1e7 seconds"), std::string::npos) << r.out;
+  // 16384 x 16384 is within the per-side bound but 4 GiB of float readback: refused before rendering.
+  r = run("render " WELKIN_FLIGHT "--size 16384x16384 --out " + tmp("huge.png").string());
+  EXPECT_EQ(r.code, 3) << r.out;
+  EXPECT_NE(r.out.find("--size: expected 1..16384 per side and at most 67108864 pixels"), std::string::npos) << r.out;
+  // A contact sheet of four 8000-pixel-wide frames side by side is refused before any frame is rendered.
+  r = run("sequence " WELKIN_FLIGHT WELKIN_DAWN "--fps 0.125 --size 8000x8 --out " + tmp("wide").string() +
+          " --contact-sheet " + tmp("wide.png").string());
+  EXPECT_EQ(r.code, 3) << r.out;
+  EXPECT_NE(r.out.find("--contact-sheet: expected a sheet of at most 16384 pixels a side"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(tmp("wide") / "frame_00000.png"));
+}
+
+TEST(WelkinCli, AMalformedModuleManifestIsReportedNotFatal) {
+  fs::path dir = tmp("bad-modules");
+  fs::create_directories(dir);
+  std::ofstream(dir / "zzz.module.json") << "{ not json";
+  setenv("WELKIN_MODULE_PATH", dir.c_str(), 1);
+  CliRun r = run("render " WELKIN_SOURCE_DIR "/assets/scenes/debug.json --size 16x16 --out " + tmp("despite.png").string());
+  CliRun info = run("info --modules --json", /*with_stderr=*/false);
+  unsetenv("WELKIN_MODULE_PATH");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("skipped module manifest: " + (dir / "zzz.module.json").string()), std::string::npos) << r.out;
+  ASSERT_EQ(info.code, 0) << info.out;
+  nlohmann::json j = nlohmann::json::parse(info.out);
+  ASSERT_EQ(j["skipped_manifests"].size(), 1u) << info.out;
+  EXPECT_FALSE(j["available_modules"].empty());
 }
 
 }  // namespace

@@ -10,7 +10,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -224,7 +223,7 @@ int run_accuracy(const AccuracyOptions& o) {
   const std::string renderer = context->info().renderer;
   const ref::ProbeGeometry cost_view{.altitude_km = 0.0, .view_zenith_deg = 80.0, .sun_zenith_deg = 60.0};
   std::vector<ConfigResult> results;
-  std::ofstream rays_csv(fs::path(o.out) / "accuracy-atmosphere-rays.csv");
+  std::ostringstream rays_csv;  // written atomically once complete
   rays_csv
       << "method,quality,orders,altitude_km,sun_elevation_deg,view_elevation_deg,view_azimuth_from_sun_deg,"
          "reference_r,reference_g,reference_b,reference_ci95_r,reference_ci95_g,reference_ci95_b,value_r,"
@@ -267,7 +266,8 @@ int run_accuracy(const AccuracyOptions& o) {
   }
   std::fprintf(stderr, "\n");
 
-  std::ofstream csv(fs::path(o.out) / "accuracy-atmosphere.csv");
+  write_file_atomically((fs::path(o.out) / "accuracy-atmosphere-rays.csv").string(), rays_csv.str());
+  std::ostringstream csv;
   csv << "method,quality,steps,frame_size,atmosphere_ms,sky_pass_ms,frame_ms,copy_ms,all_orders_rel_rmse_sun_"
          "ge_0,"
          "all_orders_max_sun_ge_0,all_orders_rel_rmse_sun_ge_3,all_orders_max_sun_ge_3,all_orders_rel_rmse_"
@@ -286,6 +286,7 @@ int run_accuracy(const AccuracyOptions& o) {
       csv << "," << fmt(r.single[b].rmse()) << "," << fmt(r.single[b].max);
     csv << "\n";
   }
+  write_file_atomically((fs::path(o.out) / "accuracy-atmosphere.csv").string(), csv.str());
   const std::string png = (fs::path(o.out) / "accuracy-atmosphere.png").string();
   write_plot(png, results, std::to_string(width) + "x" + std::to_string(height), renderer);
 

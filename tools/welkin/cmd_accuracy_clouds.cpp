@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <map>
 #include <nlohmann/json.hpp>
 
@@ -200,9 +200,8 @@ int run_cloud_accuracy(const CloudAccuracyOptions& o) {
   }
   std::fprintf(stderr, "\n");
 
-  std::ofstream rays_csv(fs::path(o.out) / "accuracy-clouds-rays.csv");
+  std::ostringstream rays_csv, csv;  // written atomically once complete
   rays_csv << "config,view,altitude_m,heading_deg,pitch_deg,gpu,reference,reference_ci95,relative_error\n";
-  std::ofstream csv(fs::path(o.out) / "accuracy-clouds.csv");
   csv << "config,clouds_ms,copy_ms,ratio_to_copy,relative_rmse,max_relative_error\n";
   std::map<MultipleScattering, PlotSeries> series;
   nlohmann::json results = nlohmann::json::array();
@@ -237,6 +236,8 @@ int run_cloud_accuracy(const CloudAccuracyOptions& o) {
     s.points.push_back({cost.clouds_ms, rmse, worst, cfg.name.substr(cfg.name.find('/') + 1)});
     results.push_back({{"config", cfg.name}, {"clouds_ms", cost.clouds_ms}, {"copy_ms", cost.copy_ms}, {"relative_rmse", rmse}, {"max", worst}});
   }
+  write_file_atomically((fs::path(o.out) / "accuracy-clouds-rays.csv").string(), rays_csv.str());
+  write_file_atomically((fs::path(o.out) / "accuracy-clouds.csv").string(), csv.str());
   const std::string png = (fs::path(o.out) / "accuracy-clouds.png").string();
   write_error_plot(png, "welkin accuracy clouds: error against GPU time per frame",
                    "path-traced reference through the same field, " + std::to_string(views.size()) + " rays; " + o.size + ", " + renderer,

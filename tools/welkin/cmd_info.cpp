@@ -31,8 +31,10 @@ int run_info(const InfoOptions& o) {
     nlohmann::json mods = nlohmann::json::array();
     for (const auto& m : world->modules().available())
       mods.push_back({{"name", m.name}, {"version", m.version}, {"description", m.description},
-                      {"depends", m.depends}, {"components", m.components}, {"origin", m.origin}});
+                      {"depends", m.depends}, {"components", m.components}, {"origin", m.origin},
+                      {"data_dir", m.data_dir.string()}});
     j["available_modules"] = mods;
+    j["skipped_manifests"] = world->modules().manifest_problems();
     j["module_dirs"] = module_search_dirs();
   }
   if (!o.scene.empty()) {
@@ -63,6 +65,10 @@ int run_info(const InfoOptions& o) {
       std::printf("  %-12s components: %s\n", "", comps.c_str());
       if (!m["depends"].empty()) std::printf("  %-12s depends on: %s\n", "", m["depends"].dump().c_str());
     }
+  }
+  if (j.contains("skipped_manifests") && !j["skipped_manifests"].empty()) {
+    std::printf("\nskipped module manifests:\n");
+    for (const auto& p : j["skipped_manifests"]) std::printf("  %s\n", p.get<std::string>().c_str());
   }
   if (j.contains("scene")) {
     std::printf("\nscene %s: %zu entities\n  components: ", o.scene.c_str(), j["entities"].get<size_t>());

@@ -13,6 +13,7 @@
 #include "session.h"
 #include "welkin/core/error.h"
 #include "welkin/gfx/gl_context.h"
+#include "welkin/gfx/image.h"
 #include "welkin/gfx/renderer.h"
 #include "welkin/scene/scene_file.h"
 
@@ -40,8 +41,12 @@ void parse_size(const std::string& s, int& w, int& h) {
   if (!std::regex_match(s, m, re)) throw Error(ErrorInfo{.path = "--size", .expected = "WIDTHxHEIGHT, e.g. 640x360", .found = "'" + s + "'"});
   w = std::stoi(m[1]);
   h = std::stoi(m[2]);
-  if (w < 1 || h < 1 || w > 16384 || h > 16384)
-    throw Error(ErrorInfo{.path = "--size", .expected = "1..16384 per side", .found = "'" + s + "'"});
+  // The pixel bound keeps one frame's float readback (16 bytes a pixel) to 1 GiB.
+  if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide || uint64_t(w) * uint64_t(h) > kMaxImagePixels)
+    throw Error(ErrorInfo{.path = "--size",
+                          .expected = "1.." + std::to_string(kMaxImageSide) + " per side and at most " +
+                                      std::to_string(kMaxImagePixels) + " pixels",
+                          .found = "'" + s + "'"});
 }
 
 namespace {

@@ -24,6 +24,6 @@ struct CloudAccuracyOptions {
 int run_cloud_accuracy(const CloudAccuracyOptions& options);
 // Prints nodes, meshes, counts, materials, extensions and bounds of a glTF; throws welkin::Error.
 void print_asset_info(const std::string& file, bool json);
-// Parses WIDTHxHEIGHT (1..16384 per side); throws Error naming --size.
+// Parses WIDTHxHEIGHT (1..kMaxImageSide per side, at most kMaxImagePixels); throws Error naming --size.
 void parse_size(const std::string& text, int& width, int& height);
 }  // namespace welkin::cli

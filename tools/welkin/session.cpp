@@ -15,7 +15,7 @@ const ModuleDefinition& clouds_module();
 namespace welkin::cli {
 
 std::vector<std::string> module_search_dirs() {
-  return welkin::module_search_dirs(WELKIN_MODULE_DIR_FROM_BIN, WELKIN_BUILD_MODULE_DIR);
+  return welkin::module_search_dirs(WELKIN_MODULE_DIR_FROM_BIN, WELKIN_BUILD_MODULE_DIR, WELKIN_BUILD_BIN_DIR);
 }
 
 std::unique_ptr<World> make_world() {

@@ -1,15 +1,15 @@
 #include "validation/accuracy_set.h"
 
-#include <unistd.h>
-
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 
 #include "reference/path_tracer.h"
+#include "welkin/core/error.h"
+#include "welkin/core/files.h"
+#include "welkin/scene/json_fields.h"
 
 namespace welkin::atmosphere {
 
@@ -79,11 +79,9 @@ ReferenceCache::ReferenceCache(const ref::AtmosphereModel& model, const Referenc
     : model_key_(model_key(model)), settings_(settings) {}
 
 std::size_t ReferenceCache::load(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return 0;
   json j;
   try {
-    j = json::parse(in);
+    j = parse_json_text(read_file_text(path, kMaxJsonBytes), path);
     if (j.at("format").get<int>() != 1 || j.at("model").dump() != json::parse(model_key_).dump() ||
         j.at("seed").get<std::uint64_t>() != settings_.seed ||
         j.at("chunk_size").get<std::uint64_t>() != settings_.chunk_size)
@@ -104,6 +102,8 @@ std::size_t ReferenceCache::load(const std::string& path) {
     return n;
   } catch (const json::exception&) {
     return 0;  // a damaged cache is recomputed, never trusted
+  } catch (const Error&) {
+    return 0;  // missing, not a regular file, over the bounds: recomputed too
   }
 }
 
@@ -131,13 +131,7 @@ void ReferenceCache::save(const std::string& path) const {
       {"seed", settings_.seed},
       {"chunk_size", settings_.chunk_size},
       {"rays", rays}};
-  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp);
-    out << j.dump(1) << "\n";
-    if (!out) throw std::runtime_error("cannot write " + tmp);
-  }
-  std::filesystem::rename(tmp, path);
+  write_file_atomically(path, j.dump(1) + "\n");
 }
 
 std::optional<CachedReference> ReferenceCache::find(const ref::ProbeGeometry& g) const {

@@ -85,13 +85,40 @@ TEST(Plugins, ManifestThatDoesNotMatchItsLibraryIsIncompatible) {
   EXPECT_NE(e.find("found testbase 9.9.9"), std::string::npos) << e;
 }
 
-TEST(Plugins, MalformedManifestNamesTheFile) {
+TEST(Plugins, AMalformedManifestIsReportedAndSkippedNotFatal) {
   fs::path dir = fs::temp_directory_path() / ("welkin-plugin-bad-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
   fs::create_directories(dir);
   std::ofstream(dir / "broken.module.json") << R"({"name": "broken", "version": 3})";
+  fs::copy_file(kModules / "libwelkin_testbase.so", dir / "libwelkin_testbase.so");
+  fs::copy_file(kModules / "testbase.module.json", dir / "testbase.module.json");
   welkin::World w;
-  std::string e = error_of([&] { w.modules().add_search_dir(dir); });
-  EXPECT_NE(e.find("broken.module.json: at /version: expected string, found number"), std::string::npos) << e;
+  EXPECT_NO_THROW(w.modules().add_search_dir(dir));
+  ASSERT_EQ(w.modules().manifest_problems().size(), 1u);
+  EXPECT_NE(w.modules().manifest_problems()[0].find("broken.module.json: at /version: expected string, found number"),
+            std::string::npos) << w.modules().manifest_problems()[0];
+  // The good module beside it still loads; asking for the broken one names the skipped manifest.
+  EXPECT_NO_THROW(w.modules().load("testbase"));
+  std::string e = error_of([&] { w.modules().load("broken"); });
+  EXPECT_NE(e.find("module 'broken' is not installed"), std::string::npos) << e;
+  EXPECT_NE(e.find("skipped 1 unreadable manifest(s), the first: " + (dir / "broken.module.json").string()), std::string::npos) << e;
+}
+
+TEST(Plugins, AManifestsLibraryIsAFileNameBesideIt) {
+  fs::path dir = fs::temp_directory_path() / ("welkin-plugin-path-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  json m = json::parse(std::ifstream(kModules / "testbase.module.json"));
+  for (const char* lib : {"../test-modules/libwelkin_testbase.so", "/usr/lib/libwelkin_testbase.so", ".."}) {
+    m["library"] = lib;
+    std::ofstream(dir / "testbase.module.json") << m.dump();
+    welkin::World w;
+    w.modules().add_search_dir(dir);
+    EXPECT_EQ(w.modules().manifest("testbase"), nullptr) << lib;
+    ASSERT_EQ(w.modules().manifest_problems().size(), 1u) << lib;
+    EXPECT_NE(w.modules().manifest_problems()[0].find("at /library: expected a file name beside the manifest"),
+              std::string::npos) << w.modules().manifest_problems()[0];
+  }
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -10,6 +11,7 @@
 #include "welkin/core/error.h"
 #include "welkin/gfx/camera.h"
 #include "welkin/gfx/debug_content.h"
+#include "welkin/scene/json_fields.h"
 
 namespace {
 
@@ -55,6 +57,21 @@ TEST(SceneFile, LoadSaveRoundTripsExactly) {
   EXPECT_EQ(b.registry().get<welkin::Camera>(cam)->heading_deg, 10.0f);
   EXPECT_EQ(b.registry().get<welkin::Camera>(cam)->ev100, 13.5f);
   EXPECT_EQ(b.registry().get<welkin::Name>(cam)->value, "camera");
+}
+
+TEST(SceneFile, TheExplicitModulesListSurvivesARoundTrip) {
+  // "core" is listed without a core component in the scene: only the list says it is wanted.
+  welkin::World a;
+  welkin::load_scene(a, json::parse(R"({"welkin_scene": 1, "modules": ["core"], "entities": [{"name": "x"}]})"), "m.json");
+  json saved = welkin::save_scene(a);
+  EXPECT_EQ(saved["modules"], json::array({"core"})) << saved.dump();
+  welkin::World b;
+  welkin::load_scene(b, saved, "saved.json");
+  EXPECT_EQ(welkin::save_scene(b), saved);
+  // A scene without the list saves without it.
+  welkin::World c;
+  welkin::load_scene(c, json::parse(R"({"welkin_scene": 1, "entities": []})"), "plain.json");
+  EXPECT_FALSE(welkin::save_scene(c).contains("modules"));
 }
 
 TEST(SceneFile, SaveIsAtomicAndKeepsTheOldFileOnFailure) {
@@ -128,11 +145,49 @@ INSTANTIATE_TEST_SUITE_P(Cases, BadScene, ::testing::Values(
     BadCase{"entity_typo", R"({"welkin_scene": 1, "entities": [{"componets": {}}]})", "/entities/0/componets", "unknown key"}
 ), [](const auto& info) { return std::string(info.param.name); });
 
-TEST(SceneFile, DuplicateJsonKeysAreNotSilentlyMerged) {
-  // nlohmann keeps the last of duplicate keys; the scene still loads one camera, never two.
+TEST(SceneFile, DuplicateJsonKeysAreRefusedWithTheirPath) {
+  // nlohmann alone keeps the last of duplicate keys, silently; the reader names the second one.
+  welkin::ErrorInfo e = load_error(kDuplicateComponent);
+  EXPECT_EQ(e.path, "/entities/0/components/core.Camera") << welkin::format_error(e);
+  EXPECT_NE(welkin::format_error(e).find("duplicate key"), std::string::npos) << welkin::format_error(e);
+  EXPECT_EQ(load_error(R"({"welkin_scene": 1, "welkin_scene": 1, "entities": []})").path, "/welkin_scene");
+  EXPECT_EQ(load_error(R"({"welkin_scene": 1, "entities": [{}, {"name": "a", "components": {}, "name": "b"}]})").path,
+            "/entities/1/name");
+  // Equal keys in different objects are no duplicates.
+  EXPECT_NO_THROW(welkin::parse_json_text(R"({"a": {"x": 1}, "b": {"x": [{"x": 2}, {"x": 3}]}})", "ok.json"));
+}
+
+TEST(SceneFile, JsonDepthAndSizeAreBoundedBeforeParsing) {
+  std::string deep = R"({"welkin_scene": 1, "entities": )" + std::string(100000, '[') + std::string(100000, ']') + "}";
+  welkin::ErrorInfo e = load_error(deep);
+  EXPECT_NE(welkin::format_error(e).find("nested at most 64 levels deep"), std::string::npos) << welkin::format_error(e);
+  EXPECT_EQ(e.file, "bad.json:1:96");
+  std::string big = R"({"welkin_scene": 1, "entities": [], "pad": ")" + std::string(welkin::kMaxJsonBytes, ' ') + "\"}";
+  e = load_error(big);
+  EXPECT_NE(welkin::format_error(e).find("bad.json: file is 16777262 bytes; the limit is 16777216"), std::string::npos) << welkin::format_error(e);
+  // Text that never was a file (a script's inline JSON, the clipboard) meets the same bound.
+  try {
+    welkin::parse_json_text(big, "inline");
+    ADD_FAILURE() << "no error for 16 MiB of text";
+  } catch (const welkin::Error& err) {
+    EXPECT_NE(std::string(err.what()).find("expected JSON of at most 16777216 bytes"), std::string::npos) << err.what();
+  }
+}
+
+TEST(SceneFile, AFifoOrADeviceIsRefusedNotRead) {
+  ::alarm(20);  // a reader that waits for a writer fails the test instead of hanging it
+  fs::path fifo = temp_dir() / "pipe.json";
+  fs::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
   welkin::World w;
-  welkin::load_scene(w, json::parse(kDuplicateComponent), "dup.json");
-  EXPECT_EQ(w.registry().pool(welkin::type_id<welkin::Camera>())->size(), 1u);
+  try {
+    welkin::load_scene_file(w, fifo.string());
+    ADD_FAILURE() << "a FIFO was read";
+  } catch (const welkin::Error& err) {
+    EXPECT_EQ(std::string(err.what()), fifo.string() + ": cannot read a FIFO (named pipe); expected a regular file");
+  }
+  EXPECT_THROW(welkin::load_scene_file(w, "/dev/zero"), welkin::Error);
+  ::alarm(0);
 }
 
 TEST(SceneFile, ErrorLineAndColumnForSyntaxErrors) {

@@ -65,8 +65,10 @@ class ModuleHost {
  public:
   explicit ModuleHost(World& world) : world_(world) {}
 
-  // Reads every *.module.json in dir (plugins are loaded later, on demand).
+  // Reads every *.module.json in dir (plugins are loaded later, on demand). A manifest that cannot
+  // be read is logged, listed in manifest_problems() and skipped; the other modules stay usable.
   void add_search_dir(const std::filesystem::path& dir);
+  const std::vector<std::string>& manifest_problems() const { return problems_; }
   void add_static(const ModuleDefinition& def);
   std::vector<ModuleManifest> available() const;
   const ModuleManifest* manifest(std::string_view module) const;
@@ -93,6 +95,7 @@ class ModuleHost {
   std::vector<std::string> load_order_;
   std::map<TypeId, ComponentInfo> components_;
   std::vector<std::filesystem::path> search_dirs_;
+  std::vector<std::string> problems_;  // one formatted Error per skipped manifest
 };
 
 }  // namespace welkin

@@ -36,6 +36,10 @@ class World {
     auto it = resources_.find(std::string(T::kTypeName));
     return it == resources_.end() ? nullptr : static_cast<T*>(it->second.get());
   }
+  template <class T> const T* find_resource() const {
+    auto it = resources_.find(std::string(T::kTypeName));
+    return it == resources_.end() ? nullptr : static_cast<const T*>(it->second.get());
+  }
 
   // Runs update and pre-render systems for one frame step.
   std::vector<std::string> update(const FrameInfo& frame);

@@ -24,11 +24,18 @@ struct ImageF {
 
 enum class ExrPrecision { half, full };
 
+// Bounds for images read from files (checked from the header, before pixels are decoded) and for
+// images the tools are asked to make (sequence frames, contact sheets).
+inline constexpr int kMaxImageSide = 16384;
+inline constexpr uint64_t kMaxImagePixels = 1ull << 26;  // 256 MiB as RGBA8, 1 GiB as RGBA float
+inline constexpr uint64_t kMaxImageFileBytes = 512ull << 20;
+
 ImageU8 read_texture_rgba8(const Texture& texture);
 // Layer `layer` of a 3D texture, or the 2D texture itself.
 ImageF read_texture_float(const Texture& texture, int layer = 0);
 
-// Files are written atomically (temporary name, then rename). Throw Error on failure.
+// Files are written with write_file_atomically (welkin/core/files.h) and read with the bounded
+// regular-file reader; images over the bounds above are refused. Throw Error on failure.
 void write_png(const std::string& path, const ImageU8& image);
 void write_exr(const std::string& path, const ImageF& image, ExrPrecision precision = ExrPrecision::half);
 ImageU8 read_png(const std::string& path);

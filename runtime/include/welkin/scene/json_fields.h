@@ -23,9 +23,17 @@ void check_object(const TypeDesc& type, const void* object);
 
 // A short description of a JSON value for error messages: `"abc"`, `12.5`, `an object`.
 std::string describe_json(const nlohmann::json& j);
-// Parses text, turning syntax errors into an Error with line and column.
+// Bounds for every JSON document Welkin reads (scenes, sequences, presets, manifests, editor config),
+// checked before parsing: nlohmann's parser and destructor would otherwise recurse or allocate
+// without limit on a hostile file.
+inline constexpr size_t kMaxJsonBytes = 16u << 20;
+inline constexpr int kMaxJsonDepth = 64;
+
+// Parses text within the bounds above, refusing duplicate keys (nlohmann would silently keep the
+// last), turning syntax errors into an Error with line and column.
 nlohmann::json parse_json_text(const std::string& text, const std::string& file);
-// Reads a file and parses it (clear errors for missing, unreadable, empty, truncated files).
+// Reads a regular file of at most kMaxJsonBytes and parses it (clear errors for missing, unreadable,
+// empty, truncated files, FIFOs and devices).
 nlohmann::json read_json_file(const std::string& file);
 
 }  // namespace welkin
