@@ -94,6 +94,7 @@ void describe(TypeBuilder<VolumetricClouds>& t) {
   t.field("shadows", &VolumetricClouds::shadows).tooltip("Cloud shadows and sky occlusion on every material");
   t.field("shadow_map_size", &VolumetricClouds::shadow_map_size).unit("px").range(16, 4096);
   t.field("shadow_distance_m", &VolumetricClouds::shadow_distance_m).unit("m").range(100, 1e6);
+  t.field("shadow_cascades", &VolumetricClouds::shadow_cascades).range(1, 4).tooltip("Each nearer cascade covers a quarter of the side of the last");
   t.field("seed", &VolumetricClouds::seed).range(0, 1 << 30);
   t.field("shape_period_m", &VolumetricClouds::shape_period_m).unit("m").range(10, 1e6);
   t.field("detail_period_m", &VolumetricClouds::detail_period_m).unit("m").range(1, 1e5);
@@ -115,6 +116,10 @@ ResolvedQuality resolve_quality(const VolumetricClouds& c) {
 }
 
 void validate(const VolumetricClouds& c) {
+  if (c.shadow_map_size * c.shadow_cascades > 8192)
+    throw Error(ErrorInfo{.path = "/shadow_map_size",
+                          .expected = "at most 8192 / shadow_cascades (" + std::to_string(8192 / c.shadow_cascades) + "): the cascades lie side by side in one texture",
+                          .found = std::to_string(c.shadow_map_size)});
   if (c.temporal_block != 2 && c.temporal_block != 4)
     throw Error(ErrorInfo{.path = "/temporal_block", .expected = "2 or 4", .found = std::to_string(c.temporal_block)});
   if (c.max_step_m < c.min_step_m)

@@ -138,12 +138,12 @@ bool upload_frame(World& world, const SystemContext& sc, const VolumetricClouds&
   // The shadow map: a square around the camera across the sun's direction, anchored in the world
   // and rebuilt only when what it shows has changed (sun, settings, drift or camera by a texel).
   const glm::vec3 l = ctx.sun_direction;
+  const int cascades = std::clamp(clouds.shadow_cascades, 1, kMaxShadowCascades);
   ShadowKey key;
   key.wanted = clouds.shadows && layers.any_shadow && l.z > 0.0f;
   key.sun = l;
   key.time_s = ctx.time_s;
   key.anchor_m = view.camera_position_m;
-  key.texel_m = 2.0f * clouds.shadow_distance_m / float(clouds.shadow_map_size);
   key.size = clouds.shadow_map_size;
   key.max_wind_mps = glm::length(clouds.wind_mps);
   for (const LayerBlock& b : layers.layers) {
@@ -153,22 +153,34 @@ bool upload_frame(World& world, const SystemContext& sc, const VolumetricClouds&
   }
   for (const CloudLayer& L : clouds.layers) key.max_wind_mps = std::max(key.max_wind_mps, glm::length(L.wind_mps));
   key.settings.insert(key.settings.end(), {block.medium.x, block.medium.y, float(clouds.seed), clouds.shape_period_m,
-                                           clouds.weather_period_m, clouds.shadow_distance_m});
-  gpu.shadow_rebuild = key.wanted && (!gpu.shadow_key.wanted || gpu.shadow_key.stale(key));
-  if (gpu.shadow_rebuild) {
-    const glm::vec3 u = glm::normalize(glm::cross(l, std::abs(l.z) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1)));
-    const glm::vec3 v = glm::cross(l, u);
-    const float extent = 2.0f * clouds.shadow_distance_m;
-    const float start = std::max((layers.highest_shadow_m - block.planet.y) / std::max(l.z, 0.05f), 0.0f) + 100.0f;
-    gpu.shadow.axis_u = glm::vec4(u / extent, start);
-    gpu.shadow.axis_v = glm::vec4(v / extent, extent);
-    gpu.shadow.light = glm::vec4(l, std::abs(l.z));
-    gpu.shadow.up = glm::vec4(glm::vec3(block.up), 0.0f);
-    gpu.shadow_key = key;
+                                           clouds.weather_period_m, clouds.shadow_distance_m, float(cascades)});
+  // Cascade k (0 nearest) covers a square of side 2 D / 4^(n - 1 - k) around the camera; each is
+  // remade on its own, when it is stale at its own texel size (the nearest follows the camera most).
+  const glm::vec3 u = glm::normalize(glm::cross(l, std::abs(l.z) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1)));
+  const glm::vec3 v = glm::cross(l, u);
+  const float start = std::max((layers.highest_shadow_m - block.planet.y) / std::max(l.z, 0.05f), 0.0f) + 100.0f;
+  for (int k = 0; k < kMaxShadowCascades; ++k) {
+    ShadowKey& held = gpu.shadow_keys[k];
+    gpu.shadow_rebuild[k] = false;
+    if (!key.wanted || k >= cascades) {
+      held.wanted = false;
+      gpu.shadow.origin[k].w = 0.0f;
+      continue;
+    }
+    const float side = 2.0f * clouds.shadow_distance_m / float(1 << (2 * (cascades - 1 - k)));
+    ShadowKey cascade = key;
+    cascade.texel_m = side / float(clouds.shadow_map_size);
+    gpu.shadow_rebuild[k] = !held.wanted || held.stale(cascade);
+    if (gpu.shadow_rebuild[k]) {
+      gpu.shadow.axis_u[k] = glm::vec4(u / side, start);
+      gpu.shadow.axis_v[k] = glm::vec4(v / side, side);
+      held = cascade;
+    }
+    // A cascade stays where it was made: its centre, relative to this frame's camera.
+    gpu.shadow.origin[k] = glm::vec4(glm::vec3(held.anchor_m - view.camera_position_m), 1.0f);
   }
-  if (!key.wanted) gpu.shadow_key.wanted = false;
-  // The map stays where it was made: its centre, relative to this frame's camera.
-  gpu.shadow.origin = glm::vec4(glm::vec3(gpu.shadow_key.anchor_m - view.camera_position_m), key.wanted ? 1.0f : 0.0f);
+  gpu.shadow.light = glm::vec4(l, std::abs(l.z));
+  gpu.shadow.up = glm::vec4(glm::vec3(block.up), float(key.wanted ? cascades : 0));
   return !layers.layers.empty();
 }
 
@@ -226,7 +238,7 @@ void add_light_term(World& world) {
       .bind = [&world](const LightEnvironment& env) {
         CloudsGpu& gpu = world.resource<CloudsGpu>();
         ShadowBlock s = gpu.shadow;
-        if (!gpu.shadow_map) s.origin.w = 0.0f;
+        if (!gpu.shadow_map) s.up.w = 0.0f;
         env.bind_block("clouds.shadow", gpu.shadow_buffer, &s, sizeof(s));
         if (gpu.shadow_map) glBindTextureUnit(env.unit("clouds.shadow_map"), gpu.shadow_map->id());
       }});
@@ -240,38 +252,48 @@ void shadow_system(SystemContext& sc) {
   auto& gpu = world.resource<CloudsGpu>();
   ensure_noise(world, clouds->seed);
   gpu.has_layers = upload_frame(world, sc, *clouds, gpu.block);
-  if (!gpu.has_layers || gpu.shadow.origin.w < 0.5f) {
-    gpu.shadow.origin.w = 0.0f;
-    gpu.shadow_key.wanted = false;
+  if (!gpu.has_layers || gpu.shadow.up.w < 0.5f) {
+    gpu.shadow.up.w = 0.0f;
+    for (ShadowKey& k : gpu.shadow_keys) k.wanted = false;
     return;
   }
-  if (!gpu.shadow_rebuild && gpu.shadow_map) return;  // this frame reads the map made earlier
-  ensure_texture(gpu.shadow_map, {.width = clouds->shadow_map_size, .height = clouds->shadow_map_size,
-                                  .format = TextureFormat::rgba32f});
+  const int cascades = int(gpu.shadow.up.w), size = clouds->shadow_map_size;
+  // The cascades side by side in one texture, nearest first; a new texture holds none of them yet.
+  if (ensure_texture(gpu.shadow_map, {.width = size * cascades, .height = size, .format = TextureFormat::rgba32f}))
+    for (int k = 0; k < cascades; ++k) gpu.shadow_rebuild[k] = true;
+  if (std::none_of(gpu.shadow_rebuild, gpu.shadow_rebuild + cascades, [](bool b) { return b; })) return;
   const ResourceHandle map = sc.graph->import("clouds.shadow_map", *gpu.shadow_map);
   auto& rc = world.resource<RenderContext>();
   CloudsGpu* gp = &gpu;
   const ShadowBlock s = gpu.shadow;
+  std::vector<int> remade;
+  for (int k = 0; k < cascades; ++k)
+    if (gpu.shadow_rebuild[k]) remade.push_back(k);
   sc.graph->add_pass(
       "clouds.shadow_map",
       [&](PassBuilder& b) {
         b.write(map);
         b.side_effect();  // read by every material through the light environment
       },
-      [gp, &rc, s](PassContext&) {
+      [gp, &rc, s, remade, size](PassContext&) {
         bind_field(*gp);
         bind_image_for_write(0, *gp->shadow_map);
         const Program& p = rc.shaders.compute("clouds/shadow_map.comp");
-        const float extent = s.axis_v.w;
-        p.set("u_light", glm::vec3(s.light));
-        p.set("u_axis_u", glm::vec3(s.axis_u) * extent);
-        p.set("u_axis_v", glm::vec3(s.axis_v) * extent);
-        p.set("u_extent_m", extent);
-        p.set("u_start_m", s.axis_u.w);
-        p.set("u_steps", kShadowSteps);
-        const int g = group_count(gp->shadow_map->desc().width, 8);
-        dispatch_compute(p, g, g);
-        ++gp->shadow_builds;
+        for (int k : remade) {
+          const float side = s.axis_v[k].w;
+          // The plane through the cascade's centre (camera-relative, this frame).
+          p.set("u_centre", glm::vec3(s.origin[k]));
+          p.set("u_light", glm::vec3(s.light));
+          p.set("u_axis_u", glm::vec3(s.axis_u[k]) * side);
+          p.set("u_axis_v", glm::vec3(s.axis_v[k]) * side);
+          p.set("u_extent_m", side);
+          p.set("u_start_m", s.axis_u[k].w);
+          p.set("u_steps", kShadowSteps);
+          glProgramUniform2i(p.id(), p.location("u_region"), k * size, size);
+          const int g = group_count(size, 8);
+          dispatch_compute(p, g, g);
+          ++gp->shadow_builds;
+        }
       });
 }
 

@@ -1,25 +1,37 @@
 #pragma once
 // The clouds' light term (src/light_term.cpp registers it): the sun's light through the cloud layers
 // that cast shadows, from a beer shadow map (front depth, mean extinction and the maximum optical
-// depth of each texel's column toward the sun; Schneider/takram), and the sky occluded under them.
+// depth of each texel's column toward the sun; Schneider/takram), in cascades, and the sky occluded
+// under them.
+const int CLOUDS_SHADOW_CASCADES = 4;
 layout(std140, binding = WELKIN_BLOCK_CLOUDS_SHADOW) uniform CloudsShadow {
-  vec4 cs_origin;  // camera-relative centre of the map's plane; w: 1 while the map is valid
-  vec4 cs_axis_u;  // xyz: the plane's axis per map unit (uv = 0.5 + dot(p - origin, axis)); w: start distance toward the sun
-  vec4 cs_axis_v;
+  vec4 cs_origin[CLOUDS_SHADOW_CASCADES];  // camera-relative centre of each cascade's plane, nearest first
+  vec4 cs_axis_u[CLOUDS_SHADOW_CASCADES];  // xyz: the plane's axis per map unit (uv = 0.5 + dot(p - origin, axis)); w: start distance toward the sun
+  vec4 cs_axis_v[CLOUDS_SHADOW_CASCADES];  // w: side (m)
   vec4 cs_light;   // xyz: direction toward the sun; w: |sun.z| (vertical fraction of a slanted column)
-  vec4 cs_up;      // xyz: up at the camera
+  vec4 cs_up;      // xyz: up at the camera; w: cascade count (0: no shadows)
 };
-layout(binding = WELKIN_UNIT_CLOUDS_SHADOW_MAP) uniform sampler2D cs_map;
+layout(binding = WELKIN_UNIT_CLOUDS_SHADOW_MAP) uniform sampler2D cs_map;  // the cascades side by side
 
-// Optical depth of the clouds between p and the sun: zero above the column's front, then the mean
-// extinction times the depth into it, up to the column's total.
+// Optical depth of the clouds between p and the sun, from the nearest cascade that holds p (away
+// from its edge, except in the last): zero above the column's front, then the mean extinction times
+// the depth into it, up to the column's total.
 float clouds_shadow_optical_depth(vec3 p) {
-  vec3 q = p - cs_origin.xyz;
-  vec2 uv = vec2(0.5 + dot(q, cs_axis_u.xyz), 0.5 + dot(q, cs_axis_v.xyz));
-  if (cs_origin.w < 0.5 || any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 0.0;
-  vec3 m = texture(cs_map, uv).xyz;  // front distance from the start, mean extinction, total optical depth
-  float depth = cs_axis_u.w - dot(q, cs_light.xyz);
-  return min(m.z, m.y * max(depth - m.x, 0.0));
+  int n = int(cs_up.w);
+  for (int k = 0; k < CLOUDS_SHADOW_CASCADES; ++k) {
+    if (k >= n) break;
+    vec3 q = p - cs_origin[k].xyz;
+    vec2 uv = vec2(0.5 + dot(q, cs_axis_u[k].xyz), 0.5 + dot(q, cs_axis_v[k].xyz));
+    float margin = k + 1 < n ? 0.0625 : 0.0;
+    if (any(lessThan(uv, vec2(margin))) || any(greaterThan(uv, vec2(1.0 - margin)))) continue;
+    // Kept half a texel inside the cascade's square: its neighbour in the texture is another cascade.
+    float half_texel = 0.5 / float(textureSize(cs_map, 0).y);
+    uv = clamp(uv, vec2(half_texel), vec2(1.0 - half_texel));
+    vec3 m = texture(cs_map, vec2((float(k) + uv.x) / float(n), uv.y)).xyz;  // front, mean extinction, total
+    float depth = cs_axis_u[k].w - dot(q, cs_light.xyz);
+    return min(m.z, m.y * max(depth - m.x, 0.0));
+  }
+  return 0.0;
 }
 
 float clouds_light_visibility(vec3 p, vec3 n, int light) {

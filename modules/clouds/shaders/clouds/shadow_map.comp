@@ -1,9 +1,12 @@
-// The beer shadow map: for each texel, a column from above the cloud shell toward the ground along
-// the sun's direction, through the layers that cast shadows. Stores the distance from the column's
-// start to its first cloud, the mean extinction over the cloudy part and the total optical depth.
+// The beer shadow map, one cascade per dispatch: for each texel, a column from above the cloud shell
+// toward the ground along the sun's direction, through the layers that cast shadows. Stores the
+// distance from the column's start to its first cloud, the mean extinction over the cloudy part and
+// the total optical depth. The cascades lie side by side in one texture.
 #include "clouds/density.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = 0) uniform writeonly image2D u_map;
+uniform ivec2 u_region;      // this cascade's first column in the texture, and its side in texels
+uniform vec3 u_centre;       // the cascade's centre, camera-relative
 uniform vec3 u_light;        // toward the sun
 uniform vec3 u_axis_u, u_axis_v;  // the map plane's axes through the camera, unit length
 uniform float u_extent_m;    // side of the map
@@ -13,10 +16,10 @@ uniform int u_steps;
 void main() {
   clouds_load();
   ivec2 id = ivec2(gl_GlobalInvocationID.xy);
-  ivec2 size = imageSize(u_map);
+  ivec2 size = ivec2(u_region.y);
   if (any(greaterThanEqual(id, size))) return;
   vec2 uv = (vec2(id) + 0.5) / vec2(size);
-  vec3 start = ((uv.x - 0.5) * u_axis_u + (uv.y - 0.5) * u_axis_v) * u_extent_m + u_light * u_start_m;
+  vec3 start = u_centre + ((uv.x - 0.5) * u_axis_u + (uv.y - 0.5) * u_axis_v) * u_extent_m + u_light * u_start_m;
   vec3 dir = -u_light;
   vec2 outer = clouds_sphere_from(start, dir, cl_shell.y), inner = clouds_sphere_from(start, dir, cl_shell.x);
   // No cloud: the front at the column's end and no optical depth, so that filtering between a cloudy
@@ -39,5 +42,5 @@ void main() {
     }
     if (front >= 0.0) result = vec4(front, tau / max(back - front, 1e-3), tau, 0.0);
   }
-  imageStore(u_map, id, result);
+  imageStore(u_map, id + ivec2(u_region.x, 0), result);
 }

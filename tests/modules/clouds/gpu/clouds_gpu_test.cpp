@@ -121,23 +121,25 @@ namespace {
 TEST(CloudsGpu, ShadowMapIsRebuiltOnlyWhenItsInputsChange) {
   test::Rendered r = test::render(test::noon());
   const CloudsGpu& gpu = r.world->resource<CloudsGpu>();
-  EXPECT_EQ(gpu.shadow_builds, 1);
+  const int n = r.clouds().shadow_cascades;  // each cascade is made once for a still frame
+  ASSERT_EQ(n, 3);
+  EXPECT_EQ(gpu.shadow_builds, n);
   r.frame(32, 18);
   r.frame(32, 18);
-  EXPECT_EQ(gpu.shadow_builds, 1);
+  EXPECT_EQ(gpu.shadow_builds, n);
   EXPECT_FALSE(r.ran("clouds.shadow_map"));
   r.camera().position_m.x += 50.0;  // a fraction of a texel's worth of the map's middle
   r.frame(32, 18);
-  EXPECT_EQ(gpu.shadow_builds, 1);
-  EXPECT_NEAR(gpu.shadow.origin.x, -50.0f, 1e-3f);
+  EXPECT_EQ(gpu.shadow_builds, n);  // within the middle of even the nearest cascade
+  EXPECT_NEAR(gpu.shadow.origin[0].x, -50.0f, 1e-3f);
   auto& reg = r.world->registry();
   const ComponentInfo* sun = r.world->modules().component("atmosphere.Sun");
   resolve_field(*sun->type, reg.get(reg.pool(sun->type->id)->entities()[0], sun->type->id), "elevation_deg").set_scalar(41.0);
   r.frame(32, 18);
-  EXPECT_EQ(gpu.shadow_builds, 2);
+  EXPECT_EQ(gpu.shadow_builds, 2 * n);
   r.clouds().layers[0].coverage = 0.2f;
   r.frame(32, 18);
-  EXPECT_EQ(gpu.shadow_builds, 3);
+  EXPECT_EQ(gpu.shadow_builds, 3 * n);
 }
 
 }  // namespace
@@ -207,6 +209,38 @@ TEST(CloudsGpu, FourByFourBlocksRenewEveryPixelOnceIn16Frames) {
     }
   EXPECT_EQ(differing, 0u);
   EXPECT_GT(changed, size_t(w * h));  // the density change is visible: the comparison can fail
+}
+
+}  // namespace
+}  // namespace welkin::clouds
+
+namespace welkin::clouds {
+namespace {
+
+// Shadow cascades: ground within a few hundred metres of the camera reads the nearest cascade, so
+// three cascades over 30 km shade it as one map of the nearest cascade's size does (to the rounding
+// of the cascades' places in one texture), and more finely than one map over 30 km.
+TEST(CloudsGpu, NearGroundReadsTheNearestShadowCascade) {
+  auto ground = [](int cascades, double distance_m) {
+    nlohmann::json doc = test::scene(
+        {{"core.Camera", {{"position_m", {0, 0, 400}}, {"pitch_deg", -50}, {"vertical_fov_deg", 60}, {"ev100", 14}}},
+         {"atmosphere.Atmosphere", nlohmann::json::object()},
+         {"atmosphere.Sun", {{"azimuth_deg", 240}, {"elevation_deg", 40}}},
+         {"clouds.VolumetricClouds", {{"shadow_cascades", cascades}, {"shadow_distance_m", distance_m}, {"layers", {{{"coverage", 0.6}}}}}},
+         {"core.DebugShape", {{"shape", "box"}, {"position_m", {0, 100, -1}}, {"size_m", {3000, 3000, 1}}, {"albedo", {0.5, 0.5, 0.5}}}}});
+    return test::render(doc, 48, 27).renderer->read_hdr();
+  };
+  const ImageF three = ground(3, 30000.0), near_only = ground(1, 30000.0 / 16.0), coarse = ground(1, 30000.0);
+  double worst_near = 0.0, worst_coarse = 0.0, lo = INFINITY, hi = 0.0;
+  for (size_t i = 0; i < three.rgba.size(); i += 4) {
+    const double g = three.rgba[i + 1];
+    worst_near = std::max(worst_near, std::abs(g - near_only.rgba[i + 1]) / g);
+    worst_coarse = std::max(worst_coarse, std::abs(g - coarse.rgba[i + 1]) / g);
+    lo = std::min(lo, g), hi = std::max(hi, g);
+  }
+  EXPECT_LT(worst_near, 2e-3);
+  EXPECT_GT(worst_coarse, 0.02);  // the coarse map shades differently: the comparison can fail
+  EXPECT_GT(hi, 1.5 * lo);        // the ground is partly shadowed
 }
 
 }  // namespace

@@ -100,8 +100,9 @@ struct VolumetricClouds {
   bool temporal_clipping = true;  // off: plain reprojection (for measuring what clipping saves)
   // Shadows on every material (a beer shadow map from the sun around the camera) and sky occlusion.
   bool shadows = true;
-  int shadow_map_size = 256;
-  float shadow_distance_m = 30000.0f;
+  int shadow_map_size = 256;          // per cascade
+  float shadow_distance_m = 30000.0f;  // half the side of the largest cascade
+  int shadow_cascades = 3;             // each nearer one a quarter of the last one's side
   // Noise: generated on the GPU from the seed, tileable; each texture repeats over its period.
   int seed = 1;
   float shape_period_m = 4000.0f;

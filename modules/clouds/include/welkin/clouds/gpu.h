@@ -78,13 +78,15 @@ struct GenusModel {
 };
 GenusModel genus_model(Genus genus);
 
-// std140 mirror of the light term's CloudsShadow block (shaders/clouds/light_term.glsl).
+// std140 mirror of the light term's CloudsShadow block (shaders/clouds/light_term.glsl): one plane
+// per cascade, nearest first.
+inline constexpr int kMaxShadowCascades = 4;
 struct ShadowBlock {
-  glm::vec4 origin{0.0f};
-  glm::vec4 axis_u{0.0f};
-  glm::vec4 axis_v{0.0f};
-  glm::vec4 light{0.0f};
-  glm::vec4 up{0.0f};
+  glm::vec4 origin[kMaxShadowCascades]{};  // camera-relative centre; w: 1 while the cascade is valid
+  glm::vec4 axis_u[kMaxShadowCascades]{};  // axis per map unit; w: the columns' start toward the sun
+  glm::vec4 axis_v[kMaxShadowCascades]{};  // w: side (m)
+  glm::vec4 light{0.0f};                   // toward the sun; w: |sun.z|
+  glm::vec4 up{0.0f};                      // up at the camera; w: cascade count
 };
 
 // What the shadow map was made from; a frame whose key is not stale reuses it.
@@ -117,10 +119,10 @@ struct CloudsGpu {
   int noise_builds = 0;  // how often the noise was generated (tests, stats)
   std::unique_ptr<Buffer> frame_buffer, layer_buffer, shadow_buffer;
   size_t layer_capacity = 0;
-  ShadowBlock shadow;    // as last uploaded (valid: origin.w = 1)
-  ShadowKey shadow_key;  // what the shadow map holds
-  bool shadow_rebuild = false;  // this frame remakes it
-  int shadow_builds = 0;
+  ShadowBlock shadow;    // as last uploaded (valid: origin[k].w = 1)
+  ShadowKey shadow_keys[kMaxShadowCascades];     // what each cascade holds
+  bool shadow_rebuild[kMaxShadowCascades] = {};  // this frame remakes it
+  int shadow_builds = 0;                         // cascades made
   FrameBlock block;      // this frame's, uploaded before the geometry
   std::vector<LayerBlock> layers;  // and its packed layers (the CPU reference reads them)
   // Temporal upscaling: the last two results at the march resolution.
