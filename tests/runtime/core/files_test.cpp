@@ -3,6 +3,8 @@
 #include "welkin/core/files.h"
 
 #include <gtest/gtest.h>
+
+#include "error_of.h"
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -40,14 +42,7 @@ std::vector<std::string> entries(const fs::path& dir) {
   return names;
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const welkin::Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using welkin::testing::error_of;
 
 TEST(AtomicWrite, CreatesAndReplacesLeavingNoTemporaryFile) {
   fs::path d = fresh_dir("replace");

@@ -1,6 +1,8 @@
 // Plugin loading with real shared libraries built from tests/runtime/plugins.
 #include <gtest/gtest.h>
 
+#include "error_of.h"
+
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -15,14 +17,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 const fs::path kModules = WELKIN_BINARY_DIR "/test-modules";
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const welkin::Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using welkin::testing::error_of;
 
 json scene_with(const json& components) {
   return json{{"welkin_scene", 1}, {"entities", json::array({json{{"components", components}}})}};

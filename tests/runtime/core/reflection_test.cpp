@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "error_of.h"
+
 #include <nlohmann/json.hpp>
 
 #include "welkin/core/error.h"
@@ -51,14 +53,7 @@ void describe(welkin::TypeBuilder<Sky>& t) {
 using nlohmann::json;
 using welkin::type_desc;
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const welkin::Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using welkin::testing::error_of;
 
 TEST(Reflection, DescribesKindsUnitsRangesAndDefaults) {
   const auto& d = type_desc<Sky>();
