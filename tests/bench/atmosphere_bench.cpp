@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "welkin/atmosphere/gpu.h"
 #include "welkin/core/module.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/gl_context.h"
@@ -73,6 +74,7 @@ struct Sky {
   // One frame: its finished wall time and its passes' times (serial on llvmpipe: each pass finished).
   double render(std::map<std::string, std::vector<double>>& passes) {
     FrameResult fr;
+    world->resource<welkin::atmosphere::AtmosphereGpu>().forget_per_frame_luts();  // the cost of a moving view
     const double ms = finished_ms([&] { fr = renderer->render_frame({.index = frame++}, kW, kH); });
     double atmosphere = 0.0;
     for (const auto& t : fr.timings) {

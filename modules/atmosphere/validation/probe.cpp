@@ -177,6 +177,7 @@ FrameCost GpuProbe::frame_cost(const ref::ProbeGeometry& g, int width, int heigh
   std::vector<double> atmosphere, sky, frame;
   for (int i = 0; i < frames; ++i) {
     FrameResult r;
+    world_->resource<AtmosphereGpu>().forget_per_frame_luts();  // the cost of a moving view
     frame.push_back(
         finished_ms([&] { r = renderer_->render_frame(FrameInfo{.index = frame_++}, width, height); }));
     double a = 0.0, s = 0.0;

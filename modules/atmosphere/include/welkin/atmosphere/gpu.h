@@ -76,6 +76,9 @@ struct AtmosphereGpu {
   GpuUniforms sky_view_uniforms, aerial_uniforms;
   bool sky_view_valid = false, aerial_valid = false;
   int sky_view_builds = 0, aerial_builds = 0;
+  // The next frame remakes the per-frame LUTs as if the view and the sun had moved: what a benchmark
+  // of the atmosphere's per-frame cost times (a still camera would otherwise reuse them).
+  void forget_per_frame_luts() { sky_view_valid = aerial_valid = false; }
   // Where the light environment put the block and the LUTs (add_light_term fills them).
   struct Bindings {
     GLuint block = 0, transmittance = 0, multiscattering = 0, sky_view = 0, aerial_inscattering = 0,
