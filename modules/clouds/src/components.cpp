@@ -40,6 +40,7 @@ void describe(TypeBuilder<CloudLayer>& t) {
   t.field("profile_constant_term", &CloudLayer::profile_constant_term).range(-100, 100);
   t.field("wind_mps", &CloudLayer::wind_mps).unit("m/s").range(-200, 200).tooltip("Drift of the layer's weather (east, north)");
   t.field("casts_shadow", &CloudLayer::casts_shadow).tooltip("Included in the shadow map on materials");
+  t.field("follows_coverage_map", &CloudLayer::follows_coverage_map).tooltip("The painted coverage map adds to this layer's coverage");
   t.field("visible", &CloudLayer::visible).tooltip("Drawn (and casting its shadow)");
   t.field("solo", &CloudLayer::solo).tooltip("While any layer is soloed, only soloed layers are drawn");
 }
@@ -100,6 +101,9 @@ void describe(TypeBuilder<VolumetricClouds>& t) {
   t.field("detail_period_m", &VolumetricClouds::detail_period_m).unit("m").range(1, 1e5);
   t.field("weather_period_m", &VolumetricClouds::weather_period_m).unit("m").range(100, 1e8);
   t.field("wind_mps", &VolumetricClouds::wind_mps).unit("m/s").range(-200, 200);
+  t.field("coverage_map", &VolumetricClouds::coverage_map)
+      .tooltip("Grey PNG of painted coverage around the scene's origin (128: unchanged, 255: overcast, 0: clear); the editor paints it");
+  t.field("coverage_map_size_m", &VolumetricClouds::coverage_map_size_m).unit("m").range(1000, 2e7).tooltip("Side of the square the coverage map covers");
   t.field("layers", &VolumetricClouds::layers).max_count(256);
 }
 

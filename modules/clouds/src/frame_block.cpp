@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "welkin/clouds/gpu.h"
+#include "welkin/scene/painted_map.h"
 
 namespace welkin::clouds {
 
@@ -60,8 +61,10 @@ PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& ct
     const CloudLayer& L = clouds.layers[i];
     if (!L.visible || (any_solo && !L.solo)) continue;
     const float coverage = std::clamp(L.coverage * clouds.coverage, 0.0f, 1.0f);
-    // A layer that cannot hold cloud is not marched at all.
-    if (!(L.thickness_m > 0.0f) || !(coverage > 0.0f) || !(L.density_per_m > 0.0f)) continue;
+    // A layer that cannot hold cloud is not marched at all (a painted map may add coverage to one).
+    const bool follows_map = L.follows_coverage_map && ctx.has_coverage_map;
+    const bool can_cover = coverage > 0.0f || (follows_map && coverage + ctx.coverage_map_raise > 0.0f);
+    if (!(L.thickness_m > 0.0f) || !can_cover || !(L.density_per_m > 0.0f)) continue;
     const GenusModel g = genus_model(L.genus);
     const double period = double(clouds.weather_period_m) / g.weather_frequency;
     // Layers i, i + 1, i + 2 read three independent channels at one place (one fetch serves them when
@@ -74,7 +77,7 @@ PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& ct
     b.shape = {coverage, L.shape_amount, L.detail_amount, std::max(L.coverage_filter_width, 0.01f)};
     b.profile = {L.profile_exp_term, L.profile_exponent, L.profile_linear_term, L.profile_constant_term};
     b.weather = glm::vec4(tile_origin(p - drift + offset, period), float(1.0 / period));
-    b.model = {g.dome, float(i % 3), L.casts_shadow ? 1.0f : 0.0f, 0.0f};
+    b.model = {g.dome, float(i % 3), L.casts_shadow ? 1.0f : 0.0f, follows_map ? 1.0f : 0.0f};
     out.layers.push_back(b);
     out.source_index.push_back(int(i));
     const float lo = L.base_altitude_m - L.base_variation_m, hi = L.base_altitude_m + L.thickness_m + L.base_variation_m;
@@ -119,6 +122,12 @@ FrameBlock make_frame_block(const VolumetricClouds& clouds, const CloudsContext&
   f.light_model = {float(int(clouds.multiple_scattering)), view.vertical_fov_rad / float(std::max(march_height, 1)),
                    float(bands.size()), q.step_growth};
   for (size_t i = 0; i < bands.size(); ++i) f.band_low[int(i)] = bands[i].x, f.band_high[int(i)] = bands[i].y;
+  const MapFrame map{ctx.planet_center_m, ctx.planet_radius_m, clouds.coverage_map_size_m};
+  const glm::dmat3 axes = map.axes();
+  f.map_east = glm::vec4(glm::vec3(axes[0]), float(ctx.planet_radius_m / map.size_m));
+  f.map_north = glm::vec4(glm::vec3(axes[1]), ctx.coverage_map_raise);
+  f.map_up = glm::vec4(glm::vec3(axes[2]), ctx.has_coverage_map ? 1.0f : 0.0f);
+  f.map_origin = glm::vec4(glm::vec3(glm::transpose(axes) * p), 0.0f);
   f.inverse_view_projection = view.inverse_view_projection;
   return f;
 }

@@ -15,6 +15,7 @@
 #include "welkin/gfx/renderer.h"
 #include "welkin/scene/field_path.h"
 #include "welkin/scene/json_fields.h"
+#include "welkin/scene/painted_map.h"
 
 namespace welkin::clouds {
 
@@ -101,6 +102,40 @@ void bind_field(const CloudsGpu& gpu) {
   glBindTextureUnit(1, gpu.detail->id());
   glBindTextureUnit(2, gpu.weather->id());
   glBindTextureUnit(5, gpu.weather_maximum->id());
+  glBindTextureUnit(6, gpu.coverage_map->id());
+}
+
+// The painted coverage map (the editor's brush), uploaded again only when a stroke changed it; a
+// 1 x 1 neutral texel stands for none.
+void upload_coverage_map(World& world, const VolumetricClouds& clouds, CloudsGpu& gpu, CloudsContext& ctx) {
+  auto upload = [&gpu](int side, const uint8_t* texels) {
+    ensure_texture(gpu.coverage_map, {.width = side, .height = side, .format = TextureFormat::r8});
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage2D(gpu.coverage_map->id(), 0, 0, 0, side, side, GL_RED, GL_UNSIGNED_BYTE, texels);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  };
+  if (clouds.coverage_map.empty()) {
+    if (!gpu.coverage_map || !gpu.coverage_map_file.empty()) {
+      upload(1, &kPaintedMapNeutral);
+      gpu.coverage_map_file.clear();
+    }
+    return;
+  }
+  const PaintedMap* map = nullptr;
+  try {
+    map = &world.resource<PaintedMaps>().get(clouds.coverage_map);
+  } catch (const Error& e) {
+    throw e.with_path_prefix(std::string(VolumetricClouds::kTypeName) + "/coverage_map");
+  }
+  if (gpu.coverage_map_file != clouds.coverage_map || gpu.coverage_map_revision != map->revision) {
+    upload(map->side, map->texels.data());
+    gpu.coverage_map_file = clouds.coverage_map;
+    gpu.coverage_map_revision = map->revision;
+    gpu.coverage_map_raise = float(painted_coverage_offset(map->maximum()));
+  }
+  ctx.has_coverage_map = true;
+  ctx.coverage_map_raise = gpu.coverage_map_raise;
+  ctx.coverage_map_revision = map->revision;
 }
 
 bool camera_in_space(World& world, const FrameBlock& f) {
@@ -119,7 +154,8 @@ bool upload_frame(World& world, const SystemContext& sc, const VolumetricClouds&
   }
   auto& gpu = world.resource<CloudsGpu>();
   const FrameView& view = world.resource<RenderContext>().view;
-  const CloudsContext ctx = read_context(world, sc.frame);
+  CloudsContext ctx = read_context(world, sc.frame);
+  upload_coverage_map(world, clouds, gpu, ctx);
   const PackedLayers layers = pack_layers(clouds, ctx, view.camera_position_m);
   const ResolvedQuality q = resolve_quality(clouds);
   const int w = std::max(1, int(std::ceil(view.width * q.resolution_scale)));
@@ -149,11 +185,12 @@ bool upload_frame(World& world, const SystemContext& sc, const VolumetricClouds&
   for (const LayerBlock& b : layers.layers) {
     key.settings.insert(key.settings.end(), {b.altitude.x, b.altitude.y, b.altitude.z, b.altitude.w, b.shape.x, b.shape.y,
                                              b.shape.z, b.shape.w, b.profile.x, b.profile.y, b.profile.z, b.profile.w,
-                                             b.model.x, b.model.y, b.model.z});
+                                             b.model.x, b.model.y, b.model.z, b.model.w});
   }
   for (const CloudLayer& L : clouds.layers) key.max_wind_mps = std::max(key.max_wind_mps, glm::length(L.wind_mps));
   key.settings.insert(key.settings.end(), {block.medium.x, block.medium.y, float(clouds.seed), clouds.shape_period_m,
-                                           clouds.weather_period_m, clouds.shadow_distance_m, float(cascades)});
+                                           clouds.weather_period_m, clouds.shadow_distance_m, float(cascades), block.map_up.w,
+                                           float(ctx.coverage_map_revision & 0xffffffu), clouds.coverage_map_size_m});
   // Cascade k (0 nearest) covers a square of side 2 D / 4^(n - 1 - k) around the camera; each is
   // remade on its own, when it is stale at its own texel size (the nearest follows the camera most).
   const glm::vec3 u = glm::normalize(glm::cross(l, std::abs(l.z) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1)));

@@ -24,6 +24,13 @@ NoiseVolumes read_noise(const CloudsGpu& gpu) {
   read(*gpu.shape, GL_RED, 1, n.shape);
   read(*gpu.detail, GL_RED, 1, n.detail);
   read(*gpu.weather, GL_RGBA, 4, n.weather);
+  if (gpu.coverage_map) {
+    n.coverage_map_side = gpu.coverage_map->desc().width;
+    n.coverage_map.resize(size_t(n.coverage_map_side) * size_t(n.coverage_map_side));
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(gpu.coverage_map->id(), 0, GL_RED, GL_UNSIGNED_BYTE, GLsizei(n.coverage_map.size()), n.coverage_map.data());
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  }
   return n;
 }
 
@@ -65,6 +72,28 @@ glm::dvec2 CloudField::sphere(const glm::dvec3& origin, const glm::dvec3& dir, d
   return {-b - s, -b + s};
 }
 
+// The painted map at a camera-relative point: projected along the radius onto the map's plane and
+// read bilinearly, clamped to its edge; 0 off the map.
+double CloudField::painted_coverage(const glm::dvec3& x) const {
+  if (frame_.map_up.w < 0.5f || noise_.coverage_map_side < 1) return 0.0;
+  const glm::dvec3 q = glm::dvec3(frame_.map_origin) +
+                       glm::dvec3(glm::dot(x, glm::dvec3(frame_.map_east)), glm::dot(x, glm::dvec3(frame_.map_north)),
+                                  glm::dot(x, glm::dvec3(frame_.map_up)));
+  if (q.z <= 0.0) return 0.0;
+  const glm::dvec2 uv = glm::dvec2(q.x, -q.y) * (double(frame_.map_east.w) / q.z) + 0.5;
+  if (uv.x < 0.0 || uv.y < 0.0 || uv.x > 1.0 || uv.y > 1.0) return 0.0;
+  const int n = noise_.coverage_map_side;
+  const glm::dvec2 p = uv * double(n) - 0.5;
+  const glm::dvec2 f = p - glm::floor(p);
+  const glm::ivec2 i = glm::ivec2(glm::floor(p));
+  double v = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const glm::ivec2 c = glm::clamp(i + glm::ivec2(k & 1, k >> 1), glm::ivec2(0), glm::ivec2(n - 1));
+    v += ((k & 1) ? f.x : 1.0 - f.x) * ((k >> 1) ? f.y : 1.0 - f.y) * noise_.coverage_map[size_t(c.y) * size_t(n) + size_t(c.x)];
+  }
+  return painted_coverage_offset(v);
+}
+
 double CloudField::layer_density(const LayerBlock& L, const glm::dvec3& x, double h, bool detail) const {
   const glm::dvec3 wuv = glm::dvec3(L.weather) + x * double(L.weather.w);
   const int channel = int(L.model.y);
@@ -73,7 +102,9 @@ double CloudField::layer_density(const LayerBlock& L, const glm::dvec3& x, doubl
   const double base = L.altitude.x + L.altitude.z * (variation - 0.5) * 2.0;
   const double t = (h - base) / std::max(double(L.altitude.y), 1e-3);
   if (t <= 0.0 || t >= 1.0) return 0.0;
-  const double fw = L.shape.w, c = L.shape.x;
+  const double fw = L.shape.w;
+  const double c = L.model.w > 0.5f ? clamp01(L.shape.x + painted_coverage(x)) : double(L.shape.x);
+  if (c <= 0.0) return 0.0;
   const double lo = (1.0 - c) * (1.0 + fw) - fw;
   const double d0 = clamp01((w - lo) / fw);
   if (d0 <= 0.0) return 0.0;

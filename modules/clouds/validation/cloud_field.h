@@ -13,6 +13,8 @@ namespace welkin::clouds {
 struct NoiseVolumes {
   int shape_size = 0, detail_size = 0, weather_size = 0;
   std::vector<uint8_t> shape, detail, weather;  // R8, R8, RGBA8 as stored
+  int coverage_map_side = 0;
+  std::vector<uint8_t> coverage_map;  // the painted coverage map as uploaded (R8, north row first)
 };
 // Reads the world's noise volumes back (a current GL context; ensure_noise first).
 NoiseVolumes read_noise(const CloudsGpu& gpu);
@@ -34,6 +36,7 @@ class CloudField {
  private:
   double sample(const std::vector<uint8_t>& v, int size, int channels, int channel, glm::dvec3 uvw) const;
   double layer_density(const LayerBlock& L, const glm::dvec3& x, double h, bool detail) const;
+  double painted_coverage(const glm::dvec3& x) const;
   NoiseVolumes noise_;
   FrameBlock frame_;
   std::vector<LayerBlock> layers_;

@@ -19,6 +19,10 @@ layout(std140, binding = 0) uniform CloudsFrame {
   vec4 clb_light_model;     // multiple scattering: 0 octaves, 1 diffusion; y: march pixel angle (rad); z: bands; w: step growth
   vec4 clb_band_low;        // the altitude bands that hold layers (m): lower bounds
   vec4 clb_band_high;       // and upper bounds
+  vec4 clb_map_east;        // the painted coverage map's east axis; w: planet radius / map side
+  vec4 clb_map_north;       // its north axis; w: the largest coverage it adds
+  vec4 clb_map_up;          // its up axis; w: 1 when the scene has a map
+  vec4 clb_map_origin;      // the camera in (east, north, up) from the planet's centre, m
   mat4 clb_inverse_view_projection;
 };
 // The block's values in private variables, loaded once per invocation (clouds_load): software
@@ -36,6 +40,10 @@ vec4 cl_frame;
 vec4 cl_light_model;
 vec4 cl_band_low;
 vec4 cl_band_high;
+vec4 cl_map_east;
+vec4 cl_map_north;
+vec4 cl_map_up;
+vec4 cl_map_origin;
 mat4 cl_inverse_view_projection;
 const int CLOUDS_MAX_BANDS = 4;
 
@@ -46,7 +54,7 @@ struct CloudLayerGpu {
   vec4 shape;     // coverage, shape amount, detail amount, coverage filter width
   vec4 profile;   // exp term, exponent, linear term, constant term
   vec4 weather;   // camera in weather periods (fraction, drift applied), xyz; w: 1 / period
-  vec4 model;     // dome (0 sheet .. 1 dome), weather channel, casts shadow, -
+  vec4 model;     // dome (0 sheet .. 1 dome), weather channel, casts shadow, follows the coverage map
 };
 layout(std430, binding = 0) readonly buffer CloudLayers { CloudLayerGpu cl_layers[]; };
 // Up to four layers are copied into private variables too; more are read from the buffer.
@@ -69,6 +77,10 @@ void clouds_load() {
   cl_light_model = clb_light_model;
   cl_band_low = clb_band_low;
   cl_band_high = clb_band_high;
+  cl_map_east = clb_map_east;
+  cl_map_north = clb_map_north;
+  cl_map_up = clb_map_up;
+  cl_map_origin = clb_map_origin;
   cl_inverse_view_projection = clb_inverse_view_projection;
   cl_layer_count = int(cl_planet.w);
   for (int i = 0; i < CLOUDS_LOCAL_LAYERS; ++i)
@@ -80,6 +92,7 @@ layout(binding = 0) uniform sampler3D cl_shape_noise;
 layout(binding = 1) uniform sampler3D cl_detail_noise;
 layout(binding = 2) uniform sampler3D cl_weather_noise;
 layout(binding = 5) uniform sampler3D cl_weather_maximum;  // 16^3 blocks: the largest signal near each
+layout(binding = 6) uniform sampler2D cl_coverage_map;     // painted coverage (128: none), north row first
 
 // The width a sample stands for (a pixel's footprint at its distance): the noise is read at the
 // mip level whose texels match it, so distant clouds average instead of aliasing. Set by the caller.
@@ -103,11 +116,27 @@ float clouds_shape_sample = -1.0, clouds_detail_sample = -1.0;
 // weighted by their density there (the light reflected up from it).
 float clouds_depth_below_m = 0.0;
 vec4 clouds_weather_at = vec4(-1.0), clouds_weather_sample = vec4(0.0);
+float clouds_painted_sample = 2.0;  // > 1: not read yet at this point
+
+// The coverage the painted map adds at x: the point is projected along the planet's radius onto the
+// map's tangent plane (a column of air reads one texel at every altitude); 0 off the map.
+float clouds_painted_coverage(vec3 x) {
+  if (clouds_painted_sample <= 1.5) return clouds_painted_sample;
+  vec3 q = cl_map_origin.xyz + vec3(dot(x, cl_map_east.xyz), dot(x, cl_map_north.xyz), dot(x, cl_map_up.xyz));
+  clouds_painted_sample = 0.0;
+  if (q.z <= 0.0) return 0.0;
+  vec2 uv = vec2(q.x, -q.y) * (cl_map_east.w / q.z) + 0.5;
+  if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 0.0;
+  clouds_painted_sample = (textureLod(cl_coverage_map, uv, 0.0).r * 255.0 - 128.0) / 127.0;
+  return clouds_painted_sample;
+}
 
 float clouds_layer_envelope(CloudLayerGpu L, vec3 x, float h, out float t) {
   t = 0.0;
   // Outside the layer's reach (its base can move by the variation): no texture fetch at all.
   if (h < L.altitude.x - L.altitude.z || h > L.altitude.x + L.altitude.y + L.altitude.z) return 0.0;
+  float c = L.model.w > 0.5 ? clamp(L.shape.x + clouds_painted_coverage(x), 0.0, 1.0) : L.shape.x;
+  if (c <= 0.0) return 0.0;
   if (L.weather != clouds_weather_at) {
     clouds_weather_at = L.weather;
     clouds_weather_sample = textureLod(cl_weather_noise, L.weather.xyz + x * L.weather.w, clouds_lod(1.0 / (L.weather.w * 64.0)));
@@ -119,7 +148,7 @@ float clouds_layer_envelope(CloudLayerGpu L, vec3 x, float h, out float t) {
   t = (h - base) / max(L.altitude.y, 1e-3);
   if (t <= 0.0 || t >= 1.0) return 0.0;
   // Coverage c covers a fraction c of the sky (the weather channels are equalised to uniform).
-  float fw = L.shape.w, c = L.shape.x;
+  float fw = L.shape.w;
   float lo = (1.0 - c) * (1.0 + fw) - fw;
   float d0 = clamp((w - lo) / fw, 0.0, 1.0);
   if (d0 <= 0.0) return 0.0;
@@ -157,7 +186,7 @@ float clouds_layer_density(CloudLayerGpu L, vec3 x, float h, bool detail, out fl
 // layer's weather allows cloud there.
 float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
   empty = true;
-  clouds_shape_sample = -1.0, clouds_detail_sample = -1.0, clouds_weather_at = vec4(-1.0);
+  clouds_shape_sample = -1.0, clouds_detail_sample = -1.0, clouds_weather_at = vec4(-1.0), clouds_painted_sample = 2.0;
   clouds_depth_below_m = 0.0;
   float h = clouds_altitude(x);
   if (h < cl_shell.x || h > cl_shell.y) return 0.0;
@@ -194,7 +223,8 @@ float clouds_skip_layer(CloudLayerGpu L, vec3 x, vec3 dir, float h, float skip) 
   vec4 m = texelFetch(cl_weather_maximum, clamp(ivec3(cells), ivec3(0), ivec3(15)), 0);
   int channel = int(L.model.y);
   float w = channel == 0 ? m.r : channel == 1 ? m.g : m.b;
-  float fw = L.shape.w, c = L.shape.x;
+  // A layer that follows the painted map may be as covered as the map's largest texel makes it.
+  float fw = L.shape.w, c = min(L.shape.x + L.model.w * max(cl_map_north.w, 0.0), 1.0);
   if (w > (1.0 - c) * (1.0 + fw) - fw) return 0.0;
   // Metres to the block's far side along dir (cells per metre: 16 x the layer's 1 / period).
   vec3 f = fract(cells);

@@ -3,6 +3,7 @@
 // the single source of their JSON form, units, ranges, the editor inspector and sequence tracks
 // (`clouds.VolumetricClouds/layers/0/coverage`). Lengths are metres, extinction 1/m.
 #include <glm/glm.hpp>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -45,6 +46,7 @@ struct CloudLayer {
   float profile_constant_term = 0.25f;
   glm::vec2 wind_mps{0.0f, 0.0f};  // drift of this layer's weather (east, north)
   bool casts_shadow = true;
+  bool follows_coverage_map = true;  // the painted coverage map (VolumetricClouds::coverage_map) adds to its coverage
   // Drawn or not, as in a mixer: while any layer is soloed, only soloed layers are drawn. A layer
   // looks the same alone as among the others (it keeps its place in the weather).
   bool visible = true;
@@ -109,6 +111,12 @@ struct VolumetricClouds {
   float detail_period_m = 300.0f;
   float weather_period_m = 40000.0f;
   glm::vec2 wind_mps{6.0f, 2.0f};  // drift of the shape noise (east, north)
+  // Coverage painted over the planet (the editor's brush; welkin/scene/painted_map.h): a grey PNG,
+  // a square of coverage_map_size_m centred on the ground below the scene's origin. A texel v adds
+  // (v - 128) / 127 to the coverage of the layers that follow it: 128 changes nothing, 255 makes
+  // them overcast, 0 clears them. It stays where it was painted (the wind moves the noise, not it).
+  std::string coverage_map;  // file name; empty: none
+  float coverage_map_size_m = 100000.0f;
   std::vector<CloudLayer> layers = default_layers();
 
   // Partly cloudy: cumulus at 1.5 km and a thin altostratus at 5.5 km.

@@ -3,6 +3,7 @@
 // (shaders/clouds/density.glsl), the noise volumes generated once per seed, and the render system.
 #include <glm/glm.hpp>
 #include <memory>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -32,9 +33,14 @@ struct FrameBlock {
   glm::vec4 light_model{0.0f};    // multiple scattering (0 octaves, 1 diffusion), march pixel angle, bands, step growth
   glm::vec4 band_low{0.0f};       // altitude bands holding layers (m, at most kMaxBands)
   glm::vec4 band_high{0.0f};
+  // The painted coverage map's frame (welkin/scene/painted_map.h), relative to the planet's centre.
+  glm::vec4 map_east{0.0f};    // east at the map's centre; w: planet radius / map side
+  glm::vec4 map_north{0.0f};   // w: the largest coverage the map adds
+  glm::vec4 map_up{0.0f};      // w: 1 when the scene has a map
+  glm::vec4 map_origin{0.0f};  // the camera in (east, north, up) from the planet's centre, m
   glm::mat4 inverse_view_projection{1.0f};
 };
-static_assert(sizeof(FrameBlock) == 272, "FrameBlock must match the std140 CloudsFrame block");
+static_assert(sizeof(FrameBlock) == 336, "FrameBlock must match the std140 CloudsFrame block");
 
 // std430 mirror of CloudLayerGpu.
 struct LayerBlock {
@@ -42,7 +48,7 @@ struct LayerBlock {
   glm::vec4 shape{0.0f};     // coverage, shape amount, detail amount, coverage filter width
   glm::vec4 profile{0.0f};   // exp term, exponent, linear term, constant term
   glm::vec4 weather{0.0f};   // camera in weather periods (fraction); w: 1 / period
-  glm::vec4 model{0.0f};     // dome, weather channel, casts shadow, -
+  glm::vec4 model{0.0f};     // dome, weather channel, casts shadow, follows the coverage map
 };
 
 // Where the planet is and when it is: what the clouds read of other modules (through reflection).
@@ -52,7 +58,14 @@ struct CloudsContext {
   double time_s = 0.0;               // drives the wind: the time of day when there is one
   glm::vec3 sun_direction{0, 0, 1};  // toward the sun
   bool sun_up_for_clouds = true;     // the sun still lights cloud tops (else the moon is marched)
+  // The painted coverage map, when the scene has one: the most it adds to a layer's coverage
+  // ((largest texel - 128) / 127, below 0 when it only clears) and its revision.
+  bool has_coverage_map = false;
+  float coverage_map_raise = 0.0f;
+  uint64_t coverage_map_revision = 0;
 };
+// Coverage a painted map texel adds (128 nothing, 255 +1, 0 about -1).
+inline double painted_coverage_offset(double texel) { return (texel - 128.0) / 127.0; }
 
 inline constexpr int kMaxBands = 4;
 // The layers' altitude ranges merged into at most kMaxBands disjoint bands (closest gaps closed first).
@@ -115,6 +128,11 @@ struct CloudsGpu {
   static constexpr std::string_view kTypeName = "clouds.Gpu";
   std::unique_ptr<Texture> shape, detail, weather, blue_noise, shadow_map;
   std::unique_ptr<Texture> weather_maximum;  // the coarse occupancy for empty-space skipping
+  // The painted coverage map as uploaded (1 x 1 neutral when the scene has none), and what it holds.
+  std::unique_ptr<Texture> coverage_map;
+  std::string coverage_map_file;
+  uint64_t coverage_map_revision = 0;
+  float coverage_map_raise = 0.0f;
   int noise_seed = -1;   // the seed the noise was made from (-1: none yet)
   int noise_builds = 0;  // how often the noise was generated (tests, stats)
   std::unique_ptr<Buffer> frame_buffer, layer_buffer, shadow_buffer;
