@@ -4,17 +4,43 @@ namespace welkin::editor {
 
 void CommandHistory::record(Edit edit, std::string label, bool continuous) {
   steps_.resize(cursor_);  // a new edit forgets what could have been redone
-  if (continuous && !steps_.empty()) {
-    HistoryStep& top = steps_.back();
-    if (top.open && top.edits.size() == 1 && top.edits[0].same_slot(edit)) {
-      top.edits[0].after = std::move(edit.after);  // keep the value from before the drag began
+  if (continuous) {
+    if (Edit* open = open_edit(edit)) {
+      open->after = std::move(edit.after);  // keep the value from before the drag began
       return;
     }
   }
   seal();
   steps_.push_back(HistoryStep{.label = std::move(label), .edits = {std::move(edit)}, .open = continuous});
-  if (steps_.size() > kMaxSteps) steps_.erase(steps_.begin());
   cursor_ = steps_.size();
+  trim();
+}
+
+namespace {
+size_t map_bytes(const HistoryStep& step) {
+  size_t n = 0;
+  for (const Edit& e : step.edits)
+    if (e.target == EditTarget::map)
+      for (const nlohmann::json* v : {&e.before, &e.after})
+        if (v->is_object() && v->contains("texels") && (*v)["texels"].is_binary()) n += (*v)["texels"].get_binary().size();
+  return n;
+}
+}  // namespace
+
+void CommandHistory::trim() {
+  size_t bytes = 0;
+  for (const HistoryStep& s : steps_) bytes += map_bytes(s);
+  size_t drop = 0;
+  while (steps_.size() - drop > 1 && (steps_.size() - drop > kMaxSteps || bytes > kMaxMapBytes)) bytes -= map_bytes(steps_[drop++]);
+  if (drop == 0) return;
+  steps_.erase(steps_.begin(), steps_.begin() + long(drop));
+  cursor_ = cursor_ > drop ? cursor_ - drop : 0;
+}
+
+Edit* CommandHistory::open_edit(const Edit& like) {
+  if (steps_.empty() || cursor_ != steps_.size()) return nullptr;
+  HistoryStep& top = steps_.back();
+  return top.open && top.edits.size() == 1 && top.edits[0].same_slot(like) ? &top.edits[0] : nullptr;
 }
 
 void CommandHistory::seal() {

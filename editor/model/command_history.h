@@ -19,6 +19,9 @@ class CommandHistory {
   // Records an edit that was just applied; drops the redo tail. A continuous edit merges into the
   // open step when that step edits the same slot, so a whole drag is one undo step.
   void record(Edit edit, std::string label, bool continuous);
+  // The open step's edit when it is the only one and edits the same slot as `like` (a brush stroke
+  // growing its rectangle); nullptr otherwise.
+  Edit* open_edit(const Edit& like);
   // Closes the open step (the widget was released). A step whose net change is nothing is dropped.
   void seal();
 
@@ -35,8 +38,11 @@ class CommandHistory {
   size_t cursor() const { return cursor_; }
   void clear();
 
-  // Oldest steps are dropped beyond this many (each holds JSON copies of the values it touched).
+  // Oldest steps are dropped beyond this many (each holds JSON copies of the values it touched),
+  // or while the texels painted maps' steps hold exceed kMaxMapBytes (the newest step always stays).
   static constexpr size_t kMaxSteps = 1000;
+  static constexpr size_t kMaxMapBytes = size_t(256) << 20;
+  void trim();
 
  private:
   std::vector<HistoryStep> steps_;

@@ -13,6 +13,7 @@ enum class EditTarget {
   component,  // a whole component; null = the entity does not have it (add / remove)
   entity,     // a whole entity {"name", "components"}; null = it does not exist
   sequence,   // the timeline's sequence document
+  map,        // texels of a painted map: path = its file; {"x", "y", "width", "height", "texels"}
 };
 
 struct Edit {

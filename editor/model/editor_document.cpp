@@ -19,6 +19,15 @@ constexpr std::string_view kNameComponent = Name::kTypeName;
 
 std::string step_label(const std::string& verb, const std::string& what) { return verb + " " + what; }
 
+json region_to_json(const MapRegion& r) {
+  return {{"x", r.x}, {"y", r.y}, {"width", r.width}, {"height", r.height}, {"texels", json::binary(r.texels)}};
+}
+
+MapRegion region_from_json(const json& j) {
+  return MapRegion{j.at("x").get<int>(), j.at("y").get<int>(), j.at("width").get<int>(), j.at("height").get<int>(),
+                   j.at("texels").get_binary()};
+}
+
 }  // namespace
 
 EditorDocument::EditorDocument(WorldFactory make_world) : make_world_(std::move(make_world)) { new_scene(); }
@@ -52,6 +61,8 @@ void EditorDocument::load_scene(const std::string& path) {
 }
 
 void EditorDocument::save_scene(const std::string& path) {
+  // The maps first: a scene is never saved naming a painted map that was not written.
+  if (PaintedMaps* maps = world_->find_resource<PaintedMaps>()) maps->save_unsaved();
   save_scene_file(*world_, path);
   scene_path_ = path;
   dirty_ = false;
@@ -326,7 +337,53 @@ void EditorDocument::apply(const Edit& edit, const json& value) {
       return;
     }
     case EditTarget::sequence: sequence_ = sequence_from_json(value, "sequence"); return;
+    case EditTarget::map: {
+      PaintedMap& map = world_->resource<PaintedMaps>().edit(edit.path);
+      paste_region(map, region_from_json(value));
+      PaintedMaps::touched(map);
+      return;
+    }
   }
+}
+
+// --- Painted maps ------------------------------------------------------------------------------
+
+bool EditorDocument::paint_map(const std::string& file, const BrushStamp& stamp, bool continuous) {
+  PaintedMap& map = world_->resource<PaintedMaps>().edit(file);
+  const MapRegion touched = brush_bounds(map, stamp);
+  if (touched.width == 0) return false;
+  Edit edit{.target = EditTarget::map, .path = file};
+  // A stroke is one edit over the rectangle of all its stamps: what that rectangle held before the
+  // stroke (the texels it had changed come from the stroke's own record) and holds after it.
+  Edit* stroke = continuous ? history_.open_edit(edit) : nullptr;
+  MapRegion bounds = touched;
+  if (stroke) {
+    const MapRegion before = region_from_json(stroke->before);
+    const int x0 = std::min(bounds.x, before.x), y0 = std::min(bounds.y, before.y);
+    const int x1 = std::max(bounds.x + bounds.width, before.x + before.width);
+    const int y1 = std::max(bounds.y + bounds.height, before.y + before.height);
+    bounds = {x0, y0, x1 - x0, y1 - y0, {}};
+  }
+  MapRegion before = copy_region(map, bounds.x, bounds.y, bounds.width, bounds.height);
+  if (stroke) {
+    const MapRegion earlier = region_from_json(stroke->before);
+    for (int j = 0; j < earlier.height; ++j)
+      std::copy_n(&earlier.texels[size_t(j) * size_t(earlier.width)], earlier.width,
+                  &before.texels[size_t(earlier.y - bounds.y + j) * size_t(bounds.width) + size_t(earlier.x - bounds.x)]);
+  }
+  apply_brush(map, stamp);
+  PaintedMaps::touched(map);
+  dirty_ = true;
+  edit.before = region_to_json(before);
+  edit.after = region_to_json(copy_region(map, bounds.x, bounds.y, bounds.width, bounds.height));
+  if (stroke) {
+    stroke->before = std::move(edit.before);
+    stroke->after = std::move(edit.after);
+    history_.trim();
+  } else {
+    history_.record(std::move(edit), "Paint " + file, continuous);
+  }
+  return true;
 }
 
 // --- Timeline ----------------------------------------------------------------------------------

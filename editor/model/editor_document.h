@@ -12,6 +12,7 @@
 #include "model/entity_ids.h"
 #include "model/sequence.h"
 #include "welkin/core/world.h"
+#include "welkin/scene/painted_map.h"
 
 namespace welkin::editor {
 
@@ -82,6 +83,12 @@ class EditorDocument {
   bool undo();
   bool redo();
   const CommandHistory& history() const { return history_; }
+
+  // --- Painted maps (welkin/scene/painted_map.h), kept in the world's PaintedMaps ---------------
+  // One stamp of a brush on the map in `file` (read on first use): one undo step, or with
+  // `continuous` part of a stroke that stays one step until end_continuous_edit(). False when the
+  // stamp misses the map. save_scene also writes every map changed since it was read.
+  bool paint_map(const std::string& file, const BrushStamp& stamp, bool continuous = false);
 
   // --- Timeline ------------------------------------------------------------------------------
   const Sequence& sequence() const { return sequence_; }

@@ -27,22 +27,39 @@ std::vector<ModulePanelSpec> parse_panels(const ModuleManifest& m, const json& d
   for (size_t i = 0; i < panels.size(); ++i) {
     std::string pp = "/panels/" + std::to_string(i);
     const json& p = panels[i];
-    if (!p.is_object()) fail(file, pp, "panel object {\"title\", \"components\"}", p);
+    if (!p.is_object()) fail(file, pp, "panel object {\"title\", \"components\" or \"map\"}", p);
     for (auto it = p.begin(); it != p.end(); ++it)
-      if (it.key() != "title" && it.key() != "components") fail(file, pp + "/" + it.key(), "\"title\" or \"components\"", json(it.key()));
+      if (it.key() != "title" && it.key() != "components" && it.key() != "map")
+        fail(file, pp + "/" + it.key(), "\"title\", \"components\" or \"map\"", json(it.key()));
     ModulePanelSpec spec{.module = m.name};
     if (!p.contains("title") || !p["title"].is_string() || p["title"].get<std::string>().empty())
       fail(file, pp + "/title", "a non-empty title", p.value("title", json("nothing")));
     spec.title = p["title"].get<std::string>();
-    const json& comps = p.value("components", json());
-    if (!comps.is_array() || comps.empty()) fail(file, pp + "/components", "a non-empty array of component names", comps);
-    for (size_t c = 0; c < comps.size(); ++c) {
-      std::string cp = pp + "/components/" + std::to_string(c);
-      if (!comps[c].is_string()) fail(file, cp, "component name", comps[c]);
-      std::string name = comps[c].get<std::string>();
-      if (std::find(m.components.begin(), m.components.end(), name) == m.components.end())
-        fail(file, cp, "a component module '" + m.name + "' declares", comps[c]);
-      spec.components.push_back(name);
+    auto component_of_module = [&](const json& name, const std::string& at) {
+      if (!name.is_string()) fail(file, at, "component name", name);
+      if (std::find(m.components.begin(), m.components.end(), name.get<std::string>()) == m.components.end())
+        fail(file, at, "a component module '" + m.name + "' declares", name);
+      return name.get<std::string>();
+    };
+    if (p.contains("map") == p.contains("components")) fail(file, pp, "either \"components\" or \"map\"", p);
+    if (p.contains("map")) {
+      const json& mp = p["map"];
+      const std::string at = pp + "/map";
+      if (!mp.is_object()) fail(file, at, "{\"component\", \"file_field\", \"size_field\"}", mp);
+      for (auto it = mp.begin(); it != mp.end(); ++it)
+        if (it.key() != "component" && it.key() != "file_field" && it.key() != "size_field")
+          fail(file, at + "/" + it.key(), "\"component\", \"file_field\" or \"size_field\"", json(it.key()));
+      MapFieldSpec map{.component = component_of_module(mp.value("component", json()), at + "/component")};
+      for (auto [key, out_field] : {std::pair{"file_field", &map.file_field}, std::pair{"size_field", &map.size_field}}) {
+        const json& f = mp.value(key, json());
+        if (!f.is_string() || f.get<std::string>().empty()) fail(file, at + "/" + key, "a field name", f);
+        *out_field = f.get<std::string>();
+      }
+      spec.map = std::move(map);
+    } else {
+      const json& comps = p["components"];
+      if (!comps.is_array() || comps.empty()) fail(file, pp + "/components", "a non-empty array of component names", comps);
+      for (size_t c = 0; c < comps.size(); ++c) spec.components.push_back(component_of_module(comps[c], pp + "/components/" + std::to_string(c)));
     }
     out.push_back(std::move(spec));
   }

@@ -5,6 +5,7 @@
 
 #include "welkin/core/error.h"
 #include "welkin/gfx/image.h"
+#include "welkin/scene/field_path.h"
 
 namespace welkin {
 
@@ -28,6 +29,18 @@ glm::dvec2 MapFrame::uv(const glm::dvec3& world_m) const {
 glm::dvec3 MapFrame::ground_point(const glm::dvec2& uv) const {
   const glm::dvec3 local((uv.x - 0.5) * size_m, (0.5 - uv.y) * size_m, planet_radius_m);
   return planet_center_m + glm::normalize(axes() * local) * planet_radius_m;
+}
+
+MapFrame scene_map_frame(World& world, double size_m) {
+  MapFrame f{.size_m = size_m};
+  const std::string_view atmosphere = "atmosphere.Atmosphere";
+  if (auto r = scene_scalar(world, atmosphere, "bottom_radius_km")) {
+    f.planet_radius_m = *r * 1000.0;
+    f.planet_center_m = {0.0, 0.0, -f.planet_radius_m};
+    if (auto below = scene_scalar(world, atmosphere, "planet_center_below_origin"); below && *below < 0.5)
+      for (int i = 0; i < 3; ++i) f.planet_center_m[i] = scene_scalar(world, atmosphere, "planet_center_m/" + std::to_string(i)).value_or(0.0);
+  }
+  return f;
 }
 
 const PaintedMap& PaintedMaps::get(const std::string& file) {

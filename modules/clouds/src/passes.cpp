@@ -32,13 +32,9 @@ const VolumetricClouds* first_clouds(World& world) {
 // The planet, the time and the sun, from whichever modules the scene has (through reflection).
 CloudsContext read_context(World& world, const FrameInfo& frame) {
   CloudsContext c;
-  if (auto r = scene_scalar(world, "atmosphere.Atmosphere", "bottom_radius_km")) {
-    c.planet_radius_m = *r * 1000.0;
-    c.planet_center_m = {0.0, 0.0, -c.planet_radius_m};
-    if (auto below = scene_scalar(world, "atmosphere.Atmosphere", "planet_center_below_origin"); below && *below < 0.5)
-      for (int i = 0; i < 3; ++i)
-        c.planet_center_m[i] = *scene_scalar(world, "atmosphere.Atmosphere", "planet_center_m/" + std::to_string(i));
-  }
+  const MapFrame planet = scene_map_frame(world, 1.0);
+  c.planet_radius_m = planet.planet_radius_m;
+  c.planet_center_m = planet.planet_center_m;
   // Wind follows the time of day when there is one, so scrubbing a sequence equals playing it.
   if (auto h = scene_scalar(world, "timeofday.TimeOfDay", "local_time_h")) c.time_s = *h * 3600.0;
   else c.time_s = frame.time_s;

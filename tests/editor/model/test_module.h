@@ -54,6 +54,17 @@ struct Fog {
 };
 inline void describe(welkin::TypeBuilder<Fog>& t) { t.field("visibility_km", &Fog::visibility_km).unit("km").range(0.01, 1000); }
 
+// Names a map painted over the planet, as clouds.VolumetricClouds does its coverage map.
+struct Weather {
+  static constexpr std::string_view kTypeName = "test.Weather";
+  std::string map;
+  double map_size_m = 20000.0;
+};
+inline void describe(welkin::TypeBuilder<Weather>& t) {
+  t.field("map", &Weather::map);
+  t.field("map_size_m", &Weather::map_size_m).unit("m").range(100, 1e7);
+}
+
 // The module's data folder (presets/ inside it); set before the first world is made.
 inline std::string& test_module_data_dir() {
   static std::string dir;
@@ -63,11 +74,12 @@ inline std::string& test_module_data_dir() {
 inline void register_test_module(welkin::ModuleContext& ctx) {
   ctx.component<Clouds>();
   ctx.component<Fog>();
+  ctx.component<Weather>();
 }
 
 inline const welkin::ModuleDefinition& test_module() {
   static welkin::ModuleDefinition def{
-      R"({"name": "test", "version": "1.0.0", "components": ["test.Clouds", "test.Fog"]})", nullptr, register_test_module};
+      R"({"name": "test", "version": "1.0.0", "components": ["test.Clouds", "test.Fog", "test.Weather"]})", nullptr, register_test_module};
   def.data_dir = test_module_data_dir().c_str();
   return def;
 }

@@ -44,6 +44,11 @@ struct MapFrame {
   glm::dvec3 ground_point(const glm::dvec2& uv) const;
 };
 
+class World;
+// A scene's map frame: the planet of its atmosphere.Atmosphere when it has one (read through
+// reflection), else Earth's 6360 km below the origin.
+MapFrame scene_map_frame(World& world, double size_m);
+
 // The maps of one world, keyed by the file name the scene gives.
 class PaintedMaps {
  public:
