@@ -406,6 +406,23 @@ bool EditorApp::run_app_verb(const ScriptLine& line) {
     fly_view(*ctx_, FlyInput{.forward = number(0), .right = number(1), .up = number(2), .look_dx_px = number(3),
                              .look_dy_px = number(4), .speed_multiplier = ctx_->viewport.speed_multiplier, .dt_s = number(5)});
     doc_->end_continuous_edit();
+  } else if (v == "map-brush") {
+    usage(5, "map-brush COMPONENT/FIELD RADIUS_M STRENGTH add|clear|reset ALTITUDE_M");
+    MapBrushState& st = ctx_->map_brush;
+    st.viewport_target = declared_map(*doc_, a[0]);
+    st.brush = MapBrush{.radius_m = std::clamp(number(1), 1.0, 1e7), .strength = std::clamp(number(2), 0.0, 1.0), .mode = brush_mode_named(a[3])};
+    st.altitude_m = number(4);
+  } else if (v == "paint-viewport") {
+    // One stamp where the last frame looks at a place given as fractions of its width and height
+    // from the top-left, as a left click there does while a map panel's brush paints in the viewport.
+    usage(2, "paint-viewport FX FY");
+    const RenderContext* rc = doc_->world().find_resource<RenderContext>();
+    if (!ctx_->map_brush.viewport_target || !rc) throw Error(ErrorInfo{.message = "no map brush (use: map-brush) or no frame yet"});
+    const size_t steps = doc_->history().steps().size();
+    paint_in_viewport(*ctx_, glm::dvec2(number(0) * rc->view.width, number(1) * rc->view.height));
+    doc_->end_continuous_edit();
+    ctx_->map_brush.stroking = false;
+    if (doc_->history().steps().size() == steps) throw Error(ErrorInfo{.message = "the brush painted nothing there (off the map or the sky)"});
   } else if (v == "show-preset") {
     usage(2, "show-preset MODULE NAME");
     ctx_->preset_browser = PresetBrowserState{a[0], a[1]};

@@ -8,6 +8,20 @@
 
 namespace welkin::editor {
 
+MapFieldSpec declared_map(EditorDocument& doc, const std::string& component_field) {
+  std::vector<std::string> errors;
+  for (const ModulePanelSpec& p : read_module_panels(doc.world().modules(), errors))
+    if (p.map && p.map->component + "/" + p.map->file_field == component_field) return *p.map;
+  throw Error(ErrorInfo{.path = component_field, .message = "no module declares a painted map there (a \"map\" panel in its editor/panels.json)"});
+}
+
+BrushMode brush_mode_named(const std::string& word) {
+  if (word == "add") return BrushMode::add;
+  if (word == "clear") return BrushMode::clear;
+  if (word == "reset") return BrushMode::reset;
+  throw Error(ErrorInfo{.expected = "a brush mode add, clear or reset", .found = "'" + word + "'"});
+}
+
 MapTarget find_map(EditorDocument& doc, const MapFieldSpec& spec) {
   doc.require_component(spec.component);
   MapTarget t;

@@ -18,6 +18,11 @@ struct MapBrush {
   BrushMode mode = BrushMode::add;
 };
 
+// The map a module declares at COMPONENT/FIELD (a "map" panel in its editor/panels.json); throws Error.
+MapFieldSpec declared_map(EditorDocument& doc, const std::string& component_field);
+// "add", "clear" or "reset"; throws Error.
+BrushMode brush_mode_named(const std::string& word);
+
 // The component holding a map: its entity, its file (empty: none yet) and where the map lies.
 struct MapTarget {
   EntityId entity = kNoEntity;

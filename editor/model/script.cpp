@@ -5,7 +5,6 @@
 #include <sstream>
 
 #include "model/map_painting.h"
-#include "model/module_panels.h"
 #include "model/preset_actions.h"
 #include "model/sequence.h"
 #include "welkin/core/error.h"
@@ -177,22 +176,6 @@ std::string track_entity_name(EditorDocument& doc, EntityId id) {
   return n ? n->value : std::string();
 }
 
-// The painted map a module declares at COMPONENT/FIELD (its editor/panels.json).
-MapFieldSpec map_spec(EditorDocument& doc, const ScriptLine& line, const std::string& target) {
-  const TrackTarget t = split_track_target(target);
-  std::vector<std::string> errors;
-  for (const ModulePanelSpec& p : read_module_panels(doc.world().modules(), errors))
-    if (p.map && p.map->component == t.component && p.map->file_field == t.path) return *p.map;
-  line_error(line, "no module declares a painted map at " + target + " (a \"map\" panel in its editor/panels.json)");
-}
-
-BrushMode brush_mode(const ScriptLine& line, const std::string& word) {
-  if (word == "add") return BrushMode::add;
-  if (word == "clear") return BrushMode::clear;
-  if (word == "reset") return BrushMode::reset;
-  line_error(line, "expected a brush mode add, clear or reset, found '" + word + "'");
-}
-
 }  // namespace
 
 std::string ScriptLine::tail(size_t i) const {
@@ -325,18 +308,18 @@ bool run_document_verb(EditorDocument& doc, PresetLibrary& presets, const Script
     const double side = parse_number(line, 1, "a side in texels");
     if (side < 1 || side > kMaxPaintedMapSide || side != std::floor(side))
       line_error(line, "expected a side of 1 to " + std::to_string(kMaxPaintedMapSide) + " texels, found '" + a[1] + "'");
-    output += "new map " + new_map(doc, map_spec(doc, line, a[0]), int(side)) + "\n";
+    output += "new map " + new_map(doc, declared_map(doc, a[0]), int(side)) + "\n";
   } else if (v == "paint") {
     require_args(line, 6, 6, "paint COMPONENT/FIELD EAST_M NORTH_M RADIUS_M STRENGTH add|clear|reset");
     const MapBrush brush{.radius_m = parse_number(line, 3, "a radius in metres"), .strength = parse_number(line, 4, "a strength in [0, 1]"),
-                         .mode = brush_mode(line, a[5])};
+                         .mode = brush_mode_named(a[5])};
     if (!(brush.radius_m > 0.0) || brush.strength < 0.0 || brush.strength > 1.0)
       line_error(line, "expected a radius above 0 and a strength in [0, 1]");
     const glm::dvec3 at(parse_number(line, 1, "metres east"), parse_number(line, 2, "metres north"), 0.0);
-    if (!paint_at(doc, map_spec(doc, line, a[0]), at, brush)) line_error(line, "the brush is off the map there");
+    if (!paint_at(doc, declared_map(doc, a[0]), at, brush)) line_error(line, "the brush is off the map there");
   } else if (v == "expect-map") {
     require_args(line, 5, 5, "expect-map COMPONENT/FIELD EAST_M NORTH_M MIN MAX");
-    const MapTarget target = find_map(doc, map_spec(doc, line, a[0]));
+    const MapTarget target = find_map(doc, declared_map(doc, a[0]));
     if (target.file.empty()) line_error(line, a[0] + " names no map");
     const PaintedMap& map = doc.world().resource<PaintedMaps>().get(target.file);
     const glm::dvec2 uv = target.frame.uv(glm::dvec3(parse_number(line, 1, "metres east"), parse_number(line, 2, "metres north"), 0.0));
@@ -378,6 +361,9 @@ const char* script_verbs_help() {
   screenshot-window PATH.png          the whole editor window
   view X Y Z HEADING PITCH            place the viewport camera
   look-through-scene-camera on|off    fly the scene's camera instead of the editor's view
+  map-brush COMPONENT/FIELD RADIUS_M STRENGTH add|clear|reset ALTITUDE_M   the viewport's map brush
+  paint-viewport FX FY                one stamp where the viewport looks at (FX, FY) of its size from the
+                                      top-left, at the brush's altitude
   fly FORWARD RIGHT UP LOOK_DX LOOK_DY SECONDS   one step of the fly camera (WASD/QE axes, mouse px)
   show-preset MODULE NAME             show a preset's details (file, error, differing fields)
   resize WIDTH HEIGHT | wait FRAMES | quit

@@ -3,11 +3,13 @@
 // frame statistics, the timeline's playhead, the message log, and requests for the application
 // (screenshots, quitting) that it carries out between frames.
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "model/editor_document.h"
 #include "model/fly_camera.h"
+#include "model/map_painting.h"
 #include "model/preset_library.h"
 #include "ui/message_log.h"
 #include "welkin/gfx/renderer.h"
@@ -56,6 +58,19 @@ struct PresetBrowserState {
   std::string selected_module, selected_name;  // the preset whose details are shown
 };
 
+// The brush a map panel paints with (model/map_painting.h), in the panel's image or the viewport.
+struct MapBrushState {
+  MapBrush brush;
+  std::optional<MapFieldSpec> viewport_target;  // left-dragging in the viewport paints this map
+  double altitude_m = 1500.0;                   // where viewport rays meet the map (e.g. cloud level)
+  int new_map_side = 512;
+  bool stroking = false;                        // a stroke is open (one undo step until release)
+  // The panel's image of the map, uploaded again when a stroke changed it.
+  unsigned texture = 0;
+  std::string texture_file;
+  uint64_t texture_revision = 0;
+};
+
 struct EditorContext {
   EditorDocument& doc;
   PresetLibrary& presets;
@@ -63,6 +78,7 @@ struct EditorContext {
   FrameStats stats;
   TimelineState timeline;
   PresetBrowserState preset_browser;
+  MapBrushState map_brush;
   MessageLog log;
   std::vector<std::string> screenshot_requests;  // viewport images to write after this frame
   bool quit_requested = false;

@@ -26,9 +26,11 @@ void draw_component_panel(EditorContext& ctx, const std::vector<std::string>& co
 }
 
 void register_module_panels(PanelRegistry& registry, const std::vector<ModulePanelSpec>& specs) {
-  for (const ModulePanelSpec& spec : specs)
-    registry.add(EditorPanel{.title = spec.title, .requires_module = spec.module,
-                             .draw = [components = spec.components](EditorContext& ctx) { draw_component_panel(ctx, components); }});
+  for (const ModulePanelSpec& spec : specs) {
+    std::function<void(EditorContext&)> draw = [components = spec.components](EditorContext& ctx) { draw_component_panel(ctx, components); };
+    if (spec.map) draw = [map = *spec.map](EditorContext& ctx) { draw_map_panel(ctx, map); };
+    registry.add(EditorPanel{.title = spec.title, .requires_module = spec.module, .draw = std::move(draw)});
+  }
 }
 
 }  // namespace welkin::editor

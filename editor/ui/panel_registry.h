@@ -45,6 +45,12 @@ void draw_timeline_panel(EditorContext& ctx);
 // The listed components, each on the first entity that has it (module panels are this).
 void draw_component_panel(EditorContext& ctx, const std::vector<std::string>& components);
 void draw_profiler_panel(EditorContext& ctx);
+// A module's painted map (model/map_painting.h) and its brush.
+void draw_map_panel(EditorContext& ctx, const MapFieldSpec& spec);
+// A stamp of the map brush where the viewport's pixel looks (when a map panel turned it on).
+void paint_in_viewport(EditorContext& ctx, glm::dvec2 pixel);
+// Closes the brush stroke once the mouse button is up (one undo step per stroke).
+void end_map_stroke(EditorContext& ctx);
 void draw_history_panel(EditorContext& ctx);
 
 }  // namespace welkin::editor

@@ -124,6 +124,11 @@ void draw_viewport_panel(EditorContext& ctx) {
                          ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
   bool hovered = ImGui::IsItemHovered();
   vp.flying = ImGui::IsItemActive() && ImGui::IsMouseDown(ImGuiMouseButton_Right);
+  end_map_stroke(ctx);
+  if (ImGui::IsItemActive() && !vp.flying && ImGui::IsMouseDown(ImGuiMouseButton_Left) && ctx.map_brush.viewport_target) {
+    const ImVec2 mouse = ImGui::GetIO().MousePos;
+    paint_in_viewport(ctx, glm::dvec2(mouse.x - origin.x, mouse.y - origin.y));
+  }
   if (vp.texture) {
     // GL rows go bottom-up: flip v.
     ImGui::GetWindowDrawList()->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(vp.texture)), origin,

@@ -4,7 +4,7 @@
 # Runs assets/editor/smoke.script (edit, undo/redo, presets, timeline, screenshots), checks the saved
 # preset and sequence files and that the screenshots are not blank, then runs
 # assets/editor/smoke-reload.script in a second editor to load what the first one saved, and checks
-# that a failing script makes the editor exit non-zero. Exit 0 on success, 77 when Xvfb is missing.
+# that a failing script makes the editor exit non-zero, and paints the clouds' coverage map. Exit 0 on success, 77 when Xvfb is missing.
 set -u
 EDITOR=${1:?usage: smoke_test.sh EDITOR IMAGE_CHECK [SOURCE_DIR]}
 IMAGE_CHECK=${2:?usage: smoke_test.sh EDITOR IMAGE_CHECK [SOURCE_DIR]}
@@ -80,5 +80,15 @@ run_editor "$OUT/run3.log" --script "$OUT/failing.script"
 rc=$?
 [ $rc -ne 0 ] || { cat "$OUT/run3.log"; fail "a failing expect did not make the editor exit non-zero"; }
 grep -q "failing.script:2" "$OUT/run3.log" || { cat "$OUT/run3.log"; fail "the failure does not name the script line"; }
+
+# 5. Painting the clouds' coverage map in the viewport and on the map (assets/editor/smoke-map.script):
+#    the map is written beside the saved scene, which names it.
+run_editor "$OUT/run4.log" --script assets/editor/smoke-map.script
+rc=$?
+cat "$OUT/run4.log"
+[ $rc -eq 0 ] || fail "editor exited with $rc painting the coverage map"
+[ -f "$OUT/painted.coverage_map.png" ] || fail "no coverage map written beside the scene"
+grep -q '"coverage_map": ".*painted.coverage_map.png"' "$OUT/painted.json" || fail "the saved scene does not name its coverage map"
+"$IMAGE_CHECK" "$OUT/map-window.png" --min-width 1000 --min-height 600 || fail "map window screenshot is blank"
 
 echo "smoke_test: PASS"
