@@ -357,20 +357,15 @@ bool EditorDocument::paint_map(const std::string& file, const BrushStamp& stamp,
   // stroke (the texels it had changed come from the stroke's own record) and holds after it.
   Edit* stroke = continuous ? history_.open_edit(edit) : nullptr;
   MapRegion bounds = touched;
+  const MapRegion earlier = stroke ? region_from_json(stroke->before) : MapRegion{};
   if (stroke) {
-    const MapRegion before = region_from_json(stroke->before);
-    const int x0 = std::min(bounds.x, before.x), y0 = std::min(bounds.y, before.y);
-    const int x1 = std::max(bounds.x + bounds.width, before.x + before.width);
-    const int y1 = std::max(bounds.y + bounds.height, before.y + before.height);
+    const int x0 = std::min(bounds.x, earlier.x), y0 = std::min(bounds.y, earlier.y);
+    const int x1 = std::max(bounds.x + bounds.width, earlier.x + earlier.width);
+    const int y1 = std::max(bounds.y + bounds.height, earlier.y + earlier.height);
     bounds = {x0, y0, x1 - x0, y1 - y0, {}};
   }
   MapRegion before = copy_region(map, bounds.x, bounds.y, bounds.width, bounds.height);
-  if (stroke) {
-    const MapRegion earlier = region_from_json(stroke->before);
-    for (int j = 0; j < earlier.height; ++j)
-      std::copy_n(&earlier.texels[size_t(j) * size_t(earlier.width)], earlier.width,
-                  &before.texels[size_t(earlier.y - bounds.y + j) * size_t(bounds.width) + size_t(earlier.x - bounds.x)]);
-  }
+  if (stroke) paste_region(before, earlier);
   apply_brush(map, stamp);
   PaintedMaps::touched(map);
   dirty_ = true;

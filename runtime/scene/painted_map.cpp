@@ -102,13 +102,20 @@ MapRegion copy_region(const PaintedMap& map, int x, int y, int width, int height
   return r;
 }
 
-void paste_region(PaintedMap& map, const MapRegion& r) {
-  if (r.x < 0 || r.y < 0 || r.width < 0 || r.height < 0 || r.x + r.width > map.side || r.y + r.height > map.side ||
+namespace {
+// Copies r into the texels of a rectangle at (x0, y0) of width x height.
+void paste_into(std::vector<uint8_t>& texels, int x0, int y0, int width, int height, const MapRegion& r) {
+  if (r.x < x0 || r.y < y0 || r.width < 0 || r.height < 0 || r.x + r.width > x0 + width || r.y + r.height > y0 + height ||
       r.texels.size() != size_t(r.width) * size_t(r.height))
-    throw Error(ErrorInfo{.message = "a map region that does not fit the map"});
+    throw Error(ErrorInfo{.message = "a map region that does not fit where it is pasted"});
   for (int j = 0; j < r.height; ++j)
-    std::copy_n(&r.texels[size_t(j) * size_t(r.width)], r.width, &map.texels[size_t(r.y + j) * size_t(map.side) + size_t(r.x)]);
+    std::copy_n(&r.texels[size_t(j) * size_t(r.width)], r.width,
+                &texels[size_t(r.y - y0 + j) * size_t(width) + size_t(r.x - x0)]);
 }
+}  // namespace
+
+void paste_region(PaintedMap& map, const MapRegion& r) { paste_into(map.texels, 0, 0, map.side, map.side, r); }
+void paste_region(MapRegion& into, const MapRegion& r) { paste_into(into.texels, into.x, into.y, into.width, into.height, r); }
 
 MapRegion brush_bounds(const PaintedMap& map, const BrushStamp& s) {
   const int x0 = std::max(0, int(std::floor(s.cx - s.radius_texels))), x1 = std::min(map.side, int(std::ceil(s.cx + s.radius_texels)));

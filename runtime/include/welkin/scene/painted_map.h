@@ -79,6 +79,8 @@ struct MapRegion {
 };
 MapRegion copy_region(const PaintedMap& map, int x, int y, int width, int height);
 void paste_region(PaintedMap& map, const MapRegion& region);
+// The same into a larger region (a stroke's record growing to cover a new stamp).
+void paste_region(MapRegion& into, const MapRegion& region);
 
 // A round brush: moves texels within radius_texels of (cx, cy) toward `target` by `strength` (0..1)
 // times a smooth falloff. Returns the rectangle it may have changed (empty when off the map).
