@@ -101,6 +101,9 @@ void describe(TypeBuilder<VolumetricClouds>& t) {
   t.field("detail_period_m", &VolumetricClouds::detail_period_m).unit("m").range(1, 1e5);
   t.field("weather_period_m", &VolumetricClouds::weather_period_m).unit("m").range(100, 1e8);
   t.field("wind_mps", &VolumetricClouds::wind_mps).unit("m/s").range(-200, 200);
+  t.field("turbulence", &VolumetricClouds::turbulence).tooltip("quality custom: curl noise stirs the cloud bases");
+  t.field("turbulence_displacement_m", &VolumetricClouds::turbulence_displacement_m).unit("m").range(0, 10000)
+      .tooltip("How far the curl field moves the detail noise at a layer's base (none above its lowest 30%)");
   t.field("coverage_map", &VolumetricClouds::coverage_map)
       .tooltip("Grey PNG of painted coverage around the scene's origin (128: unchanged, 255: overcast, 0: clear); the editor paints it");
   t.field("coverage_map_size_m", &VolumetricClouds::coverage_map_size_m).unit("m").range(1000, 2e7).tooltip("Side of the square the coverage map covers");
@@ -109,14 +112,14 @@ void describe(TypeBuilder<VolumetricClouds>& t) {
 
 ResolvedQuality resolve_quality(const VolumetricClouds& c) {
   switch (c.quality) {
-    case Quality::low: return {64, 120.0f, 2000.0f, 2, 150.0f, false, 0.25f, 0.012f, 4};
-    case Quality::medium: return {128, 70.0f, 1200.0f, 3, 100.0f, true, 0.4f, 0.008f, 4};
-    case Quality::high: return {256, 40.0f, 800.0f, 4, 80.0f, true, 0.5f, 0.005f, 2};
-    case Quality::ultra: return {768, 20.0f, 500.0f, 6, 50.0f, true, 1.0f, 0.002f, 2};
+    case Quality::low: return {64, 120.0f, 2000.0f, 2, 150.0f, false, 0.25f, 0.012f, 4, false};
+    case Quality::medium: return {128, 70.0f, 1200.0f, 3, 100.0f, true, 0.4f, 0.008f, 4, false};
+    case Quality::high: return {256, 40.0f, 800.0f, 4, 80.0f, true, 0.5f, 0.005f, 2, true};
+    case Quality::ultra: return {768, 20.0f, 500.0f, 6, 50.0f, true, 1.0f, 0.002f, 2, true};
     case Quality::custom: break;
   }
-  return {c.max_steps,        c.min_step_m,  c.max_step_m, c.light_steps, c.light_step_m, c.shape_detail,
-          c.resolution_scale, c.step_growth, c.temporal_block};
+  return {c.max_steps,        c.min_step_m,  c.max_step_m,     c.light_steps, c.light_step_m, c.shape_detail,
+          c.resolution_scale, c.step_growth, c.temporal_block, c.turbulence};
 }
 
 void validate(const VolumetricClouds& c) {

@@ -128,6 +128,7 @@ FrameBlock make_frame_block(const VolumetricClouds& clouds, const CloudsContext&
   f.map_north = glm::vec4(glm::vec3(axes[1]), ctx.coverage_map_raise);
   f.map_up = glm::vec4(glm::vec3(axes[2]), ctx.has_coverage_map ? 1.0f : 0.0f);
   f.map_origin = glm::vec4(glm::vec3(glm::transpose(axes) * p), 0.0f);
+  f.turbulence = {q.turbulence ? clouds.turbulence_displacement_m : 0.0f, 0.0f, 0.0f, 0.0f};
   f.inverse_view_projection = view.inverse_view_projection;
   return f;
 }

@@ -68,6 +68,26 @@ std::vector<uint8_t> equalise_weather(Texture& weather) {
   return data;
 }
 
+// Packs the curl field into the shape volume's gba as 0.5 + 0.5 c, scaled so that its longest
+// vector has length 1 (the displacement setting is then the largest distance the noise moves).
+void pack_turbulence(Texture& shape, const Texture& curl) {
+  const TextureDesc& d = shape.desc();
+  const size_t n = size_t(d.width) * size_t(d.height) * size_t(d.depth);
+  std::vector<float> c(n * 4);
+  glGetTextureImage(curl.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(c.size() * sizeof(float)), c.data());
+  double longest = 0.0;
+  for (size_t i = 0; i < n; ++i)
+    longest = std::max(longest, std::sqrt(double(c[i * 4]) * c[i * 4] + double(c[i * 4 + 1]) * c[i * 4 + 1] +
+                                          double(c[i * 4 + 2]) * c[i * 4 + 2]));
+  if (!(longest > 0.0)) throw Error("clouds: the generated curl field is zero everywhere");
+  std::vector<uint8_t> texels(n * 4);
+  glGetTextureImage(shape.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(texels.size()), texels.data());
+  for (size_t i = 0; i < n; ++i)
+    for (size_t a = 0; a < 3; ++a)
+      texels[i * 4 + 1 + a] = uint8_t(std::lround(std::clamp(127.5 + 127.5 * c[i * 4 + a] / longest, 0.0, 255.0)));
+  glTextureSubImage3D(shape.id(), 0, 0, 0, 0, d.width, d.height, d.depth, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
+}
+
 // The coarse occupancy the march skips empty space with: for each block of 4^3 weather texels, the
 // largest coverage signal of each channel over the block and the texels a linear filter reads beside
 // it. The march leaves a block whose maximum allows no cloud at the block's far side.
@@ -224,12 +244,15 @@ void ensure_noise(World& world, int seed) {
   if (gpu.noise_seed == seed) return;
   auto& rc = world.resource<RenderContext>();
   ensure_texture(gpu.shape, {.width = kShapeNoiseSize, .height = kShapeNoiseSize, .depth = kShapeNoiseSize,
-                             .format = TextureFormat::r8, .clamp = false, .mipmaps = true});
+                             .format = TextureFormat::rgba8, .clamp = false, .mipmaps = true});
+  // The curl field at the shape's size, packed into its gba below.
+  Texture curl({.width = kShapeNoiseSize, .height = kShapeNoiseSize, .depth = kShapeNoiseSize, .format = TextureFormat::rgba16f});
   ensure_texture(gpu.detail, {.width = kDetailNoiseSize, .height = kDetailNoiseSize, .depth = kDetailNoiseSize,
                               .format = TextureFormat::r8, .clamp = false, .mipmaps = true});
   ensure_texture(gpu.weather, {.width = kWeatherNoiseSize, .height = kWeatherNoiseSize, .depth = kWeatherNoiseSize,
                                .format = TextureFormat::rgba8, .clamp = false, .mipmaps = true});
-  const std::pair<Texture*, const char*> volumes[] = {{gpu.shape.get(), "0"}, {gpu.detail.get(), "1"}, {gpu.weather.get(), "2"}};
+  const std::pair<Texture*, const char*> volumes[] = {
+      {gpu.shape.get(), "0"}, {gpu.detail.get(), "1"}, {gpu.weather.get(), "2"}, {&curl, "3"}};
   for (auto [texture, kind] : volumes) {
     const Program& p = rc.shaders.compute("clouds/noise.comp", {{"CLOUDS_NOISE", kind}});
     p.set("u_size", texture->desc().width);
@@ -240,6 +263,7 @@ void ensure_noise(World& world, int seed) {
   }
   glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
   const std::vector<uint8_t> weather = equalise_weather(*gpu.weather);
+  pack_turbulence(*gpu.shape, curl);
   ensure_texture(gpu.weather_maximum, {.width = kWeatherOccupancySize, .height = kWeatherOccupancySize, .depth = kWeatherOccupancySize,
                                        .format = TextureFormat::rgba8, .linear_filter = false, .clamp = false});
   glTextureSubImage3D(gpu.weather_maximum->id(), 0, 0, 0, 0, kWeatherOccupancySize, kWeatherOccupancySize, kWeatherOccupancySize,
@@ -342,7 +366,8 @@ void clouds_system(SystemContext& sc) {
   const int w = int(gpu.block.frame.z), h = int(gpu.block.frame.w);
   const FrameView& view = rc.view;
   const char* ap_mode = camera_in_space(world, gpu.block) ? "2" : clouds->aerial_perspective == CloudAerialPerspective::mean_depth ? "1" : "0";
-  ShaderDefines defines = {{"CLOUDS_AP_MODE", ap_mode}};
+  // Turbulence is compiled in only where it displaces anything (quality high and ultra, or custom).
+  ShaderDefines defines = {{"CLOUDS_AP_MODE", ap_mode}, {"CLOUDS_TURBULENCE", gpu.block.turbulence.x > 0.0f ? "1" : "0"}};
   const bool temporal = clouds->temporal_upscaling && w >= 2 && h >= 2;
   if (temporal)
     for (int i = 0; i < 2; ++i)

@@ -21,7 +21,7 @@ NoiseVolumes read_noise(const CloudsGpu& gpu) {
     out.resize(size_t(s) * s * s * size_t(channels));
     glGetTextureImage(t.id(), 0, format, GL_UNSIGNED_BYTE, GLsizei(out.size()), out.data());
   };
-  read(*gpu.shape, GL_RED, 1, n.shape);
+  read(*gpu.shape, GL_RGBA, 4, n.shape);
   read(*gpu.detail, GL_RED, 1, n.detail);
   read(*gpu.weather, GL_RGBA, 4, n.weather);
   if (gpu.coverage_map) {
@@ -113,11 +113,18 @@ double CloudField::layer_density(const LayerBlock& L, const glm::dvec3& x, doubl
   const double profile = clamp01(L.profile.x * std::exp(L.profile.y * t) + L.profile.z * t + L.profile.w);
   const double b = d0 * envelope * profile;
   if (b <= 0.0) return 0.0;
-  const double s = sample(noise_.shape, noise_.shape_size, 1, 0, glm::dvec3(frame_.shape_origin) + x * double(frame_.shape_origin.w));
+  const glm::dvec3 shape_uvw = glm::dvec3(frame_.shape_origin) + x * double(frame_.shape_origin.w);
+  const double s = sample(noise_.shape, noise_.shape_size, 4, 0, shape_uvw);
   const double erosion = (1.0 - s) * L.shape.y;
   double d = clamp01((b - erosion) / std::max(1.0 - erosion, 1e-3));
   if (detail && d > 0.0 && L.shape.z > 0.0) {
-    const double n = sample(noise_.detail, noise_.detail_size, 1, 0, glm::dvec3(frame_.detail_origin) + x * double(frame_.detail_origin.w));
+    // Curl turbulence: the detail noise is read where the curl field (the shape volume's gba) moves
+    // the point, in the lowest 30% of the layer, as far as the weather there holds cloud.
+    const double k = double(frame_.turbulence.x) * d0 * clamp01(1.0 - t / 0.3);
+    glm::dvec3 xd = x;
+    if (k > 0.0)
+      for (int a = 0; a < 3; ++a) xd[a] += k * (2.0 * sample(noise_.shape, noise_.shape_size, 4, 1 + a, shape_uvw) - 1.0);
+    const double n = sample(noise_.detail, noise_.detail_size, 1, 0, glm::dvec3(frame_.detail_origin) + xd * double(frame_.detail_origin.w));
     const double m = clamp01(t * 4.0);
     const double e = (n * (1.0 - m) + (1.0 - n) * m) * L.shape.z * 0.35 * (1.0 - d);
     d = clamp01((d - e) / std::max(1.0 - e, 1e-3));

@@ -12,7 +12,7 @@ namespace welkin::clouds {
 
 struct NoiseVolumes {
   int shape_size = 0, detail_size = 0, weather_size = 0;
-  std::vector<uint8_t> shape, detail, weather;  // R8, R8, RGBA8 as stored
+  std::vector<uint8_t> shape, detail, weather;  // RGBA8 (shape, curl field), R8, RGBA8 as stored
   int coverage_map_side = 0;
   std::vector<uint8_t> coverage_map;  // the painted coverage map as uploaded (R8, north row first)
 };

@@ -23,6 +23,7 @@ layout(std140, binding = 0) uniform CloudsFrame {
   vec4 clb_map_north;       // its north axis; w: the largest coverage it adds
   vec4 clb_map_up;          // its up axis; w: 1 when the scene has a map
   vec4 clb_map_origin;      // the camera in (east, north, up) from the planet's centre, m
+  vec4 clb_turbulence;      // x: largest displacement of the detail noise by the curl field, m
   mat4 clb_inverse_view_projection;
 };
 // The block's values in private variables, loaded once per invocation (clouds_load): software
@@ -44,6 +45,7 @@ vec4 cl_map_east;
 vec4 cl_map_north;
 vec4 cl_map_up;
 vec4 cl_map_origin;
+vec4 cl_turbulence;
 mat4 cl_inverse_view_projection;
 const int CLOUDS_MAX_BANDS = 4;
 
@@ -81,6 +83,7 @@ void clouds_load() {
   cl_map_north = clb_map_north;
   cl_map_up = clb_map_up;
   cl_map_origin = clb_map_origin;
+  cl_turbulence = clb_turbulence;
   cl_inverse_view_projection = clb_inverse_view_projection;
   cl_layer_count = int(cl_planet.w);
   for (int i = 0; i < CLOUDS_LOCAL_LAYERS; ++i)
@@ -88,7 +91,7 @@ void clouds_load() {
 }
 
 
-layout(binding = 0) uniform sampler3D cl_shape_noise;
+layout(binding = 0) uniform sampler3D cl_shape_noise;     // r shape; gba the curl field as 0.5 + 0.5 c
 layout(binding = 1) uniform sampler3D cl_detail_noise;
 layout(binding = 2) uniform sampler3D cl_weather_noise;
 layout(binding = 5) uniform sampler3D cl_weather_maximum;  // 16^3 blocks: the largest signal near each
@@ -111,7 +114,14 @@ float clouds_altitude(vec3 x) {
 // One sample's noise, read once and shared by the layers: the shape and detail noise are the same for
 // every layer, and layers of one genus read the weather at the same place (in other channels).
 // Reset by clouds_density for each new point.
-float clouds_shape_sample = -1.0, clouds_detail_sample = -1.0;
+vec4 clouds_shape_sample = vec4(-1.0);  // x < 0: not read yet
+float clouds_detail_sample = -1.0;
+// The displacement (m) the detail sample was read with: a layer whose base turbulence differs at this
+// point reads it again.
+#ifndef CLOUDS_TURBULENCE
+#define CLOUDS_TURBULENCE 0
+#endif
+float clouds_detail_displacement = 0.0;
 // The cloud below the last point clouds_density evaluated: its layers' depth under the point (m),
 // weighted by their density there (the light reflected up from it).
 float clouds_depth_below_m = 0.0;
@@ -131,8 +141,8 @@ float clouds_painted_coverage(vec3 x) {
   return clouds_painted_sample;
 }
 
-float clouds_layer_envelope(CloudLayerGpu L, vec3 x, float h, out float t) {
-  t = 0.0;
+float clouds_layer_envelope(CloudLayerGpu L, vec3 x, float h, out float t, out float d0) {
+  t = 0.0, d0 = 0.0;
   // Outside the layer's reach (its base can move by the variation): no texture fetch at all.
   if (h < L.altitude.x - L.altitude.z || h > L.altitude.x + L.altitude.y + L.altitude.z) return 0.0;
   float c = L.model.w > 0.5 ? clamp(L.shape.x + clouds_painted_coverage(x), 0.0, 1.0) : L.shape.x;
@@ -150,7 +160,7 @@ float clouds_layer_envelope(CloudLayerGpu L, vec3 x, float h, out float t) {
   // Coverage c covers a fraction c of the sky (the weather channels are equalised to uniform).
   float fw = L.shape.w;
   float lo = (1.0 - c) * (1.0 + fw) - fw;
-  float d0 = clamp((w - lo) / fw, 0.0, 1.0);
+  d0 = clamp((w - lo) / fw, 0.0, 1.0);
   if (d0 <= 0.0) return 0.0;
   // Domes: the top rises with the weather's strength; sheets fill the layer. Flat, soft bases.
   float top = mix(1.0, max(d0, 0.05), L.model.x);
@@ -162,17 +172,27 @@ float clouds_layer_envelope(CloudLayerGpu L, vec3 x, float h, out float t) {
 // Extinction (1/m) of one layer at x; `detail` adds the detail noise's erosion. `envelope` is what
 // the weather allowed before any noise (0: empty space the march may skip).
 float clouds_layer_density(CloudLayerGpu L, vec3 x, float h, bool detail, out float envelope) {
-  float t;
-  envelope = clouds_layer_envelope(L, x, h, t);
+  float t, d0;
+  envelope = clouds_layer_envelope(L, x, h, t, d0);
   if (envelope <= 0.0) return 0.0;
-  if (clouds_shape_sample < 0.0)
-    clouds_shape_sample = textureLod(cl_shape_noise, cl_shape_origin.xyz + x * cl_shape_origin.w, clouds_lod(1.0 / (cl_shape_origin.w * 128.0))).r;
-  float s = clouds_shape_sample;
+  if (clouds_shape_sample.x < 0.0)
+    clouds_shape_sample = textureLod(cl_shape_noise, cl_shape_origin.xyz + x * cl_shape_origin.w, clouds_lod(1.0 / (cl_shape_origin.w * 128.0)));
+  float s = clouds_shape_sample.x;
   float erosion = (1.0 - s) * L.shape.y;
   float d = clamp((envelope - erosion) / max(1.0 - erosion, 1e-3), 0.0, 1.0);
   if (detail && d > 0.0 && L.shape.z > 0.0) {
+    vec3 xd = x;
+#if CLOUDS_TURBULENCE
+    // Curl turbulence (Schneider 2015): the detail noise is read where the curl field, fetched with
+    // the shape, moves the point; in the lowest 30% of the layer, as far as the weather there holds
+    // cloud (takram's weighting). A compile-time switch: a software rasteriser pays for the
+    // arithmetic of a branch even where no pixel takes it.
+    float k = cl_turbulence.x * d0 * clamp(1.0 - t / 0.3, 0.0, 1.0);
+    if (k != clouds_detail_displacement) clouds_detail_displacement = k, clouds_detail_sample = -1.0;
+    xd += (clouds_shape_sample.yzw * 2.0 - 1.0) * k;
+#endif
     if (clouds_detail_sample < 0.0)
-      clouds_detail_sample = textureLod(cl_detail_noise, cl_detail_origin.xyz + x * cl_detail_origin.w, clouds_lod(1.0 / (cl_detail_origin.w * 32.0))).r;
+      clouds_detail_sample = textureLod(cl_detail_noise, cl_detail_origin.xyz + xd * cl_detail_origin.w, clouds_lod(1.0 / (cl_detail_origin.w * 32.0))).r;
     float n = clouds_detail_sample;
     // Wisps at the base, billows at the top (Schneider): the detail erodes thin parts most.
     float e = mix(n, 1.0 - n, clamp(t * 4.0, 0.0, 1.0)) * L.shape.z * 0.35 * (1.0 - d);
@@ -186,7 +206,8 @@ float clouds_layer_density(CloudLayerGpu L, vec3 x, float h, bool detail, out fl
 // layer's weather allows cloud there.
 float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
   empty = true;
-  clouds_shape_sample = -1.0, clouds_detail_sample = -1.0, clouds_weather_at = vec4(-1.0), clouds_painted_sample = 2.0;
+  clouds_shape_sample = vec4(-1.0), clouds_detail_sample = -1.0, clouds_weather_at = vec4(-1.0), clouds_painted_sample = 2.0;
+  clouds_detail_displacement = 0.0;
   clouds_depth_below_m = 0.0;
   float h = clouds_altitude(x);
   if (h < cl_shell.x || h > cl_shell.y) return 0.0;

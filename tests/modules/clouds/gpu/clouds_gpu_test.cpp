@@ -68,7 +68,7 @@ TEST(CloudsGpu, NoiseIsMadeOnceDeterministicFromTheSeedAndTileable) {
 
   // Tileable: the step from the last slice to the first is like any step between neighbours.
   const int n = na.shape_size;
-  auto at = [&](int x, int y, int z) { return double(na.shape[(size_t(z) * n + y) * n + x]); };
+  auto at = [&](int x, int y, int z) { return double(na.shape[((size_t(z) * n + y) * n + x) * 4]); };
   double across = 0.0, inside = 0.0;
   for (int z = 0; z < n; ++z)
     for (int y = 0; y < n; ++y) across += std::abs(at(n - 1, y, z) - at(0, y, z)), inside += std::abs(at(n / 2, y, z) - at(n / 2 + 1, y, z));

@@ -111,6 +111,12 @@ struct VolumetricClouds {
   float detail_period_m = 300.0f;
   float weather_period_m = 40000.0f;
   glm::vec2 wind_mps{6.0f, 2.0f};  // drift of the shape noise (east, north)
+  // Curl turbulence (quality custom; high and ultra on, low and medium off, as takram): a
+  // divergence-free field (repeating with the shape noise) displaces where the detail noise is read,
+  // by up to turbulence_displacement_m at a layer's base, fading out over its lowest 30% (Schneider
+  // 2015), so bases look stirred by the wind; the displacement moves the noise without compressing it.
+  bool turbulence = true;
+  float turbulence_displacement_m = 350.0f;  // takram's default
   // Coverage painted over the planet (the editor's brush; welkin/scene/painted_map.h): a grey PNG,
   // a square of coverage_map_size_m centred on the ground below the scene's origin. A texel v adds
   // (v - 128) / 127 to the coverage of the layers that follow it: 128 changes nothing, 255 makes
@@ -134,6 +140,7 @@ struct ResolvedQuality {
   float resolution_scale;  // of the march; the composite upsamples
   float step_growth;       // metres of step per metre of distance (a pixel's footprint grows so)
   int temporal_block;      // with temporal upscaling, one pixel of each block this wide is marched per frame
+  bool turbulence;         // the curl field displaces the noise
 };
 ResolvedQuality resolve_quality(const VolumetricClouds& clouds);
 

@@ -38,9 +38,10 @@ struct FrameBlock {
   glm::vec4 map_north{0.0f};   // w: the largest coverage the map adds
   glm::vec4 map_up{0.0f};      // w: 1 when the scene has a map
   glm::vec4 map_origin{0.0f};  // the camera in (east, north, up) from the planet's centre, m
+  glm::vec4 turbulence{0.0f};  // largest displacement of the detail noise by the curl field, m (0: off)
   glm::mat4 inverse_view_projection{1.0f};
 };
-static_assert(sizeof(FrameBlock) == 336, "FrameBlock must match the std140 CloudsFrame block");
+static_assert(sizeof(FrameBlock) == 352, "FrameBlock must match the std140 CloudsFrame block");
 
 // std430 mirror of CloudLayerGpu.
 struct LayerBlock {
@@ -126,6 +127,8 @@ inline constexpr int kWeatherOccupancySize = 16;  // blocks of 4^3 weather texel
 
 struct CloudsGpu {
   static constexpr std::string_view kTypeName = "clouds.Gpu";
+  // shape: RGBA8, r the Perlin-Worley shape, gba the curl field c as 0.5 + 0.5 c (longest vector 1),
+  // read in the same fetch as the shape it displaces the detail noise from.
   std::unique_ptr<Texture> shape, detail, weather, blue_noise, shadow_map;
   std::unique_ptr<Texture> weather_maximum;  // the coarse occupancy for empty-space skipping
   // The painted coverage map as uploaded (1 x 1 neutral when the scene has none), and what it holds.
