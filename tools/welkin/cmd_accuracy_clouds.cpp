@@ -42,6 +42,7 @@ clouds::VolumetricClouds measured_clouds() {
   c.layers = {clouds::CloudLayer{.genus = clouds::Genus::cumulus, .base_altitude_m = 1500.0f, .thickness_m = 1200.0f,
                                  .coverage = 0.6f, .density_per_m = 0.03f}};
   c.shadows = false;
+  c.weather_system_amount = 0.0f;  // the layer's own coverage everywhere: the lighting is what is measured
   return c;
 }
 

@@ -100,6 +100,10 @@ void describe(TypeBuilder<VolumetricClouds>& t) {
   t.field("shape_period_m", &VolumetricClouds::shape_period_m).unit("m").range(10, 1e6);
   t.field("detail_period_m", &VolumetricClouds::detail_period_m).unit("m").range(1, 1e5);
   t.field("weather_period_m", &VolumetricClouds::weather_period_m).unit("m").range(100, 1e8);
+  t.field("weather_system_amount", &VolumetricClouds::weather_system_amount).range(0, 1)
+      .tooltip("Weight of the planet-scale weather systems in every layer's weather (0: the local weather alone)");
+  t.field("weather_system_period_m", &VolumetricClouds::weather_system_period_m).unit("m").range(1e4, 1e8)
+      .tooltip("The weather systems' signal repeats over this");
   t.field("wind_mps", &VolumetricClouds::wind_mps).unit("m/s").range(-200, 200);
   t.field("turbulence", &VolumetricClouds::turbulence).tooltip("quality custom: curl noise stirs the cloud bases");
   t.field("turbulence_displacement_m", &VolumetricClouds::turbulence_displacement_m).unit("m").range(0, 10000)

@@ -95,8 +95,9 @@ PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& ct
   return out;
 }
 
-FrameBlock make_frame_block(const VolumetricClouds& clouds, const CloudsContext& ctx, const FrameView& view,
-                            const PackedLayers& layers, int march_width, int march_height, uint64_t frame_index) {
+FrameBlock make_frame_block(const VolumetricClouds& clouds, const CloudsContext& ctx, const NoiseFacts& noise,
+                            const FrameView& view, const PackedLayers& layers, int march_width, int march_height,
+                            uint64_t frame_index) {
   const ResolvedQuality q = resolve_quality(clouds);
   const glm::dvec3 p = view.camera_position_m - ctx.planet_center_m;
   const double r = std::max(glm::length(p), 1.0);
@@ -128,7 +129,15 @@ FrameBlock make_frame_block(const VolumetricClouds& clouds, const CloudsContext&
   f.map_north = glm::vec4(glm::vec3(axes[1]), ctx.coverage_map_raise);
   f.map_up = glm::vec4(glm::vec3(axes[2]), ctx.has_coverage_map ? 1.0f : 0.0f);
   f.map_origin = glm::vec4(glm::vec3(glm::transpose(axes) * p), 0.0f);
-  f.turbulence = {q.turbulence ? clouds.turbulence_displacement_m : 0.0f, 0.0f, 0.0f, 0.0f};
+  f.noise_mix = {q.turbulence ? clouds.turbulence_displacement_m : 0.0f, clouds.weather_system_amount, 0.0f, 0.0f};
+  // The scene's origin sits at the anchor texel, whose signal is neutral; the systems stay where they
+  // are (the wind moves the clouds through them), so the origin keeps its layers' own coverage.
+  const double system_period = clouds.weather_system_period_m;
+  f.weather_system = glm::vec4(tile_origin(view.camera_position_m + glm::dvec3(noise.system_anchor) * system_period, system_period),
+                               float(1.0 / system_period));
+  // The most the signal changes per metre (a linear filter's gradient is at most sqrt(3) x the
+  // largest step between neighbouring texels per texel): a bound for the empty-space skipping.
+  f.noise_mix.z = float(1.75 * noise.weather_step * kSystemsNoiseSize / system_period);
   f.inverse_view_projection = view.inverse_view_projection;
   return f;
 }

@@ -46,25 +46,30 @@ CloudsContext read_context(World& world, const FrameInfo& frame) {
   return c;
 }
 
-// Equalises each coverage channel of the weather volume to a uniform distribution, so that a
-// layer's coverage c covers a fraction c of the sky whatever the noise's own histogram.
-std::vector<uint8_t> equalise_weather(Texture& weather) {
-  const int n = weather.desc().width * weather.desc().height * weather.desc().depth;
-  std::vector<uint8_t> data(size_t(n) * 4);
-  glGetTextureImage(weather.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(data.size()), data.data());
-  for (int c = 0; c < 3; ++c) {
+// Equalises the first `equalised` channels of an 8-bit volume (GL_RGBA: 4 channels, GL_RED: 1) to a
+// uniform distribution, so that a layer's coverage c covers a fraction c of the sky whatever the
+// noise's own histogram.
+std::vector<uint8_t> equalise(Texture& volume, GLenum format, int channels, int equalised) {
+  const int n = volume.desc().width * volume.desc().height * volume.desc().depth;
+  std::vector<uint8_t> data(size_t(n) * size_t(channels));
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTextureImage(volume.id(), 0, format, GL_UNSIGNED_BYTE, GLsizei(data.size()), data.data());
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  for (int c = 0; c < equalised; ++c) {
     std::array<double, 256> histogram{};
-    for (int i = 0; i < n; ++i) histogram[data[size_t(i) * 4 + size_t(c)]] += 1.0;
+    for (int i = 0; i < n; ++i) histogram[data[size_t(i) * size_t(channels) + size_t(c)]] += 1.0;
     std::array<uint8_t, 256> map{};
     double below = 0.0;
     for (int v = 0; v < 256; ++v) {
       map[size_t(v)] = uint8_t(std::lround(255.0 * (below + 0.5 * histogram[size_t(v)]) / n));
       below += histogram[size_t(v)];
     }
-    for (int i = 0; i < n; ++i) data[size_t(i) * 4 + size_t(c)] = map[data[size_t(i) * 4 + size_t(c)]];
+    for (int i = 0; i < n; ++i) data[size_t(i) * size_t(channels) + size_t(c)] = map[data[size_t(i) * size_t(channels) + size_t(c)]];
   }
-  glTextureSubImage3D(weather.id(), 0, 0, 0, 0, weather.desc().width, weather.desc().height, weather.desc().depth,
-                      GL_RGBA, GL_UNSIGNED_BYTE, data.data());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage3D(volume.id(), 0, 0, 0, 0, volume.desc().width, volume.desc().height, volume.desc().depth, format,
+                      GL_UNSIGNED_BYTE, data.data());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   return data;
 }
 
@@ -86,6 +91,31 @@ void pack_turbulence(Texture& shape, const Texture& curl) {
     for (size_t a = 0; a < 3; ++a)
       texels[i * 4 + 1 + a] = uint8_t(std::lround(std::clamp(127.5 + 127.5 * c[i * 4 + a] / longest, 0.0, 255.0)));
   glTextureSubImage3D(shape.id(), 0, 0, 0, 0, d.width, d.height, d.depth, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
+}
+
+// What the weather systems need of their (equalised, R8) volume: the largest step
+// between neighbouring texels (across the wrap too), and the anchor: of the texels nearest the
+// median (equalisation may skip levels), the one whose neighbourhood is flattest, so that the scene's
+// origin and its surroundings keep their layers' own coverage.
+NoiseFacts systems_facts(const std::vector<uint8_t>& v, int size) {
+  auto at = [&](int x, int y, int z) {
+    return int(v[(size_t((z + size) % size) * size + size_t((y + size) % size)) * size + size_t((x + size) % size)]);
+  };
+  NoiseFacts facts;
+  int largest = 0;
+  std::pair<int, int> best{1 << 30, 0};  // distance from the median (in half levels), spread
+  for (int z = 0; z < size; ++z)
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) {
+        const int v0 = at(x, y, z);
+        const int dx = std::abs(at(x + 1, y, z) - v0), dy = std::abs(at(x, y + 1, z) - v0), dz = std::abs(at(x, y, z + 1) - v0);
+        largest = std::max({largest, dx, dy, dz});
+        const int spread = dx + dy + dz + std::abs(at(x - 1, y, z) - v0) + std::abs(at(x, y - 1, z) - v0) + std::abs(at(x, y, z - 1) - v0);
+        const std::pair<int, int> score{std::abs(2 * v0 - 255), spread};
+        if (score < best) best = score, facts.system_anchor = (glm::vec3(x, y, z) + 0.5f) / float(size);
+      }
+  facts.weather_step = float(largest) / 255.0f;
+  return facts;
 }
 
 // The coarse occupancy the march skips empty space with: for each block of 4^3 weather texels, the
@@ -119,6 +149,7 @@ void bind_field(const CloudsGpu& gpu) {
   glBindTextureUnit(2, gpu.weather->id());
   glBindTextureUnit(5, gpu.weather_maximum->id());
   glBindTextureUnit(6, gpu.coverage_map->id());
+  glBindTextureUnit(7, gpu.systems->id());
 }
 
 // The painted coverage map (the editor's brush), uploaded again only when a stroke changed it; a
@@ -176,7 +207,7 @@ bool upload_frame(World& world, const SystemContext& sc, const VolumetricClouds&
   const ResolvedQuality q = resolve_quality(clouds);
   const int w = std::max(1, int(std::ceil(view.width * q.resolution_scale)));
   const int h = std::max(1, int(std::ceil(view.height * q.resolution_scale)));
-  block = make_frame_block(clouds, ctx, view, layers, w, h, sc.frame.index);
+  block = make_frame_block(clouds, ctx, gpu.noise_facts, view, layers, w, h, sc.frame.index);
   if (!gpu.frame_buffer) gpu.frame_buffer = std::make_unique<Buffer>(sizeof(FrameBlock));
   gpu.frame_buffer->upload(&block, sizeof(block));
   const size_t count = std::max<size_t>(layers.layers.size(), 1);
@@ -206,7 +237,8 @@ bool upload_frame(World& world, const SystemContext& sc, const VolumetricClouds&
   for (const CloudLayer& L : clouds.layers) key.max_wind_mps = std::max(key.max_wind_mps, glm::length(L.wind_mps));
   key.settings.insert(key.settings.end(), {block.medium.x, block.medium.y, float(clouds.seed), clouds.shape_period_m,
                                            clouds.weather_period_m, clouds.shadow_distance_m, float(cascades), block.map_up.w,
-                                           float(ctx.coverage_map_revision & 0xffffffu), clouds.coverage_map_size_m});
+                                           float(ctx.coverage_map_revision & 0xffffffu), clouds.coverage_map_size_m,
+                                           clouds.weather_system_amount, clouds.weather_system_period_m});
   // Cascade k (0 nearest) covers a square of side 2 D / 4^(n - 1 - k) around the camera; each is
   // remade on its own, when it is stale at its own texel size (the nearest follows the camera most).
   const glm::vec3 u = glm::normalize(glm::cross(l, std::abs(l.z) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1)));
@@ -251,8 +283,10 @@ void ensure_noise(World& world, int seed) {
                               .format = TextureFormat::r8, .clamp = false, .mipmaps = true});
   ensure_texture(gpu.weather, {.width = kWeatherNoiseSize, .height = kWeatherNoiseSize, .depth = kWeatherNoiseSize,
                                .format = TextureFormat::rgba8, .clamp = false, .mipmaps = true});
+  ensure_texture(gpu.systems, {.width = kSystemsNoiseSize, .height = kSystemsNoiseSize, .depth = kSystemsNoiseSize,
+                               .format = TextureFormat::r8, .clamp = false, .mipmaps = true});
   const std::pair<Texture*, const char*> volumes[] = {
-      {gpu.shape.get(), "0"}, {gpu.detail.get(), "1"}, {gpu.weather.get(), "2"}, {&curl, "3"}};
+      {gpu.shape.get(), "0"}, {gpu.detail.get(), "1"}, {gpu.weather.get(), "2"}, {&curl, "3"}, {gpu.systems.get(), "4"}};
   for (auto [texture, kind] : volumes) {
     const Program& p = rc.shaders.compute("clouds/noise.comp", {{"CLOUDS_NOISE", kind}});
     p.set("u_size", texture->desc().width);
@@ -262,8 +296,9 @@ void ensure_noise(World& world, int seed) {
     dispatch_compute(p, g, g, g);
   }
   glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
-  const std::vector<uint8_t> weather = equalise_weather(*gpu.weather);
+  const std::vector<uint8_t> weather = equalise(*gpu.weather, GL_RGBA, 4, 3);
   pack_turbulence(*gpu.shape, curl);
+  gpu.noise_facts = systems_facts(equalise(*gpu.systems, GL_RED, 1, 1), kSystemsNoiseSize);
   ensure_texture(gpu.weather_maximum, {.width = kWeatherOccupancySize, .height = kWeatherOccupancySize, .depth = kWeatherOccupancySize,
                                        .format = TextureFormat::rgba8, .linear_filter = false, .clamp = false});
   glTextureSubImage3D(gpu.weather_maximum->id(), 0, 0, 0, 0, kWeatherOccupancySize, kWeatherOccupancySize, kWeatherOccupancySize,
@@ -271,7 +306,7 @@ void ensure_noise(World& world, int seed) {
   // Far away a pixel spans many texels: the march reads coarser levels there instead of aliasing.
   // Between levels the nearer one is read, not a blend of two: a 3D trilinear read costs 16 texels
   // (twice a bilinear one), and on software rasterisers the march's texture reads are most of its cost.
-  for (Texture* t : {gpu.shape.get(), gpu.detail.get(), gpu.weather.get()}) {
+  for (Texture* t : {gpu.shape.get(), gpu.detail.get(), gpu.weather.get(), gpu.systems.get()}) {
     glGenerateTextureMipmap(t->id());
     glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
   }
@@ -367,7 +402,7 @@ void clouds_system(SystemContext& sc) {
   const FrameView& view = rc.view;
   const char* ap_mode = camera_in_space(world, gpu.block) ? "2" : clouds->aerial_perspective == CloudAerialPerspective::mean_depth ? "1" : "0";
   // Turbulence is compiled in only where it displaces anything (quality high and ultra, or custom).
-  ShaderDefines defines = {{"CLOUDS_AP_MODE", ap_mode}, {"CLOUDS_TURBULENCE", gpu.block.turbulence.x > 0.0f ? "1" : "0"}};
+  ShaderDefines defines = {{"CLOUDS_AP_MODE", ap_mode}, {"CLOUDS_TURBULENCE", gpu.block.noise_mix.x > 0.0f ? "1" : "0"}};
   const bool temporal = clouds->temporal_upscaling && w >= 2 && h >= 2;
   if (temporal)
     for (int i = 0; i < 2; ++i)

@@ -24,6 +24,8 @@ NoiseVolumes read_noise(const CloudsGpu& gpu) {
   read(*gpu.shape, GL_RGBA, 4, n.shape);
   read(*gpu.detail, GL_RED, 1, n.detail);
   read(*gpu.weather, GL_RGBA, 4, n.weather);
+  n.systems_size = gpu.systems->desc().width;
+  read(*gpu.systems, GL_RED, 1, n.systems);
   if (gpu.coverage_map) {
     n.coverage_map_side = gpu.coverage_map->desc().width;
     n.coverage_map.resize(size_t(n.coverage_map_side) * size_t(n.coverage_map_side));
@@ -94,6 +96,12 @@ double CloudField::painted_coverage(const glm::dvec3& x) const {
   return painted_coverage_offset(v);
 }
 
+double CloudField::coverage(const LayerBlock& L, const glm::dvec3& x) const {
+  const glm::dvec3 suv = glm::dvec3(frame_.weather_system) + x * double(frame_.weather_system.w);
+  const double c = system_coverage(L.shape.x, sample(noise_.systems, noise_.systems_size, 1, 0, suv), frame_.noise_mix.y);
+  return L.model.w > 0.5f ? clamp01(c + painted_coverage(x)) : c;
+}
+
 double CloudField::layer_density(const LayerBlock& L, const glm::dvec3& x, double h, bool detail) const {
   const glm::dvec3 wuv = glm::dvec3(L.weather) + x * double(L.weather.w);
   const int channel = int(L.model.y);
@@ -103,7 +111,7 @@ double CloudField::layer_density(const LayerBlock& L, const glm::dvec3& x, doubl
   const double t = (h - base) / std::max(double(L.altitude.y), 1e-3);
   if (t <= 0.0 || t >= 1.0) return 0.0;
   const double fw = L.shape.w;
-  const double c = L.model.w > 0.5f ? clamp01(L.shape.x + painted_coverage(x)) : double(L.shape.x);
+  const double c = coverage(L, x);
   if (c <= 0.0) return 0.0;
   const double lo = (1.0 - c) * (1.0 + fw) - fw;
   const double d0 = clamp01((w - lo) / fw);
@@ -120,7 +128,7 @@ double CloudField::layer_density(const LayerBlock& L, const glm::dvec3& x, doubl
   if (detail && d > 0.0 && L.shape.z > 0.0) {
     // Curl turbulence: the detail noise is read where the curl field (the shape volume's gba) moves
     // the point, in the lowest 30% of the layer, as far as the weather there holds cloud.
-    const double k = double(frame_.turbulence.x) * d0 * clamp01(1.0 - t / 0.3);
+    const double k = double(frame_.noise_mix.x) * d0 * clamp01(1.0 - t / 0.3);
     glm::dvec3 xd = x;
     if (k > 0.0)
       for (int a = 0; a < 3; ++a) xd[a] += k * (2.0 * sample(noise_.shape, noise_.shape_size, 4, 1 + a, shape_uvw) - 1.0);

@@ -13,6 +13,8 @@ namespace welkin::clouds {
 struct NoiseVolumes {
   int shape_size = 0, detail_size = 0, weather_size = 0;
   std::vector<uint8_t> shape, detail, weather;  // RGBA8 (shape, curl field), R8, RGBA8 as stored
+  int systems_size = 0;
+  std::vector<uint8_t> systems;  // the weather systems' signal, R8
   int coverage_map_side = 0;
   std::vector<uint8_t> coverage_map;  // the painted coverage map as uploaded (R8, north row first)
 };
@@ -31,12 +33,15 @@ class CloudField {
   double highest_m() const { return frame_.shell.y; }
   // The largest extinction anywhere: the sum of the layers' full densities (a majorant).
   double majorant() const;
+  // The coverage packed layer `layer` has at x: its own, moved by the weather systems and the painted map.
+  double coverage(size_t layer, const glm::dvec3& x) const { return coverage(layers_[layer], x); }
   const FrameBlock& frame() const { return frame_; }
 
  private:
   double sample(const std::vector<uint8_t>& v, int size, int channels, int channel, glm::dvec3 uvw) const;
   double layer_density(const LayerBlock& L, const glm::dvec3& x, double h, bool detail) const;
   double painted_coverage(const glm::dvec3& x) const;
+  double coverage(const LayerBlock& L, const glm::dvec3& x) const;
   NoiseVolumes noise_;
   FrameBlock frame_;
   std::vector<LayerBlock> layers_;

@@ -23,7 +23,9 @@ layout(std140, binding = 0) uniform CloudsFrame {
   vec4 clb_map_north;       // its north axis; w: the largest coverage it adds
   vec4 clb_map_up;          // its up axis; w: 1 when the scene has a map
   vec4 clb_map_origin;      // the camera in (east, north, up) from the planet's centre, m
-  vec4 clb_turbulence;      // x: largest displacement of the detail noise by the curl field, m
+  vec4 clb_noise_mix;       // x: largest displacement of the detail noise by the curl field m; y: weather-system
+                            // amount; z: the largest change of the weather systems' signal per metre
+  vec4 clb_weather_system;  // the camera in weather-system periods (fraction, anchored, drift applied); w: 1 / period
   mat4 clb_inverse_view_projection;
 };
 // The block's values in private variables, loaded once per invocation (clouds_load): software
@@ -45,7 +47,8 @@ vec4 cl_map_east;
 vec4 cl_map_north;
 vec4 cl_map_up;
 vec4 cl_map_origin;
-vec4 cl_turbulence;
+vec4 cl_noise_mix;
+vec4 cl_weather_system;
 mat4 cl_inverse_view_projection;
 const int CLOUDS_MAX_BANDS = 4;
 
@@ -83,7 +86,8 @@ void clouds_load() {
   cl_map_north = clb_map_north;
   cl_map_up = clb_map_up;
   cl_map_origin = clb_map_origin;
-  cl_turbulence = clb_turbulence;
+  cl_noise_mix = clb_noise_mix;
+  cl_weather_system = clb_weather_system;
   cl_inverse_view_projection = clb_inverse_view_projection;
   cl_layer_count = int(cl_planet.w);
   for (int i = 0; i < CLOUDS_LOCAL_LAYERS; ++i)
@@ -96,6 +100,7 @@ layout(binding = 1) uniform sampler3D cl_detail_noise;
 layout(binding = 2) uniform sampler3D cl_weather_noise;
 layout(binding = 5) uniform sampler3D cl_weather_maximum;  // 16^3 blocks: the largest signal near each
 layout(binding = 6) uniform sampler2D cl_coverage_map;     // painted coverage (128: none), north row first
+layout(binding = 7) uniform sampler3D cl_weather_systems;  // the weather systems' signal (uniform on [0, 1])
 
 // The width a sample stands for (a pixel's footprint at its distance): the noise is read at the
 // mip level whose texels match it, so distant clouds average instead of aliasing. Set by the caller.
@@ -128,6 +133,20 @@ float clouds_depth_below_m = 0.0;
 vec4 clouds_weather_at = vec4(-1.0), clouds_weather_sample = vec4(0.0);
 float clouds_painted_sample = 2.0;  // > 1: not read yet at this point
 
+// The weather systems' signal where the caller marches: it changes over hundreds of kilometres, so
+// the caller looks it up at the ends of each stretch it marches and interpolates (like the light),
+// instead of reading it at every sample. Neutral until set.
+float clouds_system_g = 0.5;
+float clouds_weather_system_at(vec3 x) {
+  return textureLod(cl_weather_systems, cl_weather_system.xyz + x * cl_weather_system.w, 0.0).r;
+}
+// A layer's coverage c where the weather systems' signal is g (frame_block.cpp's
+// system_coverage): raised where g > 0.5, lowered where g < 0.5, by up to the amount times 4 c (1 - c),
+// so that 0 and 1 stay clear and overcast.
+float clouds_system_coverage(float c, float g) {
+  return clamp(c + cl_noise_mix.y * (2.0 * g - 1.0) * 4.0 * c * (1.0 - c), 0.0, 1.0);
+}
+
 // The coverage the painted map adds at x: the point is projected along the planet's radius onto the
 // map's tangent plane (a column of air reads one texel at every altitude); 0 off the map.
 float clouds_painted_coverage(vec3 x) {
@@ -145,7 +164,8 @@ float clouds_layer_envelope(CloudLayerGpu L, vec3 x, float h, out float t, out f
   t = 0.0, d0 = 0.0;
   // Outside the layer's reach (its base can move by the variation): no texture fetch at all.
   if (h < L.altitude.x - L.altitude.z || h > L.altitude.x + L.altitude.y + L.altitude.z) return 0.0;
-  float c = L.model.w > 0.5 ? clamp(L.shape.x + clouds_painted_coverage(x), 0.0, 1.0) : L.shape.x;
+  float c = clouds_system_coverage(L.shape.x, clouds_system_g);
+  if (L.model.w > 0.5) c = clamp(c + clouds_painted_coverage(x), 0.0, 1.0);
   if (c <= 0.0) return 0.0;
   if (L.weather != clouds_weather_at) {
     clouds_weather_at = L.weather;
@@ -187,7 +207,7 @@ float clouds_layer_density(CloudLayerGpu L, vec3 x, float h, bool detail, out fl
     // the shape, moves the point; in the lowest 30% of the layer, as far as the weather there holds
     // cloud (takram's weighting). A compile-time switch: a software rasteriser pays for the
     // arithmetic of a branch even where no pixel takes it.
-    float k = cl_turbulence.x * d0 * clamp(1.0 - t / 0.3, 0.0, 1.0);
+    float k = cl_noise_mix.x * d0 * clamp(1.0 - t / 0.3, 0.0, 1.0);
     if (k != clouds_detail_displacement) clouds_detail_displacement = k, clouds_detail_sample = -1.0;
     xd += (clouds_shape_sample.yzw * 2.0 - 1.0) * k;
 #endif
@@ -244,8 +264,13 @@ float clouds_skip_layer(CloudLayerGpu L, vec3 x, vec3 dir, float h, float skip) 
   vec4 m = texelFetch(cl_weather_maximum, clamp(ivec3(cells), ivec3(0), ivec3(15)), 0);
   int channel = int(L.model.y);
   float w = channel == 0 ? m.r : channel == 1 ? m.g : m.b;
-  // A layer that follows the painted map may be as covered as the map's largest texel makes it.
-  float fw = L.shape.w, c = min(L.shape.x + L.model.w * max(cl_map_north.w, 0.0), 1.0);
+  // The weather systems may raise the coverage anywhere in the block by what their signal changes
+  // over the block, and by what interpolating it along the stretch may miss (0.03: a stretch of
+  // 200 km across their finest features); a layer that follows the painted map may be as covered as
+  // the map's largest texel makes it.
+  float block_m = 1.0 / (16.0 * L.weather.w);
+  float g = min(clouds_system_g + cl_noise_mix.z * 1.8 * block_m + 0.03, 1.0);
+  float fw = L.shape.w, c = min(clouds_system_coverage(L.shape.x, g) + L.model.w * max(cl_map_north.w, 0.0), 1.0);
   if (w > (1.0 - c) * (1.0 + fw) - fw) return 0.0;
   // Metres to the block's far side along dir (cells per metre: 16 x the layer's 1 / period).
   vec3 f = fract(cells);

@@ -75,6 +75,7 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
   vec3 ap_s0 = welkin_aerial_perspective(x0, ap_t0), ap_s1 = welkin_aerial_perspective(x1, ap_t1);
 #endif
   float inverse_length = 1.0 / max(segment.y - segment.x, 1e-3);
+  float system0 = clouds_weather_system_at(x0), system1 = clouds_weather_system_at(x1);
   float phase_single = clouds_phase(mu, 1.0);
   // At least eight samples through each stretch: a layer crossed far away and steeply (seen from
   // orbit) would otherwise get one or two, and the jitter would decide whether the cloud is there.
@@ -87,6 +88,7 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
     vec3 x = dir * (t + 0.5 * step_m);
     ++acc.steps;
     clouds_footprint_m = (t + 0.5 * step_m) * cl_light_model.y;
+    clouds_system_g = mix(system0, system1, clamp((t + 0.5 * step_m - segment.x) * inverse_length, 0.0, 1.0));
     // Whole blocks of empty weather are skipped without reading the noise.
     float skip = clouds_empty_skip(x, dir);
     if (skip > 0.0) {

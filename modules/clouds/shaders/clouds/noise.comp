@@ -9,13 +9,15 @@
 //     taken with central differences on the texel grid itself, so that the volume's own
 //     central-difference divergence vanishes (the two difference operators commute); scaled so that
 //     the longest vector has length 1 and packed into the shape's gba afterwards (src/passes.cpp).
+//   4 weather systems (32^3, R8): two smooth octaves of Perlin noise over thousands of kilometres,
+//     equalised afterwards.
 #include "clouds/noise.glsl"
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 #if CLOUDS_NOISE == 3
 layout(rgba16f, binding = 0) uniform writeonly image3D u_out;
 #elif CLOUDS_NOISE == 0 || CLOUDS_NOISE == 2
 layout(rgba8, binding = 0) uniform writeonly image3D u_out;
-#else
+#else  // 1, 4
 layout(r8, binding = 0) uniform writeonly image3D u_out;
 #endif
 uniform int u_size;
@@ -50,6 +52,8 @@ void main() {
                    potential(id + ez, 0) - potential(id - ez, 0) - potential(id + ex, 2) + potential(id - ex, 2),
                    potential(id + ex, 1) - potential(id - ex, 1) - potential(id + ey, 0) + potential(id - ey, 0));
   imageStore(u_out, id, vec4(curl * 0.5, 0.0));
+#elif CLOUDS_NOISE == 4
+  imageStore(u_out, id, vec4(clouds_perlin_fbm(uvw * 2.0, 2, u_seed + 8000u, 2)));
 #else
   vec4 w;
   for (int c = 0; c < 3; ++c) {

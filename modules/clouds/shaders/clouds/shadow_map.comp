@@ -31,6 +31,7 @@ void main() {
     result.x = seg.y;
     float step_m = (seg.y - seg.x) / float(u_steps);
     float tau = 0.0, front = -1.0, back = 0.0;
+    clouds_system_g = clouds_weather_system_at(start + dir * (0.5 * (seg.x + seg.y)));  // columns are a few km long
     for (int i = 0; i < u_steps; ++i) {
       float t = seg.x + (float(i) + 0.5) * step_m;
       float d = clouds_density(start + dir * t, false, true) * (cl_medium.x + cl_medium.y);

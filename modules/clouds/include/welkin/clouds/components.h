@@ -110,6 +110,14 @@ struct VolumetricClouds {
   float shape_period_m = 4000.0f;
   float detail_period_m = 300.0f;
   float weather_period_m = 40000.0f;
+  // Weather systems: a signal g over thousands of kilometres (fronts and highs) that raises every
+  // layer's coverage where g > 0.5 and lowers it where g < 0.5, by up to amount x 4 c (1 - c), so
+  // that a view from orbit or a long flight shows regions of more and less cloud instead of the local
+  // weather repeating. g is 0.5 at the scene's origin (its layers have their own coverage there) and
+  // the systems do not drift; 0 and 1 stay clear and overcast, and the planet's mean coverage stays c
+  // (the fraction of sky the eye sees covered rises: the noise erodes thin coverage more). 0: off.
+  float weather_system_amount = 0.5f;
+  float weather_system_period_m = 3.0e6f;
   glm::vec2 wind_mps{6.0f, 2.0f};  // drift of the shape noise (east, north)
   // Curl turbulence (quality custom; high and ultra on, low and medium off, as takram): a
   // divergence-free field (repeating with the shape noise) displaces where the detail noise is read,

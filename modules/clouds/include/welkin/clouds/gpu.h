@@ -38,10 +38,11 @@ struct FrameBlock {
   glm::vec4 map_north{0.0f};   // w: the largest coverage the map adds
   glm::vec4 map_up{0.0f};      // w: 1 when the scene has a map
   glm::vec4 map_origin{0.0f};  // the camera in (east, north, up) from the planet's centre, m
-  glm::vec4 turbulence{0.0f};  // largest displacement of the detail noise by the curl field, m (0: off)
+  glm::vec4 noise_mix{0.0f};       // largest displacement of the detail noise by the curl field m (0: off), weather-system amount
+  glm::vec4 weather_system{0.0f};  // the camera in weather-system periods (fraction; the scene's origin at the anchor, drift applied); w: 1 / period
   glm::mat4 inverse_view_projection{1.0f};
 };
-static_assert(sizeof(FrameBlock) == 352, "FrameBlock must match the std140 CloudsFrame block");
+static_assert(sizeof(FrameBlock) == 368, "FrameBlock must match the std140 CloudsFrame block");
 
 // std430 mirror of CloudLayerGpu.
 struct LayerBlock {
@@ -65,6 +66,18 @@ struct CloudsContext {
   float coverage_map_raise = 0.0f;
   uint64_t coverage_map_revision = 0;
 };
+// A layer's coverage c where the weather systems' signal is g (uniform on [0, 1]): raised where
+// g > 0.5 and lowered where g < 0.5 by up to amount x 4 c (1 - c), so that 0 and 1 stay clear and
+// overcast and the planet's mean stays c.
+inline double system_coverage(double c, double g, double amount) {
+  const double v = c + amount * (2.0 * g - 1.0) * 4.0 * c * (1.0 - c);
+  return v < 0.0 ? 0.0 : v > 1.0 ? 1.0 : v;
+}
+// What the frame block needs of the generated noise.
+struct NoiseFacts {
+  glm::vec3 system_anchor{0.5f};  // a texel (uvw) of the systems' volume whose signal is 0.5: the scene's origin sits there
+  float weather_step = 0.0f;      // the largest change of that signal between neighbouring texels
+};
 // Coverage a painted map texel adds (128 nothing, 255 +1, 0 about -1).
 inline double painted_coverage_offset(double texel) { return (texel - 128.0) / 127.0; }
 
@@ -83,8 +96,9 @@ struct PackedLayers {
   bool any_shadow = false;
 };
 PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& context, const glm::dvec3& camera_m);
-FrameBlock make_frame_block(const VolumetricClouds& clouds, const CloudsContext& context, const FrameView& view,
-                            const PackedLayers& layers, int march_width, int march_height, uint64_t frame_index);
+FrameBlock make_frame_block(const VolumetricClouds& clouds, const CloudsContext& context, const NoiseFacts& noise,
+                            const FrameView& view, const PackedLayers& layers, int march_width, int march_height,
+                            uint64_t frame_index);
 // The shape model of a genus: dome (0 sheet .. 1 dome) and weather frequency relative to the period.
 struct GenusModel {
   float dome;
@@ -123,6 +137,7 @@ struct ShadowKey {
 
 // Noise volumes, generated on the GPU once per seed (sizes fixed by the module).
 inline constexpr int kShapeNoiseSize = 128, kDetailNoiseSize = 32, kWeatherNoiseSize = 64, kBlueNoiseSize = 64;
+inline constexpr int kSystemsNoiseSize = 32;
 inline constexpr int kWeatherOccupancySize = 16;  // blocks of 4^3 weather texels
 
 struct CloudsGpu {
@@ -130,6 +145,7 @@ struct CloudsGpu {
   // shape: RGBA8, r the Perlin-Worley shape, gba the curl field c as 0.5 + 0.5 c (longest vector 1),
   // read in the same fetch as the shape it displaces the detail noise from.
   std::unique_ptr<Texture> shape, detail, weather, blue_noise, shadow_map;
+  std::unique_ptr<Texture> systems;  // the weather systems' signal (R8, smooth, equalised)
   std::unique_ptr<Texture> weather_maximum;  // the coarse occupancy for empty-space skipping
   // The painted coverage map as uploaded (1 x 1 neutral when the scene has none), and what it holds.
   std::unique_ptr<Texture> coverage_map;
@@ -137,6 +153,7 @@ struct CloudsGpu {
   uint64_t coverage_map_revision = 0;
   float coverage_map_raise = 0.0f;
   int noise_seed = -1;   // the seed the noise was made from (-1: none yet)
+  NoiseFacts noise_facts;
   int noise_builds = 0;  // how often the noise was generated (tests, stats)
   std::unique_ptr<Buffer> frame_buffer, layer_buffer, shadow_buffer;
   size_t layer_capacity = 0;
