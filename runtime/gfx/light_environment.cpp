@@ -158,6 +158,12 @@ void LightEnvironment::bind_block(std::string_view block_name, std::unique_ptr<B
   glBindBufferBase(GL_UNIFORM_BUFFER, block(block_name), buffer->id());
 }
 
+bool LightEnvironment::shades_surfaces() const {
+  for (const LightTerm& t : terms_)
+    if (!t.light_visibility.empty() || !t.sky_visibility.empty() || !t.added_irradiance.empty()) return true;
+  return false;
+}
+
 void LightEnvironment::bind() const {
   for (const LightTerm& t : terms_)
     if (t.bind) t.bind(*this);

@@ -164,7 +164,6 @@ void lut_system(SystemContext& sc) {
   irradiance_defines["ATM_IRRADIANCE_MARCH"] = space || raymarch ? "1" : "0";
 
   RenderGraph& g = *sc.graph;
-  const FrameTargets t = *sc.targets;
   const ResourceHandle trans = g.import("atmosphere.transmittance", *gpu.transmittance);
   const ResourceHandle ms = g.import("atmosphere.multiscattering", *gpu.multiscattering);
   const ResourceHandle sky_view = g.import("atmosphere.sky_view", *gpu.sky_view);
@@ -284,13 +283,38 @@ void lut_system(SystemContext& sc) {
         bind_image_for_write(0, *gp->sky_irradiance);
         dispatch_compute(rcp->shaders.compute("atmosphere/sky_irradiance.comp", irradiance_defines), 1, 1);
       });
+}
 
-  // The sky goes first, over the whole target, and the geometry drawn later covers it: cheaper than
-  // testing depth per pixel afterwards (on a software rasteriser that test costs as much as a copy),
-  // and the discs are hidden behind geometry for free.
+// The sky over the whole target, before the geometry (which covers it: cheaper than testing depth per
+// pixel afterwards; on a software rasteriser that test costs as much as a copy), and after the systems
+// that make what the light environment reads (cloud shadows), since the planet's ground is shaded
+// through it.
+void background_system(SystemContext& sc) {
+  Registry& reg = sc.world.registry();
+  const Atmosphere& atm = *reg.get<Atmosphere>(reg.first<Atmosphere>());
+  const Entity stars_e = reg.first<Stars>();
+  const Stars* stars = stars_e.is_null() ? nullptr : reg.get<Stars>(stars_e);
+  auto& rc = sc.world.resource<RenderContext>();
+  AtmosphereGpu& gpu = sc.world.resource<AtmosphereGpu>();
+  AtmosphereGpu* gp = &gpu;
+  RenderContext* rcp = &rc;
+  RenderGraph& g = *sc.graph;
+  const FrameTargets t = *sc.targets;
+  // Published by lut_system earlier this frame.
+  const ResourceHandle trans = g.blackboard.at("atmosphere.transmittance");
+  const ResourceHandle ms = g.blackboard.at("atmosphere.multiscattering");
+  const ResourceHandle sky_view = g.blackboard.at("atmosphere.sky_view");
+  const GpuUniforms& u = gpu.uniforms;
+  const bool space = in_space(u);
+  const bool raymarch = atm.method == SkyMethod::raymarch;
+  const ShaderDefines moon_defs = moon_defines(u);
+  // The discs are hidden behind the geometry for free.
   const float pixel_angle = rc.view.vertical_fov_rad / float(std::max(rc.view.height, 1));
   ShaderDefines sky = moon_defs;
   sky["ATM_SKY_MODE"] = raymarch ? "2" : space ? "1" : "0";
+  // The ground gets the light environment's shadows and added light when some term has them.
+  const LightEnvironment* env = &sc.world.resource<LightEnvironment>();
+  sky["ATM_SKY_GROUND_LIGHT"] = env->shades_surfaces() ? "1" : "0";
   ShaderDefines discs = sky;
   discs["ATM_SKY_DISCS"] = "1";
   const bool any_disc = u.flags.x > 0.5f || u.flags.z > 0.5f;
@@ -310,11 +334,12 @@ void lut_system(SystemContext& sc) {
         b.read(t.color);
         b.write(t.color);
       },
-      [gp, rcp, t, pixel_angle, sky, discs, any_disc, draw_stars, stars_draw](PassContext& pc) {
+      [gp, rcp, env, t, pixel_angle, sky, discs, any_disc, draw_stars, stars_draw](PassContext& pc) {
         Framebuffer fb(&pc.texture(t.color), nullptr);
         fb.bind();
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_BLEND);
+        if (sky.at("ATM_SKY_GROUND_LIGHT") == "1") env->bind();
         bind_for_materials(*gp);
         const Program& p = rcp->shaders.graphics("atmosphere/sky.vert", "atmosphere/sky.frag", sky);
         p.use();

@@ -21,6 +21,13 @@ void register_atmosphere(ModuleContext& ctx) {
               .reads = {type_id<Atmosphere>()},
               .optional_reads = {type_id<Sun>(), type_id<Moon>(), type_id<Stars>()},
               .run = lut_system});
+  // The sky behind the geometry, after what the light environment reads is made (cloud shadows at -50).
+  ctx.system({.name = "atmosphere.sky_background",
+              .phase = Phase::render,
+              .order = -10,
+              .reads = {type_id<Atmosphere>()},
+              .optional_reads = {type_id<Stars>()},
+              .run = background_system});
   ctx.system({.name = "atmosphere.sky",
               .phase = Phase::render,
               .order = 100,

@@ -10,6 +10,12 @@
 #ifndef ATM_SKY_DISCS
 #define ATM_SKY_DISCS 0
 #endif
+#ifndef ATM_SKY_GROUND_LIGHT
+#define ATM_SKY_GROUND_LIGHT 0
+#endif
+#if ATM_SKY_GROUND_LIGHT
+#include "welkin/lighting.glsl"
+#endif
 in vec3 v_dir;
 out vec4 o_color;
 uniform float u_pixel_angle;  // radians per pixel, for anti-aliased disc edges
@@ -27,13 +33,42 @@ vec3 sky_luminance(vec3 v) {
 #endif
 }
 
+#if ATM_SKY_GROUND_LIGHT
+// The planet's ground is lit in the sky's luminance (the LUT or the march) by the whole sun, moon and
+// sky. Where the light environment shadows a surface (cloud shadows, sky occlusion under a deck) or
+// adds light to it, the ground gets the same as any material: what the shadows take is removed and
+// what the terms add is added, through the transmittance from the camera to the ground.
+vec3 ground_light_change(vec3 v) {
+  vec3 o = atm_camera();
+  vec3 iv = atm_ray_interval(o, v, 1e30);
+  if (iv.z < 0.5 || iv.y <= iv.x) return vec3(0.0);
+  vec3 g = o + v * iv.y;  // km, planet-centred
+  vec3 n = normalize(g);
+  vec3 p = v * (iv.y * 1000.0);  // camera-relative metres
+  float r_c = length(o), r_g = atm_bottom() + atm_ground_albedo.w;
+  vec3 t_view = min(atm_transmittance(r_g, -dot(n, v)) / max(atm_transmittance(r_c, -dot(o / r_c, v)), vec3(1e-12)), vec3(1.0));
+  AtmLight l0 = atm_sun_light(), l1 = atm_moon_light_source();
+  float mu0 = dot(n, l0.direction), mu1 = dot(n, l1.direction);
+  vec3 e_sun = l0.illuminance * atm_transmittance_to_light(r_g, mu0, l0.angular_radius) * max(mu0, 0.0);
+  vec3 e_moon = l1.illuminance * atm_transmittance_to_light(r_g, mu1, l1.angular_radius) * max(mu1, 0.0);
+  vec3 taken = atm_ground_albedo.rgb / ATM_PI *
+                   (e_sun * (1.0 - welkin_light_visibility(p, n, 0)) + e_moon * (1.0 - welkin_light_visibility(p, n, 1))) +
+               atm_ms_factor() * atm_ground_sky_light(g, l0, l1) * (1.0 - welkin_sky_visibility(p, n));
+  vec3 added = atm_ground_albedo.rgb / ATM_PI * welkin_added_irradiance(p, n);
+  return t_view * (added - taken);
+}
+#endif
+
 void main() {
-#if ATM_SKY_MODE == 0 && !ATM_SKY_DISCS
+#if ATM_SKY_MODE == 0 && !ATM_SKY_DISCS && !ATM_SKY_GROUND_LIGHT
   // The common case is one fetch: the LUT's values already fit RGBA16F.
   o_color = vec4(atm_sky_view_lookup_local(v_dir), 1.0);
 #else
   vec3 v = normalize(v_dir);
   vec3 luminance = sky_luminance(v);
+#if ATM_SKY_GROUND_LIGHT
+  luminance = max(luminance + ground_light_change(v), vec3(0.0));
+#endif
 #if ATM_SKY_DISCS
   // Discs behind the air: transmittance from where the ray enters the atmosphere (or the camera).
   vec3 discs = atm_sun_disc(v, u_pixel_angle) + atm_moon_disc(v, u_pixel_angle);

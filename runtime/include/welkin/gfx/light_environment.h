@@ -57,6 +57,9 @@ class LightEnvironment {
   void add(LightTerm term);
   bool remove(std::string_view name);
   bool has(std::string_view name) const;
+  // Whether any term shadows or adds to the light a surface receives (visibility or added light):
+  // surfaces drawn without a material (the atmosphere's ground) need these terms only then.
+  bool shades_surfaces() const;
   std::vector<std::string> term_names() const;
 
   // The unit or binding assigned to a texture or block name; throws Error when unknown.

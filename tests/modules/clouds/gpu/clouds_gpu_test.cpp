@@ -245,3 +245,33 @@ TEST(CloudsGpu, NearGroundReadsTheNearestShadowCascade) {
 
 }  // namespace
 }  // namespace welkin::clouds
+
+namespace welkin::clouds {
+namespace {
+
+// The atmosphere's own ground (where no geometry covers the planet) is shaded by the deck as a
+// material is: a grey box on the ground (half extents 200 x 300 m) to the west, the bare planet to
+// the east, both seen from 100 m looking south; the ratio of overcast to clear light is the same.
+TEST(CloudsGpu, TheAtmospheresGroundIsShadowedLikeAMaterial) {
+  auto doc = [](double coverage) {
+    json d = noon({{"layers", json::array({{{"genus", "stratus"}, {"coverage", 1.0}, {"base_altitude_m", 800}, {"thickness_m", 600}, {"density_per_m", 0.03}}})},
+                   {"coverage", coverage}, {"temporal_upscaling", false}});
+    d["entities"].push_back({{"name", "ground box"},
+                             {"components", {{"core.DebugShape", {{"shape", "box"}, {"position_m", {-200, -300, -0.5}}, {"size_m", {200, 300, 0.5}},
+                                                                  {"albedo", {0.3, 0.3, 0.3}}}}}}});
+    for (auto& e : d["entities"])
+      if (e["components"].contains("core.Camera")) e["components"]["core.Camera"]["heading_deg"] = 180, e["components"]["core.Camera"]["pitch_deg"] = -45;
+      else if (e["components"].contains("atmosphere.Atmosphere")) e["components"]["atmosphere.Atmosphere"]["ground_albedo"] = {0.3, 0.3, 0.3};
+    return d;
+  };
+  const ImageF clear = render(doc(0.0), 48, 27).renderer->read_hdr(), overcast = render(doc(1.0), 48, 27).renderer->read_hdr();
+  auto at = [](const ImageF& im, int x, int y) { return double(im.rgba[(size_t(y) * 48 + size_t(x)) * 4 + 1]); };
+  // Row 20 (below the view's centre): looking south, the planet (east) at x = 6, the box (west) at x = 41.
+  const double planet = at(overcast, 6, 20) / at(clear, 6, 20), box = at(overcast, 41, 20) / at(clear, 41, 20);
+  std::printf("overcast / clear: box %.3f, the atmosphere's ground %.3f\n", box, planet);
+  EXPECT_LT(box, 0.5);
+  EXPECT_NEAR(planet, box, 0.25 * box);
+}
+
+}  // namespace
+}  // namespace welkin::clouds

@@ -95,9 +95,11 @@ void add_light_term(World& world);
 void bind_for_materials(const AtmosphereGpu& gpu);
 
 // Render phase, before geometry (order -100): transmittance and multi-scattering LUTs when the
-// medium changed, the sky-view LUT, the aerial-perspective volume, sky irradiance, then the sky and
-// its discs over the whole target (the geometry drawn after covers them).
+// medium changed, the sky-view LUT, the aerial-perspective volume, sky irradiance.
 void lut_system(SystemContext& sc);
+// Render phase, before geometry and after the light environment's inputs (order -10): the sky, its
+// discs and stars over the whole target (the geometry drawn after covers them).
+void background_system(SystemContext& sc);
 // Render phase, after geometry (order 100): aerial perspective over the depth buffer.
 void sky_system(SystemContext& sc);
 
