@@ -285,6 +285,23 @@ void lut_system(SystemContext& sc) {
       });
 }
 
+// What the systems after lut_system read of the frame: the render context, the atmosphere's GPU
+// state, the frame's targets and the tables lut_system published on the graph's blackboard.
+struct AfterLuts {
+  RenderContext* rc;
+  AtmosphereGpu* gpu;
+  RenderGraph* graph;
+  FrameTargets targets;
+  ResourceHandle trans;
+  bool space;
+  static AfterLuts of(SystemContext& sc) {
+    AtmosphereGpu& gpu = sc.world.resource<AtmosphereGpu>();
+    return {&sc.world.resource<RenderContext>(), &gpu, sc.graph, *sc.targets,
+            sc.graph->blackboard.at("atmosphere.transmittance"), in_space(gpu.uniforms)};
+  }
+  ResourceHandle published(const char* name) const { return graph->blackboard.at(name); }
+};
+
 // The sky over the whole target, before the geometry (which covers it: cheaper than testing depth per
 // pixel afterwards; on a software rasteriser that test costs as much as a copy), and after the systems
 // that make what the light environment reads (cloud shadows), since the planet's ground is shaded
@@ -294,18 +311,17 @@ void background_system(SystemContext& sc) {
   const Atmosphere& atm = *reg.get<Atmosphere>(reg.first<Atmosphere>());
   const Entity stars_e = reg.first<Stars>();
   const Stars* stars = stars_e.is_null() ? nullptr : reg.get<Stars>(stars_e);
-  auto& rc = sc.world.resource<RenderContext>();
-  AtmosphereGpu& gpu = sc.world.resource<AtmosphereGpu>();
-  AtmosphereGpu* gp = &gpu;
-  RenderContext* rcp = &rc;
+  const AfterLuts f = AfterLuts::of(sc);
+  AtmosphereGpu& gpu = *f.gpu;
+  AtmosphereGpu* gp = f.gpu;
+  RenderContext& rc = *f.rc;
+  RenderContext* rcp = f.rc;
   RenderGraph& g = *sc.graph;
-  const FrameTargets t = *sc.targets;
-  // Published by lut_system earlier this frame.
-  const ResourceHandle trans = g.blackboard.at("atmosphere.transmittance");
-  const ResourceHandle ms = g.blackboard.at("atmosphere.multiscattering");
-  const ResourceHandle sky_view = g.blackboard.at("atmosphere.sky_view");
+  const FrameTargets t = f.targets;
+  const ResourceHandle trans = f.trans, ms = f.published("atmosphere.multiscattering"),
+                       sky_view = f.published("atmosphere.sky_view");
   const GpuUniforms& u = gpu.uniforms;
-  const bool space = in_space(u);
+  const bool space = f.space;
   const bool raymarch = atm.method == SkyMethod::raymarch;
   const ShaderDefines moon_defs = moon_defines(u);
   // The discs are hidden behind the geometry for free.
@@ -357,20 +373,17 @@ void background_system(SystemContext& sc) {
 }
 
 void sky_system(SystemContext& sc) {
-  auto& rc = sc.world.resource<RenderContext>();
-  AtmosphereGpu* gp = &sc.world.resource<AtmosphereGpu>();
-  RenderContext* rcp = &rc;
-  RenderGraph& g = *sc.graph;
-  const FrameTargets t = *sc.targets;
-  // Published by lut_system earlier this frame.
-  const ResourceHandle trans = g.blackboard.at("atmosphere.transmittance");
-  const ResourceHandle ap_s = g.blackboard.at("atmosphere.aerial_inscattering");
-  const ResourceHandle ap_t = g.blackboard.at("atmosphere.aerial_transmittance");
+  const AfterLuts f = AfterLuts::of(sc);
+  AtmosphereGpu* gp = f.gpu;
+  RenderContext* rcp = f.rc;
+  const FrameTargets t = f.targets;
+  const ResourceHandle trans = f.trans, ap_s = f.published("atmosphere.aerial_inscattering"),
+                       ap_t = f.published("atmosphere.aerial_transmittance");
   const GpuUniforms& u = gp->uniforms;
-  const bool space = in_space(u);
+  const bool space = f.space;
   ShaderDefines ap = moon_defines(u);
   ap["ATM_AP_MODE"] = space ? "1" : "0";
-  g.add_pass(
+  sc.graph->add_pass(
       "atmosphere.aerial_perspective_apply",
       [&](PassBuilder& b) {
         b.read(ap_s);
