@@ -137,6 +137,13 @@ void validate(const VolumetricClouds& c) {
     throw Error(ErrorInfo{.path = "/max_step_m",
                           .expected = "at least min_step_m (" + std::to_string(c.min_step_m) + ")",
                           .found = std::to_string(c.max_step_m)});
+  // A ray's work is bounded before it is spent: each march step may run a light march.
+  if (c.quality == Quality::custom && int64_t(c.max_steps) * (1 + c.light_steps) > kMaxSamplesPerRay)
+    throw Error(ErrorInfo{.path = "/max_steps",
+                          .expected = "max_steps x (1 + light_steps) at most " + std::to_string(kMaxSamplesPerRay) +
+                                      " density samples per ray (at most " + std::to_string(kMaxSamplesPerRay / (1 + c.light_steps)) +
+                                      " steps with " + std::to_string(c.light_steps) + " light steps; ultra takes 5376)",
+                          .found = std::to_string(c.max_steps)});
   if (c.detail_period_m > c.shape_period_m)
     throw Error(ErrorInfo{.path = "/detail_period_m",
                           .expected = "at most shape_period_m (" + std::to_string(c.shape_period_m) + "): detail is finer than shape",

@@ -39,6 +39,14 @@ TEST(CloudsComponents, BadLayerValuesNameTheFileAndTheField) {
   const std::string steps = load_error({{"min_step_m", 500}, {"max_step_m", 100}});
   EXPECT_NE(steps.find("max_step_m"), std::string::npos) << steps;
   EXPECT_EQ(load_error(json::object()), "");
+
+  // Work bounded before it is spent: custom marching that would take more than 65536 density samples
+  // per ray is refused; the same values under a preset quality are not used, so not refused.
+  const std::string work = load_error({{"quality", "custom"}, {"max_steps", 4096}, {"light_steps", 64}});
+  EXPECT_NE(work.find("clouds.VolumetricClouds/max_steps"), std::string::npos) << work;
+  EXPECT_NE(work.find("65536"), std::string::npos) << work;
+  EXPECT_EQ(load_error({{"quality", "custom"}, {"max_steps", 1008}, {"light_steps", 64}}), "");
+  EXPECT_EQ(load_error({{"quality", "high"}, {"max_steps", 4096}, {"light_steps", 64}}), "");
 }
 
 TEST(CloudsComponents, RoundTripKeepsEveryField) {

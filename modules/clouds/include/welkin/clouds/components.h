@@ -2,6 +2,7 @@
 // Components of the clouds module. Plain reflected structs: the reflection in src/components.cpp is
 // the single source of their JSON form, units, ranges, the editor inspector and sequence tracks
 // (`clouds.VolumetricClouds/layers/0/coverage`). Lengths are metres, extinction 1/m.
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <string>
 #include <string_view>
@@ -151,6 +152,9 @@ struct ResolvedQuality {
   bool turbulence;         // the curl field displaces the noise
 };
 ResolvedQuality resolve_quality(const VolumetricClouds& clouds);
+// The most density samples one ray may take at quality custom (march steps x (1 + light steps)):
+// twelve times ultra's, so that no setting makes a frame that never finishes.
+inline constexpr int64_t kMaxSamplesPerRay = 65536;
 
 // Throws Error naming the field for values that fail together (ranges are checked by reflection).
 void validate(const VolumetricClouds& clouds);
