@@ -95,11 +95,10 @@ void write_exr(const std::string& path, const ImageF& img, ExrPrecision precisio
 }
 
 namespace {
-void check_image_size(const std::string& path, int64_t width, int64_t height) {
-  if (width <= 0 || height <= 0 || width > kMaxImageSide || height > kMaxImageSide ||
-      width * height > int64_t(kMaxImagePixels))
+void check_image_size(const std::string& path, int64_t width, int64_t height, int max_side = kMaxImageSide) {
+  if (width <= 0 || height <= 0 || width > max_side || height > max_side || width * height > int64_t(kMaxImagePixels))
     throw Error(ErrorInfo{.file = path,
-                          .expected = "an image of 1 to " + std::to_string(kMaxImageSide) + " pixels a side and at most " +
+                          .expected = "an image of 1 to " + std::to_string(max_side) + " pixels a side and at most " +
                                       std::to_string(kMaxImagePixels) + " pixels",
                           .found = std::to_string(width) + "x" + std::to_string(height)});
 }
@@ -136,14 +135,14 @@ ImageF read_exr(const std::string& path) {
   }
 }
 
-ImageU8 read_png(const std::string& path) {
+ImageU8 read_png(const std::string& path, int max_side) {
   const std::vector<uint8_t> bytes = read_file_bytes(path, kMaxImageFileBytes);
   if (bytes.size() > size_t(INT_MAX)) throw Error(ErrorInfo{.file = path, .message = "PNG file too large"});
   int w = 0, h = 0, n = 0;
   // The header first: the pixel count is checked before anything is decoded.
   if (!stbi_info_from_memory(bytes.data(), int(bytes.size()), &w, &h, &n))
     throw Error(ErrorInfo{.file = path, .message = std::string("cannot read PNG: ") + stbi_failure_reason()});
-  check_image_size(path, w, h);
+  check_image_size(path, w, h, std::min(max_side, kMaxImageSide));
   stbi_uc* data = stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &n, 4);
   if (!data) throw Error(ErrorInfo{.file = path, .message = std::string("cannot read PNG: ") + stbi_failure_reason()});
   ImageU8 img{w, h, std::vector<uint8_t>(data, data + size_t(w) * h * 4)};

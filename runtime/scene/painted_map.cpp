@@ -45,7 +45,7 @@ MapFrame scene_map_frame(World& world, double size_m) {
 
 const PaintedMap& PaintedMaps::get(const std::string& file) {
   if (auto it = maps_.find(file); it != maps_.end()) return it->second;
-  const ImageU8 image = read_png(file);
+  const ImageU8 image = read_png(file, kMaxPaintedMapSide);  // the side checked before decoding
   if (image.width != image.height || image.width > kMaxPaintedMapSide)
     throw Error(ErrorInfo{.file = file, .expected = "a square map of at most " + std::to_string(kMaxPaintedMapSide) + " texels a side",
                           .found = std::to_string(image.width) + " x " + std::to_string(image.height)});

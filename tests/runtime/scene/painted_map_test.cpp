@@ -1,5 +1,6 @@
 #include "welkin/scene/painted_map.h"
 
+#include <fstream>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -122,6 +123,24 @@ TEST(PaintedMaps, AMapThatIsNotSquareOrMissingIsOneErrorNamingTheFile) {
     EXPECT_NE(e.info().found.find("4 x 2"), std::string::npos);
   }
   EXPECT_THROW(maps.get((temp_dir() / "missing.png").string()), welkin::Error);
+
+  // A map larger than 4096 a side is refused from its header, before anything is decoded: this file
+  // is a valid PNG header for 8000 x 8000 grey texels with no image data at all.
+  const fs::path big = temp_dir() / "big.png";
+  {
+    const uint8_t header[] = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a, 0, 0, 0, 13, 'I', 'H', 'D', 'R',
+                              0, 0, 0x1f, 0x40, 0, 0, 0x1f, 0x40, 8, 0, 0, 0, 0, 0, 0, 0, 0,
+                              0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
+    std::ofstream(big, std::ios::binary).write(reinterpret_cast<const char*>(header), sizeof(header));
+  }
+  try {
+    maps.get(big.string());
+    FAIL() << "an 8000 x 8000 map was accepted";
+  } catch (const welkin::Error& e) {
+    EXPECT_EQ(e.info().file, big.string());
+    EXPECT_NE(e.info().expected.find("4096"), std::string::npos) << e.what();
+    EXPECT_NE(e.info().found.find("8000x8000"), std::string::npos) << e.what();
+  }
   EXPECT_THROW(maps.create("x.png", 0), welkin::Error);
   EXPECT_THROW(maps.create("x.png", welkin::kMaxPaintedMapSide + 1), welkin::Error);
 }

@@ -38,7 +38,8 @@ ImageF read_texture_float(const Texture& texture, int layer = 0);
 // regular-file reader; images over the bounds above are refused. Throw Error on failure.
 void write_png(const std::string& path, const ImageU8& image);
 void write_exr(const std::string& path, const ImageF& image, ExrPrecision precision = ExrPrecision::half);
-ImageU8 read_png(const std::string& path);
+// max_side: the largest width and height the caller takes, checked from the header before decoding.
+ImageU8 read_png(const std::string& path, int max_side = kMaxImageSide);
 ImageF read_exr(const std::string& path);
 
 // Linear [0,1] to sRGB-encoded 8-bit, with the exact sRGB transfer function.
