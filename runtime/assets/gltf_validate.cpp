@@ -627,12 +627,15 @@ class Validator {
       const json* ns = opt(s, "nodes");
       if (!ns) continue;
       if (!ns->is_array()) bad(p + "/nodes", "an array of root node indices", *ns);
+      std::vector<bool> listed(parents_.size(), false);  // the spec requires each root once
       for (size_t k = 0; k < ns->size(); ++k) {
         const std::string np = p + "/nodes/" + std::to_string(k);
         const int nd = index_value((*ns)[k], np, "nodes");
         if (parents_[nd] >= 0)
           fail(src_, np, "a root node",
                "node " + std::to_string(nd) + ", a child of node " + std::to_string(parents_[nd]));
+        if (listed[size_t(nd)]) fail(src_, np, "each root node once", "node " + std::to_string(nd) + " again");
+        listed[size_t(nd)] = true;
       }
     }
     index(doc_, "scene", "", "scenes", false);

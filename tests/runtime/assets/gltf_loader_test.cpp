@@ -462,6 +462,19 @@ TEST(GltfLoaderErrors, NodeGraphMustBeAForest) {
   e = memory_error(w.glb());
   EXPECT_EQ(e.path, "/nodes/2/children/0");
   EXPECT_NE(e.found.find("already a child of node 0"), std::string::npos);
+  // The spec requires a scene's roots and a node's children to be unique.
+  w = textured_grid(false);
+  w.add_node("other", -1);
+  w.document()["scenes"][0]["nodes"] = {0, 2, 0};
+  e = memory_error(w.glb());
+  EXPECT_EQ(e.path, "/scenes/0/nodes/2");
+  EXPECT_EQ(e.found, "node 0 again");
+  w = textured_grid(false);
+  w.add_node("other", -1);
+  w.document()["nodes"][0]["children"] = {1, 1};
+  e = memory_error(w.glb());
+  EXPECT_EQ(e.path, "/nodes/0/children/1");
+  EXPECT_NE(e.found.find("already a child of node 0"), std::string::npos);
 }
 
 TEST(GltfLoaderErrors, UnsupportedRequiredExtensionAndBadValues) {
