@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "internal.h"
+#include "welkin/scene/json_fields.h"
 #include "tiny_gltf.h"
 #include "welkin/assets/glb_writer.h"
 #include "welkin/core/files.h"
@@ -178,7 +179,9 @@ nlohmann::json parse_json(std::string_view text, const Source& src) {
     }
   }
   try {
-    return nlohmann::json::parse(text.begin(), text.end());
+    return parse_json_unique_keys(text);
+  } catch (const DuplicateJsonKey& d) {
+    fail(src, d.path, "each key once per object", "a duplicate key");
   } catch (const nlohmann::json::parse_error& e) {
     std::string what = e.what();
     if (auto p = what.find("parse error"); p != std::string::npos) what = what.substr(p);

@@ -270,11 +270,7 @@ std::string line_column(const std::string& text, size_t byte) {
   return std::to_string(line) + ":" + std::to_string(col);
 }
 
-// nlohmann keeps the last of duplicate keys, silently: this parser callback refuses them instead,
-// with one hash set per open object (linear in the document) and the JSON path of the second key.
-struct DuplicateKey {
-  std::string path;
-};
+// The parser callback of parse_json_unique_keys: one hash set per open object.
 class DuplicateKeyCheck {
  public:
   bool operator()(int, json::parse_event_t event, json& parsed) {
@@ -285,7 +281,7 @@ class DuplicateKeyCheck {
       case E::key: {
         Frame& top = open_.back();
         top.key = parsed.get<std::string>();
-        if (!top.keys.insert(top.key).second) throw DuplicateKey{path()};
+        if (!top.keys.insert(top.key).second) throw DuplicateJsonKey{path()};
         break;
       }
       case E::object_end:
@@ -316,6 +312,8 @@ class DuplicateKeyCheck {
 
 }  // namespace
 
+json parse_json_unique_keys(std::string_view text) { return json::parse(text, DuplicateKeyCheck{}); }
+
 json parse_json_text(const std::string& text, const std::string& file) {
   if (text.size() > kMaxJsonBytes)
     throw Error(ErrorInfo{.file = file, .expected = "JSON of at most " + std::to_string(kMaxJsonBytes) + " bytes",
@@ -325,8 +323,8 @@ json parse_json_text(const std::string& text, const std::string& file) {
                           .expected = "JSON nested at most " + std::to_string(kMaxJsonDepth) + " levels deep",
                           .found = "deeper nesting"});
   try {
-    return json::parse(text, DuplicateKeyCheck{});
-  } catch (const DuplicateKey& d) {
+    return parse_json_unique_keys(text);
+  } catch (const DuplicateJsonKey& d) {
     throw Error(ErrorInfo{.file = file, .path = d.path, .expected = "each key once per object", .found = "a duplicate key",
                           .message = "duplicate key"});
   } catch (const json::parse_error& e) {

@@ -285,6 +285,10 @@ TEST(GltfLoaderErrors, JsonSyntaxError) {
   EXPECT_EQ(memory_error("[1, 2, 3]", "a.gltf").expected, "a JSON object at the top level");
   EXPECT_EQ(memory_error("{\"nodes\": []}", "a.gltf").path, "/asset");
   EXPECT_EQ(memory_error("{\"asset\": {\"version\": \"1.0\"}}", "a.gltf").path, "/asset/version");
+  // A key twice in one object is refused (a JSON parser would keep one of them, silently).
+  const ErrorInfo twice = memory_error("{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [{\"mesh\": 0, \"mesh\": 1}]}", "a.gltf");
+  EXPECT_EQ(twice.path, "/nodes/0/mesh");
+  EXPECT_EQ(twice.found, "a duplicate key");
 }
 
 TEST(GltfLoaderErrors, DeepNestingIsRefusedBeforeParsing) {

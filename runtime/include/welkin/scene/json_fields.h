@@ -29,6 +29,13 @@ std::string describe_json(const nlohmann::json& j);
 inline constexpr size_t kMaxJsonBytes = 16u << 20;
 inline constexpr int kMaxJsonDepth = 64;
 
+// Parses JSON text, refusing a key repeated in one object (nlohmann keeps the last one, silently):
+// throws DuplicateJsonKey with the JSON path of the second key, or nlohmann's own exceptions. Linear
+// in the text; the caller bounds its size and depth first.
+struct DuplicateJsonKey {
+  std::string path;
+};
+nlohmann::json parse_json_unique_keys(std::string_view text);
 // Parses text within the bounds above, refusing duplicate keys (nlohmann would silently keep the
 // last), turning syntax errors into an Error with line and column.
 nlohmann::json parse_json_text(const std::string& text, const std::string& file);
