@@ -1,6 +1,10 @@
 // KHR_draco_mesh_compression streams decoded with Draco, every index checked before it is followed.
 #include <draco/compression/decode.h>
+#include <draco/compression/point_cloud/point_cloud_decoder.h>
 #include <draco/core/decoder_buffer.h>
+#include <draco/core/varint_decoding.h>
+#include <draco/metadata/geometry_metadata.h>
+#include <draco/metadata/metadata_decoder.h>
 
 #include <cmath>
 #include <limits>
@@ -13,16 +17,80 @@ struct DracoDecoder::Impl {
   std::unique_ptr<draco::Mesh> mesh;
 };
 
-DracoDecoder::DracoDecoder(std::span<const uint8_t> stream, const Source& src, const std::string& path)
+namespace {
+
+// Face and vertex counts as the stream's connectivity header states them (Draco bitstream 2.2, the
+// version KHR_draco_mesh_compression is based on). Draco sizes its corner table and attribute
+// buffers from these counts; reading them first (with Draco's own header, metadata and varint
+// decoders) bounds that work by LoadLimits and the accessors whatever checks Draco's version makes,
+// and names the limit in the error.
+struct DracoCounts {
+  uint32_t faces = 0;
+  uint32_t vertices = 0;      // sequential: points; edgebreaker: encoded vertices (at most the points)
+  bool exact_points = false;  // true when `vertices` is the decoded point count itself (sequential)
+};
+
+DracoCounts read_draco_counts(draco::DecoderBuffer buffer, const Source& src, const std::string& path) {
+  draco::DracoHeader header;
+  if (const draco::Status st = draco::PointCloudDecoder::DecodeHeader(&buffer, &header); !st.ok())
+    fail(src, path, "a Draco stream", std::string("a bad header (") + st.error_msg() + ")");
+  if (header.encoder_type != draco::TRIANGULAR_MESH)
+    fail(src, path, "a Draco triangle mesh", "a Draco point cloud or unknown geometry");
+  if (header.version_major != 2 || header.version_minor < 2)
+    fail(src, path, "a Draco bitstream of version 2.2 or later (KHR_draco_mesh_compression)",
+         "version " + std::to_string(header.version_major) + "." + std::to_string(header.version_minor));
+  buffer.set_bitstream_version(DRACO_BITSTREAM_VERSION(header.version_major, header.version_minor));
+  if (header.flags & METADATA_FLAG_MASK) {
+    draco::GeometryMetadata metadata;
+    if (!draco::MetadataDecoder().DecodeGeometryMetadata(&buffer, &metadata))
+      fail(src, path, "a valid Draco stream", "undecodable metadata");
+  }
+  DracoCounts c;
+  bool ok = false;
+  if (header.encoder_method == draco::MESH_SEQUENTIAL_ENCODING) {
+    ok = draco::DecodeVarint(&c.faces, &buffer) && draco::DecodeVarint(&c.vertices, &buffer);
+    c.exact_points = true;
+  } else if (header.encoder_method == draco::MESH_EDGEBREAKER_ENCODING) {
+    uint8_t traversal = 0;
+    ok = buffer.Decode(&traversal) && draco::DecodeVarint(&c.vertices, &buffer) &&
+         draco::DecodeVarint(&c.faces, &buffer);
+  } else {
+    fail(src, path, "a Draco sequential or edgebreaker mesh",
+         "encoding method " + std::to_string(int(header.encoder_method)));
+  }
+  if (!ok) fail(src, path, "a valid Draco stream", "a connectivity header cut short");
+  return c;
+}
+
+// The header's counts against the limits and the accessors, before any decoding.
+void check_draco_counts(const DracoCounts& c, const DracoExpected& expected, const Source& src,
+                        const std::string& path) {
+  const auto& lim = src.options.limits;
+  const uint64_t indices = uint64_t(c.faces) * 3;
+  if (indices > lim.max_indices_per_primitive)
+    fail(src, path, "at most " + std::to_string(lim.max_indices_per_primitive) + " indices",
+         std::to_string(indices) + " (" + std::to_string(c.faces) + " faces in the Draco header)");
+  if (c.vertices > lim.max_vertices_per_primitive)
+    fail(src, path, "at most " + std::to_string(lim.max_vertices_per_primitive) + " vertices",
+         std::to_string(c.vertices) + " in the Draco header");
+  if (expected.indices >= 0 && indices != uint64_t(expected.indices))
+    fail(src, path, std::to_string(expected.indices) + " indices (the indices accessor's count)",
+         std::to_string(indices) + " (" + std::to_string(c.faces) + " faces in the Draco header)");
+  // Edgebreaker may split a vertex into several points (attribute seams), never the reverse.
+  if (c.exact_points ? c.vertices != expected.points : c.vertices > expected.points)
+    fail(src, path, std::to_string(expected.points) + " vertices (the attribute accessors' count)",
+         std::to_string(c.vertices) + " in the Draco header");
+}
+
+}  // namespace
+
+DracoDecoder::DracoDecoder(std::span<const uint8_t> stream, const DracoExpected& expected, const Source& src,
+                           const std::string& path)
     : impl_(new Impl), src_(src) {
   try {
     draco::DecoderBuffer buffer;
     buffer.Init(reinterpret_cast<const char*>(stream.data()), stream.size());
-    auto type = draco::Decoder::GetEncodedGeometryType(&buffer);
-    if (!type.ok())
-      fail(src, path, "a Draco stream", std::string("a bad header (") + type.status().error_msg() + ")");
-    if (type.value() != draco::TRIANGULAR_MESH)
-      fail(src, path, "a Draco triangle mesh", "a Draco point cloud or unknown geometry");
+    check_draco_counts(read_draco_counts(buffer, src, path), expected, src, path);
     draco::Decoder decoder;
     auto result = decoder.DecodeMeshFromBuffer(&buffer);
     if (!result.ok())

@@ -259,8 +259,12 @@ class Converter {
     const std::string dp = pp + "/extensions/KHR_draco_mesh_compression";
     if (draco) {
       p.draco = true;
+      DracoExpected expected;
+      expected.points = gm_.accessors.at(size_t(pos_it->second)).count;  // all attributes agree (validated)
+      if (const int ia = jp.value("indices", -1); ia >= 0)
+        expected.indices = int64_t(gm_.accessors.at(size_t(ia)).count);
       dec = std::make_unique<DracoDecoder>(view_bytes((*draco)["bufferView"].get<int>(), dp + "/bufferView"),
-                                           src_, dp);
+                                           expected, src_, dp);
       // Every attribute, used here or not, must have exactly the accessor's count of decoded points.
       for (const auto& [name, accessor] : gp.attributes) {
         const auto& a = gm_.accessors.at(size_t(accessor));

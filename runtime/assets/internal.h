@@ -98,10 +98,18 @@ struct DracoMesh {
   uint32_t num_points = 0;
   std::vector<uint32_t> indices;
 };
+// What the primitive's accessors declare; the stream's header must agree before it is decoded.
+struct DracoExpected {
+  uint64_t points = 0;   // the attribute accessors' count
+  int64_t indices = -1;  // the indices accessor's count, -1 when the primitive has none
+};
+
 class DracoDecoder {
  public:
-  // Throws Error at `path` when the stream is not a valid triangle mesh or exceeds the limits.
-  DracoDecoder(std::span<const uint8_t> stream, const Source& src, const std::string& path);
+  // Throws Error at `path` when the stream is not a valid triangle mesh, exceeds the limits or
+  // disagrees with `expected`; the counts in the stream's header are checked before decoding.
+  DracoDecoder(std::span<const uint8_t> stream, const DracoExpected& expected, const Source& src,
+               const std::string& path);
   ~DracoDecoder();
   const DracoMesh& mesh() const { return mesh_; }
   // Values of the attribute with `unique_id`, converted as the accessor's component type and

@@ -504,6 +504,64 @@ TEST(GltfLoaderErrors, UnsupportedRequiredExtensionAndBadValues) {
   EXPECT_NE(inf.found.find("1e999"), std::string::npos);
 }
 
+// Varint as Draco writes it: 7 bits a byte, low bits first.
+std::vector<uint8_t> draco_varint(uint32_t v) {
+  std::vector<uint8_t> out;
+  do {
+    out.push_back(uint8_t((v & 0x7f) | (v > 0x7f ? 0x80 : 0)));
+    v >>= 7;
+  } while (v);
+  return out;
+}
+
+// The grid's edgebreaker stream with its header's face count replaced: the 11-byte Draco header,
+// the traversal type, the encoded vertex count and the face count (varints) lead the stream.
+GlbWriter grid_with_draco_faces(uint32_t faces) {
+  GlbWriter w = textured_grid(true);
+  json& view = w.document()["bufferViews"][1];
+  const size_t off = view["byteOffset"].get<size_t>(), len = view["byteLength"].get<size_t>();
+  std::vector<uint8_t> stream(w.bin().begin() + off, w.bin().begin() + off + len);
+  EXPECT_EQ(stream[8], 1);  // edgebreaker, as GlbWriter encodes
+  size_t p = 12;
+  while (stream[p] & 0x80) ++p;  // encoded vertices
+  const size_t faces_at = ++p;
+  while (stream[p] & 0x80) ++p;
+  std::vector<uint8_t> crafted(stream.begin(), stream.begin() + faces_at);
+  const auto v = draco_varint(faces);
+  crafted.insert(crafted.end(), v.begin(), v.end());
+  crafted.insert(crafted.end(), stream.begin() + p + 1, stream.end());
+  while (w.bin().size() % 4) w.bin().push_back(0);
+  view["byteOffset"] = w.bin().size();
+  view["byteLength"] = crafted.size();
+  w.bin().insert(w.bin().end(), crafted.begin(), crafted.end());
+  w.document()["buffers"][0]["byteLength"] = w.bin().size();
+  return w;
+}
+
+TEST(GltfLoaderErrors, DracoHeaderCountsAreCheckedBeforeDecoding) {
+  // The stream as written decodes (the crafting itself changes nothing else).
+  EXPECT_NO_THROW(load_bytes(grid_with_draco_faces(128).glb()));
+  // A header claiming 2^28 faces: refused from the header, before Draco starts decoding, with the
+  // limit named (Draco 1.5.5 itself refuses it later with only "Failed to decode geometry data").
+  ErrorInfo e = memory_error(grid_with_draco_faces(1u << 28).glb(), "huge.glb");
+  EXPECT_EQ(e.file, "huge.glb");
+  EXPECT_EQ(e.path, "/meshes/0/primitives/0/extensions/KHR_draco_mesh_compression");
+  EXPECT_EQ(e.expected, "at most 50331648 indices");
+  EXPECT_EQ(e.found, "805306368 (268435456 faces in the Draco header)");
+  // Within the limits but not what the indices accessor declares (384): refused before decoding too.
+  e = memory_error(grid_with_draco_faces(200).glb());
+  EXPECT_EQ(e.expected, "384 indices (the indices accessor's count)");
+  EXPECT_EQ(e.found, "600 (200 faces in the Draco header)");
+  // And against lower limits, which the accessors alone would pass.
+  LoadOptions o;
+  o.limits.max_indices_per_primitive = 300;
+  GlbWriter w = grid_with_draco_faces(1000);
+  w.document()["accessors"][3]["count"] = 300;
+  e = memory_error(w.glb(), "lim.glb", o);
+  EXPECT_EQ(e.expected, "at most 300 indices");
+  EXPECT_EQ(e.found, "3000 (1000 faces in the Draco header)");
+}
+
 TEST(GltfLoaderErrors, CorruptImage) {
   GlbWriter w = textured_grid(false);
   const size_t off = w.document()["bufferViews"][0]["byteOffset"].get<size_t>();
