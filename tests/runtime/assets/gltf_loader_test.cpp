@@ -1,6 +1,7 @@
 #include "welkin/assets/gltf_loader.h"
 
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include <cstring>
 #include <nlohmann/json.hpp>
@@ -560,6 +561,62 @@ TEST(GltfLoaderErrors, DracoHeaderCountsAreCheckedBeforeDecoding) {
   e = memory_error(w.glb(), "lim.glb", o);
   EXPECT_EQ(e.expected, "at most 300 indices");
   EXPECT_EQ(e.found, "3000 (1000 faces in the Draco header)");
+}
+
+// A PNG of `w` x `h` RGBA8 whose IDAT stream inflates to `inflated_mib` MiB of zero bytes (filter
+// type 0, black pixels): one deflated MiB of zeros (about 1 KiB, ending on a full flush, so it
+// refers to nothing before it) repeated, then an empty final block and the Adler-32 of the whole.
+std::string png_bomb(uint32_t w, uint32_t h, uint32_t inflated_mib) {
+  std::vector<uint8_t> zeros(1 << 20, 0), block(1 << 16);
+  z_stream z{};
+  EXPECT_EQ(deflateInit(&z, 9), Z_OK);
+  z.next_in = zeros.data();
+  z.avail_in = uInt(zeros.size());
+  z.next_out = block.data();
+  z.avail_out = uInt(block.size());
+  EXPECT_EQ(deflate(&z, Z_FULL_FLUSH), Z_OK);
+  block.resize(block.size() - z.avail_out);
+  const size_t header = 2;  // the first call wrote the zlib header before the block
+  deflateEnd(&z);
+  std::string idat(block.begin(), block.end());
+  uLong adler = adler32(0, nullptr, 0);
+  for (uint32_t i = 0; i < inflated_mib; ++i) {
+    if (i > 0) idat.append(block.begin() + header, block.end());
+    adler = adler32(adler, zeros.data(), uInt(zeros.size()));
+  }
+  idat += std::string("\x03\x00", 2);  // final fixed-Huffman block with only end-of-block
+  for (int s = 24; s >= 0; s -= 8) idat += char((adler >> s) & 0xff);
+  auto be32 = [](uint32_t v) { return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)}; };
+  auto chunk = [&](const char* type, const std::string& data) {
+    std::string body = std::string(type, 4) + data;
+    const uLong crc = crc32(0, reinterpret_cast<const Bytef*>(body.data()), uInt(body.size()));
+    return be32(uint32_t(data.size())) + body + be32(uint32_t(crc));
+  };
+  const std::string ihdr = be32(w) + be32(h) + std::string("\x08\x06\x00\x00\x00", 5);  // RGBA8
+  return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", ihdr) + chunk("IDAT", idat) + chunk("IEND", "");
+}
+
+ErrorInfo image_error(const std::string& png, const std::string& name) {
+  GlbWriter w;
+  w.add_image(std::vector<uint8_t>(png.begin(), png.end()), "image/png", "bomb");
+  return memory_error(w.glb(), name);
+}
+
+TEST(GltfLoaderErrors, PngInflationIsBoundedByItsHeader) {
+  // (Honest PNGs, whose stream is their header's size, still decode: every textured grid here.)
+  // About 256 KiB of file inflating to 256 MiB behind a 1024 x 1024 header (4 MiB of scanlines):
+  // stopped as soon as inflation passes 4195328 bytes, never holding more than 64 KiB of it. stb
+  // alone would inflate all 256 MiB into memory and then decode the first 4 MiB as the image.
+  const std::string bomb = png_bomb(1024, 1024, 256);
+  EXPECT_LT(bomb.size(), 400u << 10);
+  ErrorInfo e = image_error(bomb, "bomb.glb");
+  EXPECT_EQ(e.file, "bomb.glb");
+  EXPECT_EQ(e.path, "/images/0/bufferView");
+  EXPECT_EQ(e.expected, "PNG image data inflating to at most 4195328 bytes (its header's 1024 x 1024)");
+  EXPECT_EQ(e.found.rfind("more (stopped after ", 0), 0u);
+  // A 1 x 1 header (5 bytes of scanline) with 64 MiB behind it.
+  e = image_error(png_bomb(1, 1, 64), "tiny.glb");
+  EXPECT_EQ(e.expected, "PNG image data inflating to at most 5 bytes (its header's 1 x 1)");
 }
 
 TEST(GltfLoaderErrors, CorruptImage) {
