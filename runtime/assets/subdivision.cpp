@@ -151,10 +151,14 @@ RefinedMesh refine_uniform(const ControlMesh& m, SubdivScheme scheme, const Refi
       fine[i] = P3{{m.positions[i].x, m.positions[i].y, m.positions[i].z}};
   } else {
     // Control points to the finest level in one pass of Far stencils evaluated by the Osd CPU kernel.
-    Far::StencilTableFactory::Options so;
+    // The float template itself: the Far::StencilTableFactory wrapper static_casts the table it
+    // built (a StencilTableReal<float>) down to Far::StencilTable, which UBSan reports as an invalid
+    // downcast; nothing here needs the derived type.
+    using Factory = Far::StencilTableFactoryReal<float>;
+    Factory::Options so;
     so.generateIntermediateLevels = false;
     so.generateOffsets = true;
-    std::unique_ptr<const Far::StencilTable> st(Far::StencilTableFactory::Create(*refiner, so));
+    std::unique_ptr<const Far::StencilTableReal<float>> st(Factory::Create(*refiner, so));
     Osd::BufferDescriptor desc(0, 3, 3);
     Osd::CpuEvaluator::EvalStencils(&m.positions[0].x, desc, fine[0].v, desc, st->GetSizes().data(),
                                     st->GetOffsets().data(), st->GetControlIndices().data(),

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Builds the fuzz targets with clang (libFuzzer + ASan) in their own build folder and runs each for
-# SECONDS: the glTF loader on a seed corpus of generated files, then the scene, sequence and preset
-# JSON readers on the shipped documents. Usage: run_fuzz.sh [SECONDS (default 30)] [BUILD_DIR]
+# Builds the fuzz targets with clang (libFuzzer + ASan + UBSan) in their own build folder and runs each
+# for SECONDS: the glTF loader on a seed corpus of generated files, OpenSubdiv refinement on small
+# control meshes, then the scene, sequence and preset JSON readers on the shipped documents.
+# Usage: run_fuzz.sh [SECONDS (default 30)] [BUILD_DIR]
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../../.." && pwd)"
@@ -11,16 +12,35 @@ jobs="${WELKIN_FUZZ_JOBS:-2}"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DWELKIN_FUZZ=ON \
   -DWELKIN_BUILD_EDITOR=OFF -DWELKIN_BUILD_BENCHMARKS=OFF -DWELKIN_BUILD_MODULES=OFF > "$build.configure.log"
-cmake --build "$build" -j"$jobs" --target welkin_gltf_fuzzer welkin_assets_fuzz_seeds welkin_json_fuzzer
+cmake --build "$build" -j"$jobs" --target welkin_gltf_fuzzer welkin_assets_fuzz_seeds welkin_json_fuzzer \
+  welkin_subdivision_fuzzer
 corpus="$build/fuzz-corpus"
 mkdir -p "$corpus"
 "$build/bin/welkin_assets_fuzz_seeds" "$corpus"
 mkdir -p "$build/fuzz-artifacts"
 # -rss_limit_mb bounds memory (a file may never make the loader allocate without limit);
 # -timeout flags a single input that takes longer than 10 s (a hang).
+# UBSan findings stop the run with a stack (the build sets -fno-sanitize-recover=undefined).
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 "$build/bin/welkin_gltf_fuzzer" \
   -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 -max_len=65536 \
   -dict="$here/fuzz_gltf.dict" -artifact_prefix="$build/fuzz-artifacts/" "$corpus"
+
+# Subdivision: the layout is in fuzz_subdivision.cpp (flags, levels, vertices - 1, budget exponent,
+# adaptive distance, 20 heights, then faces as a size and its indices). Inputs up to 4 KiB keep each
+# refinement small; the triangle budget (at most 64 Ki) bounds the output.
+subdiv_corpus="$build/fuzz-corpus-subdivision"
+mkdir -p "$subdiv_corpus"
+heights='\000\001\002\001\000\001\003\004\002\001\000\002\001\000\003\001\002\000\001\002'
+quads='\004\000\001\013\012\004\001\002\014\013\005\002\003\004\016\014'
+tris='\003\000\001\012\003\001\013\012\003\001\002\013'
+printf "\014\002\023\014\000$heights$quads" > "$subdiv_corpus/quads-uniform"
+printf "\014\003\023\014\040$heights$quads" > "$subdiv_corpus/quads-adaptive"
+printf "\010\002\023\014\000$heights$tris" > "$subdiv_corpus/triangles-loop"
+printf "\054\003\023\014\000$heights$quads" > "$subdiv_corpus/quads-level-counts"
+ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 "$build/bin/welkin_subdivision_fuzzer" \
+  -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 -max_len=4096 \
+  -artifact_prefix="$build/fuzz-artifacts/" "$subdiv_corpus"
 
 # The JSON readers: the first byte picks the reader (0 scene, 1 sequence, 2 light preset, 3 debug
 # shape), the rest is the document; inputs up to 1 MiB (nesting and size bounds are hit within it).
