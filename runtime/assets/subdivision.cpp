@@ -204,7 +204,10 @@ RefinedMesh refine_adaptive(const ControlMesh& m, SubdivScheme scheme, const Ref
     const auto ev = base.GetEdgeVertices(e);
     const glm::vec3 mid = 0.5f * (m.positions[size_t(ev[0])] + m.positions[size_t(ev[1])]);
     const double ratio = std::max(1.0, double(glm::length(mid - s.camera_position)) / s.adaptive_distance);
-    edge_level[size_t(e)] = std::clamp(max_level - int(std::floor(std::log2(ratio))), 0, max_level);
+    // Clamped while still a double: far points (or a tiny distance) make the ratio infinite, and
+    // converting infinity to int is undefined (UBSan found it).
+    const double doublings = std::floor(std::log2(ratio));
+    edge_level[size_t(e)] = doublings < double(max_level) ? max_level - int(doublings) : 0;
   }
   Bfr::Tessellation::Options topts;
   topts.SetFacetSize(3);

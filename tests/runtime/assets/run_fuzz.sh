@@ -38,6 +38,8 @@ printf "\014\002\023\014\000$heights$quads" > "$subdiv_corpus/quads-uniform"
 printf "\014\003\023\014\040$heights$quads" > "$subdiv_corpus/quads-adaptive"
 printf "\010\002\023\014\000$heights$tris" > "$subdiv_corpus/triangles-loop"
 printf "\054\003\023\014\000$heights$quads" > "$subdiv_corpus/quads-level-counts"
+# Found by the fuzzer (UBSan: an infinite distance ratio converted to int), kept as a regression.
+printf '\x13\x06\x08\x03\x04\x00\x01\x00\x0c\x01\x02\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x59\x00\x00\x00\x00\x00\xff\x00\xff\xff\x00\x02\x01\x00\x0a\x00\x00\x00\x03\x00\x01\x0a\x03\x01\x0b\x0a\x03\x01\x02\x0b' > "$subdiv_corpus/regression-infinite-ratio"
 ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 "$build/bin/welkin_subdivision_fuzzer" \
   -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 -max_len=4096 \
   -artifact_prefix="$build/fuzz-artifacts/" "$subdiv_corpus"
