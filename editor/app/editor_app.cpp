@@ -483,6 +483,10 @@ bool EditorApp::run_app_verb(const ScriptLine& line) {
   } else if (v == "show-preset") {
     usage(2, "show-preset MODULE NAME");
     ctx_->preset_browser = PresetBrowserState{a[0], a[1]};
+  } else if (v == "close-window") {
+    // What the window's close button does (GLFW's close flag): the next frame asks like quit.
+    usage(0, "close-window");
+    glfwSetWindowShouldClose(window_->handle(), GLFW_TRUE);
   } else if (v == "crash") {
     // What a crash leaves: no prompt, no saved config, the autosave in place (scripts test recovery).
     usage(0, "crash");

@@ -437,7 +437,8 @@ const char* script_verbs_help() {
                                       prompt waits (naming those parts); while one waits only answer,
                                       expect-*, wait, crash and screenshots run
   expect-dirty scene|sequence yes|no  fails unless that part has (yes) or lacks (no) unsaved changes
-  autosave-now                        write the autosave now (normally every 30 s while unsaved)
+  close-window                        as the window's close button: the next frame asks like quit
+  autosave-now                        write the autosave now (normally 30 s after an unsaved edit)
   crash                               exit at once with status 70, as a crash would: no prompt, no
                                       cleanup, the autosave left behind (to test recovery)
 )";
