@@ -24,11 +24,11 @@ void ScriptPlayer::step(EditorContext& ctx, const std::function<bool(const Scrip
       wait_frames_ = int(frames);
       return;
     }
-    if (line.verb == "time" && line.args.size() == 1) ctx.timeline.playhead_s = std::strtod(line.args[0].c_str(), nullptr);
     SessionGuard& session = ctx.session;
     if (session.prompt() && !verb_allowed_during_prompt(line.verb))
       throw Error(ErrorInfo{.message = "'" + prompt_text(*session.prompt()) + "' waits for an answer (answer, see --script-help) before '" +
                                        line.verb + "'"});
+    if (line.verb == "time" && line.args.size() == 1) ctx.timeline.playhead_s = std::strtod(line.args[0].c_str(), nullptr);
     std::string output;
     bool known = run_session_verb(session, ctx.doc, line) || run_document_verb(ctx.doc, ctx.presets, line, output) || app_verb(line);
     if (!output.empty()) {
