@@ -9,6 +9,7 @@
 #include <imgui_stdlib.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -32,7 +33,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-enum ExitCode { kOk = 0, kFailure = 1, kUsage = 2, kBadInput = 3 };
+enum ExitCode { kOk = 0, kFailure = 1, kUsage = 2, kBadInput = 3, kCrashed = 70 };
 
 // Dear ImGui's context and backends, shut down before the window goes.
 class ImGuiSession {
@@ -140,6 +141,8 @@ class EditorApp {
   void render_scene(const FrameInfo& frame);
   void draw_ui();
   void draw_main_menu();
+  // The session guard's prompt (unsaved changes, overwrite, recover) as a modal.
+  void draw_prompt();
   void handle_shortcuts();
   bool run_app_verb(const ScriptLine& line);
   void finish_frame_requests();
@@ -151,6 +154,7 @@ class EditorApp {
   std::unique_ptr<ImGuiSession> imgui_;
   std::unique_ptr<EditorDocument> doc_;
   std::unique_ptr<PresetLibrary> presets_;
+  std::unique_ptr<SessionGuard> session_;
   std::unique_ptr<EditorContext> ctx_;
   std::unique_ptr<Renderer> renderer_;
   uint64_t renderer_generation_ = 0;
@@ -262,7 +266,7 @@ void EditorApp::draw_main_menu() {
   bool open_popup = false, save_popup = false;
   if (ImGui::BeginMainMenuBar()) {
     if (ImGui::BeginMenu("File")) {
-      if (ImGui::MenuItem("New scene")) ctx_->attempt([&] { doc_->new_scene(); });
+      if (ImGui::MenuItem("New scene")) ctx_->attempt([&] { session_->request(GuardedAction::new_scene); });
       if (ImGui::MenuItem("Open scene...")) open_popup = true;
       if (ImGui::MenuItem("Save scene", "Ctrl+S", false, !doc_->scene_path().empty()))
         if (ctx_->attempt([&] { doc_->save_scene(doc_->scene_path()); })) ctx_->log.info("saved " + doc_->scene_path());
@@ -272,7 +276,7 @@ void EditorApp::draw_main_menu() {
       if (ImGui::MenuItem("Screenshot viewport (PNG)", "F12")) ctx_->screenshot_requests.push_back(stem + ".png");
       if (ImGui::MenuItem("Screenshot viewport (EXR, linear HDR)")) ctx_->screenshot_requests.push_back(stem + ".exr");
       ImGui::Separator();
-      if (ImGui::MenuItem("Quit")) ctx_->quit_requested = true;
+      if (ImGui::MenuItem("Quit")) ctx_->attempt([&] { session_->request(GuardedAction::quit); });
       ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Edit")) {
@@ -314,7 +318,9 @@ void EditorApp::draw_main_menu() {
       if (ImGui::Selectable(f.c_str(), f == open_path_)) open_path_ = f;
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 30);
     ImGui::InputText("path", &open_path_);
-    if (ImGui::Button("open") && open_scene(open_path_)) ImGui::CloseCurrentPopup();
+    // Through the guard: unsaved edits are asked about (in its own prompt) before they go.
+    if (ImGui::Button("open") && ctx_->attempt([&] { session_->request(GuardedAction::open_scene, open_path_); }))
+      ImGui::CloseCurrentPopup();
     ImGui::SameLine();
     if (ImGui::Button("cancel")) ImGui::CloseCurrentPopup();
     ImGui::EndPopup();
@@ -322,19 +328,67 @@ void EditorApp::draw_main_menu() {
   if (ImGui::BeginPopupModal("Save scene as", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 30);
     ImGui::InputText("path", &save_path_);
-    if (ImGui::Button("save") && ctx_->attempt([&] { doc_->save_scene(save_path_); })) {
-      ctx_->log.info("saved " + save_path_);
+    // Another file that exists is replaced only after the overwrite prompt.
+    if (ImGui::Button("save") && ctx_->attempt([&] { session_->request(GuardedAction::save_scene_as, save_path_); }))
       ImGui::CloseCurrentPopup();
-    }
     ImGui::SameLine();
     if (ImGui::Button("cancel")) ImGui::CloseCurrentPopup();
     ImGui::EndPopup();
   }
 }
 
+void EditorApp::draw_prompt() {
+  static constexpr const char* kPromptId = "###session-prompt";  // one modal whatever its title
+  if (!session_->prompt()) {
+    // Answered elsewhere (a script line): close the modal still open from the last frame.
+    if (ImGui::IsPopupOpen(kPromptId) && ImGui::BeginPopupModal(kPromptId)) {
+      ImGui::CloseCurrentPopup();
+      ImGui::EndPopup();
+    }
+    return;
+  }
+  const Prompt prompt = *session_->prompt();
+  const char* title = prompt.kind == PromptKind::unsaved     ? "Unsaved changes"
+                      : prompt.kind == PromptKind::overwrite ? "Replace file?"
+                                                             : "Recover unsaved work?";
+  const std::string id = std::string(title) + kPromptId;
+  if (!ImGui::IsPopupOpen(kPromptId)) ImGui::OpenPopup(id.c_str());
+  if (!ImGui::BeginPopupModal(id.c_str(), nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+  ImGui::TextUnformatted(prompt_text(prompt).c_str());
+  if (prompt.kind == PromptKind::unsaved && prompt.scene && !doc_->scene_path().empty())
+    ImGui::TextDisabled("scene: %s", doc_->scene_path().c_str());
+  if (prompt.kind == PromptKind::unsaved && prompt.sequence && !doc_->sequence_path().empty())
+    ImGui::TextDisabled("sequence: %s", doc_->sequence_path().c_str());
+  if (!prompt.error.empty()) ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", prompt.error.c_str());
+  std::optional<Answer> chosen;
+  auto button = [&](const char* label, Answer answer) {
+    if (ImGui::Button(label)) chosen = answer;
+    ImGui::SameLine();
+  };
+  switch (prompt.kind) {
+    case PromptKind::unsaved:
+      button("Save", Answer::save);
+      button("Discard", Answer::discard);
+      button("Cancel", Answer::cancel);
+      break;
+    case PromptKind::overwrite:
+      button("Overwrite", Answer::overwrite);
+      button("Cancel", Answer::cancel);
+      break;
+    case PromptKind::recover:
+      button("Recover", Answer::recover);
+      button("Discard", Answer::discard);
+      break;
+  }
+  ImGui::NewLine();
+  if (chosen) ctx_->attempt([&] { session_->answer(*chosen); });
+  if (!session_->prompt()) ImGui::CloseCurrentPopup();
+  ImGui::EndPopup();
+}
+
 void EditorApp::handle_shortcuts() {
   const ImGuiIO& io = ImGui::GetIO();
-  if (io.WantTextInput) return;
+  if (io.WantTextInput || session_->prompt()) return;  // a prompt waits: nothing else changes
   if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_Z)) ctx_->attempt([&] { io.KeyShift ? doc_->redo() : doc_->undo(); });
   if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_Y)) ctx_->attempt([&] { doc_->redo(); });
   if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_S) && !doc_->scene_path().empty())
@@ -367,6 +421,9 @@ void EditorApp::draw_ui() {
     if (visible) p.draw(*ctx_);
     ImGui::End();
   }
+  // Last: Dear ImGui 1.86 asserts when a window first appears after a modal opened in the same
+  // frame (ocornut/imgui#4920), as the panels do in the first frame of a recovery prompt.
+  draw_prompt();
   handle_shortcuts();
   // A continuous edit ends when nothing is held any more, whichever widget (or popup) made it.
   if (!ImGui::IsAnyItemActive()) doc_->end_continuous_edit();
@@ -426,9 +483,15 @@ bool EditorApp::run_app_verb(const ScriptLine& line) {
   } else if (v == "show-preset") {
     usage(2, "show-preset MODULE NAME");
     ctx_->preset_browser = PresetBrowserState{a[0], a[1]};
-  } else if (v == "quit") {
-    usage(0, "quit");
-    ctx_->quit_requested = true;
+  } else if (v == "close-window") {
+    // What the window's close button does (GLFW's close flag): the next frame asks like quit.
+    usage(0, "close-window");
+    glfwSetWindowShouldClose(window_->handle(), GLFW_TRUE);
+  } else if (v == "crash") {
+    // What a crash leaves: no prompt, no saved config, the autosave in place (scripts test recovery).
+    usage(0, "crash");
+    std::fprintf(stderr, "welkin-editor: %s: crash (simulated), exit status %d\n", line.where().c_str(), kCrashed);
+    std::_Exit(kCrashed);
   } else {
     return false;
   }
@@ -477,7 +540,9 @@ int EditorApp::run() {
   presets_ = std::make_unique<PresetLibrary>(make_world_with_plugins());
   for (const PresetFolder& f : extra_preset_folders()) presets_->add_folder(f);
   presets_->rescan();
-  ctx_ = std::make_unique<EditorContext>(EditorContext{.doc = *doc_, .presets = *presets_});
+  // --no-config keeps the editor off its state folder, autosave included.
+  session_ = std::make_unique<SessionGuard>(*doc_, options_.no_config ? Autosave() : Autosave(Autosave::folder_beside(config_path_)));
+  ctx_ = std::make_unique<EditorContext>(EditorContext{.doc = *doc_, .presets = *presets_, .session = *session_});
   ctx_->viewport.speed_multiplier = config_.fly_speed_multiplier;
   ctx_->viewport.look_through_scene_camera = config_.look_through_scene_camera;
   register_builtin_panels(panels_);
@@ -494,11 +559,17 @@ int EditorApp::run() {
   } else if (!config_.last_scene.empty() && fs::exists(config_.last_scene, ec)) {
     open_scene(config_.last_scene);  // a last scene that no longer loads is only a message
   }
+  session_->offer_recovery();  // after the scene opened: recovering replaces it
 
   auto start = std::chrono::steady_clock::now();
   auto last = start;
-  while (!window_->should_close() && !ctx_->quit_requested) {
+  while (!session_->quit_approved()) {
     glfwPollEvents();
+    if (window_->should_close()) {
+      // The window's close button is a quit like any other: it asks first when work is unsaved.
+      glfwSetWindowShouldClose(window_->handle(), GLFW_FALSE);
+      if (!session_->prompt()) ctx_->attempt([&] { session_->request(GuardedAction::quit); });
+    }
     auto now = std::chrono::steady_clock::now();
     double dt = std::chrono::duration<double>(now - last).count();
     last = now;
@@ -513,8 +584,10 @@ int EditorApp::run() {
         script_failed_ = true;
       }
     }
-    if (script_failed_) break;
+    if (script_failed_ || session_->quit_approved()) break;
     follow_world();  // a script line may have opened another scene
+    session_->tick(std::chrono::duration<double>(now - start).count());
+    for (const GuardMessage& m : session_->take_messages()) m.error ? ctx_->log.error(m.text) : ctx_->log.info(m.text);
 
     TimelineState& tl = ctx_->timeline;
     double duration = doc_->sequence().duration_s;
@@ -559,10 +632,12 @@ int EditorApp::run() {
     ++frame_index_;
     if (script_failed_) break;
   }
+  for (const GuardMessage& m : session_->take_messages()) m.error ? ctx_->log.error(m.text) : ctx_->log.info(m.text);
   save_config();
   // GL objects go while the context is current: renderer, worlds, then ImGui, then the window.
   renderer_.reset();
   ctx_.reset();
+  session_.reset();
   presets_.reset();
   doc_.reset();
   imgui_.reset();

@@ -2,6 +2,11 @@
 
 namespace welkin::editor {
 
+DocumentPart part_of(EditTarget target) {
+  // Painted maps are written with the scene, so they belong to it.
+  return target == EditTarget::sequence ? DocumentPart::sequence : DocumentPart::scene;
+}
+
 void CommandHistory::record(Edit edit, std::string label, bool continuous) {
   steps_.resize(cursor_);  // a new edit forgets what could have been redone
   if (continuous) {
@@ -11,7 +16,10 @@ void CommandHistory::record(Edit edit, std::string label, bool continuous) {
     }
   }
   seal();
-  steps_.push_back(HistoryStep{.label = std::move(label), .edits = {std::move(edit)}, .open = continuous});
+  // A merged edit stays in its step, so the step's versions stay right: it touches the same slot.
+  std::array<PartVersion, kDocumentParts> versions{version(DocumentPart::scene), version(DocumentPart::sequence)};
+  versions[size_t(part_of(edit.target))] = fresh_version();
+  steps_.push_back(HistoryStep{.label = std::move(label), .edits = {std::move(edit)}, .open = continuous, .versions = versions});
   cursor_ = steps_.size();
   trim();
 }
@@ -33,6 +41,7 @@ void CommandHistory::trim() {
   size_t drop = 0;
   while (steps_.size() - drop > 1 && (steps_.size() - drop > kMaxSteps || bytes > kMaxMapBytes)) bytes -= map_bytes(steps_[drop++]);
   if (drop == 0) return;
+  base_versions_ = steps_[drop - 1].versions;
   steps_.erase(steps_.begin(), steps_.begin() + long(drop));
   cursor_ = cursor_ > drop ? cursor_ - drop : 0;
 }
@@ -58,6 +67,7 @@ void CommandHistory::seal() {
 void CommandHistory::clear() {
   steps_.clear();
   cursor_ = 0;
+  for (PartVersion& v : base_versions_) v = fresh_version();
 }
 
 }  // namespace welkin::editor

@@ -1,6 +1,8 @@
 #pragma once
 // The undo/redo history: a list of steps (each one or more edits) and a cursor. The history only
 // records; EditorDocument applies edits and asks the history which step to apply next.
+#include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -8,10 +10,21 @@
 
 namespace welkin::editor {
 
+// The two parts of a document that are saved to different files: the scene (with its painted
+// maps) and the timeline's sequence. Each is dirty or clean on its own.
+enum class DocumentPart { scene = 0, sequence = 1 };
+inline constexpr size_t kDocumentParts = 2;
+DocumentPart part_of(EditTarget target);
+
+// Names what a part holds after some step. Equal versions mean the same content; a version is
+// never reused, so a new edit after undoing to a saved point is not mistaken for it.
+using PartVersion = uint64_t;
+
 struct HistoryStep {
   std::string label;
   std::vector<Edit> edits;
   bool open = false;  // a continuous edit (slider drag) still merging into this step
+  std::array<PartVersion, kDocumentParts> versions{};  // each part's version once this step is done
 };
 
 class CommandHistory {
@@ -36,7 +49,14 @@ class CommandHistory {
 
   const std::vector<HistoryStep>& steps() const { return steps_; }
   size_t cursor() const { return cursor_; }
+  // Forgets every step. Each part gets a fresh version that no earlier one equals.
   void clear();
+
+  // What `part` holds at the cursor. The document keeps the version it last saved or loaded and
+  // compares: undoing back to that point makes the part clean again.
+  PartVersion version(DocumentPart part) const {
+    return cursor_ > 0 ? steps_[cursor_ - 1].versions[size_t(part)] : base_versions_[size_t(part)];
+  }
 
   // Oldest steps are dropped beyond this many (each holds JSON copies of the values it touched),
   // or while the texels painted maps' steps hold exceed kMaxMapBytes (the newest step always stays).
@@ -45,8 +65,13 @@ class CommandHistory {
   void trim();
 
  private:
+  PartVersion fresh_version() { return ++last_version_; }
+
   std::vector<HistoryStep> steps_;
   size_t cursor_ = 0;  // steps_[0, cursor_) are done; the rest can be redone
+  // Versions before steps_[0]: at the start, after clear(), or of the newest step trim() dropped.
+  std::array<PartVersion, kDocumentParts> base_versions_{};
+  PartVersion last_version_ = 0;
 };
 
 }  // namespace welkin::editor

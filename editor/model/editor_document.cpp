@@ -36,36 +36,50 @@ EditorDocument::~EditorDocument() = default;
 
 // --- Scene -------------------------------------------------------------------------------------
 
-void EditorDocument::new_scene() {
-  world_ = make_world_();
-  ++world_generation_;
-  ids_.clear();
-  history_.clear();
-  selected_ = kNoEntity;
-  scene_path_.clear();
-  dirty_ = false;
-}
+void EditorDocument::new_scene() { replace_world(make_world_(), ""); }
 
-void EditorDocument::load_scene(const std::string& path) {
-  // Load into a fresh world first: a bad file leaves the open scene untouched.
-  std::unique_ptr<World> fresh = make_world_();
-  load_scene_file(*fresh, path);
-  world_ = std::move(fresh);
+void EditorDocument::replace_world(std::unique_ptr<World> world, const std::string& path) {
+  // The history goes with the old world, but the sequence stays open: whether it is saved must
+  // survive the clear (a dirty one stays dirty, with no version to undo back to).
+  const bool sequence_was_dirty = sequence_dirty();
+  world_ = std::move(world);
   ++world_generation_;
   ids_.clear();
   ids_.sync(world_->registry());
   history_.clear();
   selected_ = kNoEntity;
   scene_path_ = path;
-  dirty_ = false;
+  mark_saved(DocumentPart::scene);  // a new scene has nothing to lose; a loaded one matches its file
+  if (sequence_was_dirty) mark_unsaved(DocumentPart::sequence);
+  else mark_saved(DocumentPart::sequence);
+}
+
+void EditorDocument::load_scene(const std::string& path) {
+  // Load into a fresh world first: a bad file leaves the open scene untouched.
+  std::unique_ptr<World> fresh = make_world_();
+  load_scene_file(*fresh, path);
+  replace_world(std::move(fresh), path);
 }
 
 void EditorDocument::save_scene(const std::string& path) {
+  history_.seal();  // a drag still merging would change the scene after it was marked saved
   // The maps first: a scene is never saved naming a painted map that was not written.
   if (PaintedMaps* maps = world_->find_resource<PaintedMaps>()) maps->save_unsaved();
   save_scene_file(*world_, path);
   scene_path_ = path;
-  dirty_ = false;
+  mark_saved(DocumentPart::scene);
+}
+
+void EditorDocument::recover_scene(const std::string& file, const std::string& original_path) {
+  load_scene(file);
+  scene_path_ = original_path;
+  mark_unsaved(DocumentPart::scene);
+}
+
+void EditorDocument::recover_sequence(const std::string& file, const std::string& original_path) {
+  set_sequence(load_sequence_file(file), "Recover sequence");
+  sequence_path_ = original_path;
+  mark_unsaved(DocumentPart::sequence);
 }
 
 // --- Entities ----------------------------------------------------------------------------------
@@ -250,7 +264,6 @@ void EditorDocument::execute(Edit edit, const std::string& label, bool continuou
   // undo/redo reproduce exactly what the user saw.
   if (edit.target == EditTarget::field) edit.after = get_field(edit.entity, edit.component, edit.path);
   history_.record(std::move(edit), label, continuous);
-  dirty_ = true;
 }
 
 bool EditorDocument::undo() {
@@ -259,7 +272,6 @@ bool EditorDocument::undo() {
   if (!step) return false;
   for (auto it = step->edits.rbegin(); it != step->edits.rend(); ++it) apply(*it, it->before);
   history_.moved_back();
-  dirty_ = true;
   return true;
 }
 
@@ -269,7 +281,6 @@ bool EditorDocument::redo() {
   if (!step) return false;
   for (const Edit& e : step->edits) apply(e, e.after);
   history_.moved_forward();
-  dirty_ = true;
   return true;
 }
 
@@ -368,7 +379,6 @@ bool EditorDocument::paint_map(const std::string& file, const BrushStamp& stamp,
   if (stroke) paste_region(before, earlier);
   apply_brush(map, stamp);
   PaintedMaps::touched(map);
-  dirty_ = true;
   edit.before = region_to_json(before);
   edit.after = region_to_json(copy_region(map, bounds.x, bounds.y, bounds.width, bounds.height));
   if (stroke) {
@@ -386,12 +396,16 @@ bool EditorDocument::paint_map(const std::string& file, const BrushStamp& stamp,
 void EditorDocument::load_sequence(const std::string& path) {
   Sequence loaded = load_sequence_file(path);
   set_sequence(std::move(loaded), "Load sequence " + path);
+  history_.seal();
   sequence_path_ = path;
+  mark_saved(DocumentPart::sequence);  // it matches its file; undoing the load makes it dirty
 }
 
 void EditorDocument::save_sequence(const std::string& path) {
+  history_.seal();
   save_sequence_file(path, sequence_);
   sequence_path_ = path;
+  mark_saved(DocumentPart::sequence);
 }
 
 // Each track goes through welkin::apply_sequence on its own (as the engine plays it), so one

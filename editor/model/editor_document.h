@@ -39,8 +39,19 @@ class EditorDocument {
   const World& world() const { return *world_; }
   // Bumped whenever the world object is replaced (renderers built over the old one must go).
   uint64_t world_generation() const { return world_generation_; }
-  // Something changed since the scene was loaded or saved.
-  bool dirty() const { return dirty_; }
+  // The scene (with its painted maps) or the sequence differs from what was last loaded or saved.
+  // Each follows the undo position: undoing back to the saved point makes it clean again.
+  bool scene_dirty() const { return history_.version(DocumentPart::scene) != saved_[size_t(DocumentPart::scene)]; }
+  bool sequence_dirty() const { return history_.version(DocumentPart::sequence) != saved_[size_t(DocumentPart::sequence)]; }
+  bool dirty() const { return scene_dirty() || sequence_dirty(); }
+  // What each part holds now (CommandHistory::version): an autosave notes it to skip writing twice.
+  PartVersion version(DocumentPart part) const { return history_.version(part); }
+
+  // Crash recovery (model/autosave.h): the scene read from `file`, but named `original_path` (empty
+  // for a scene never saved) and dirty, since it holds edits that file does not. History cleared.
+  void recover_scene(const std::string& file, const std::string& original_path);
+  // The sequence read from `file`, named `original_path` and dirty; one undo step.
+  void recover_sequence(const std::string& file, const std::string& original_path);
 
   // --- Entities and selection ------------------------------------------------------------------
   std::vector<EntityRow> entities();
@@ -102,6 +113,11 @@ class EditorDocument {
 
  private:
   void execute(Edit edit, const std::string& label, bool continuous);
+  // Replaces the world and forgets the history; a clean sequence stays clean.
+  void replace_world(std::unique_ptr<World> world, const std::string& path);
+  void mark_saved(DocumentPart part) { saved_[size_t(part)] = history_.version(part); }
+  void mark_unsaved(DocumentPart part) { saved_[size_t(part)] = kNeverSaved; }
+  static constexpr PartVersion kNeverSaved = ~PartVersion(0);  // no history version equals it
   void apply(const Edit& edit, const nlohmann::json& value);
   nlohmann::json entity_snapshot(EntityId id) const;
   Entity require_entity(EntityId id) const;
@@ -115,7 +131,7 @@ class EditorDocument {
   CommandHistory history_;
   Sequence sequence_;
   std::string sequence_path_;
-  bool dirty_ = false;
+  std::array<PartVersion, kDocumentParts> saved_{};  // each part's version when last loaded or saved
 };
 
 }  // namespace welkin::editor

@@ -339,9 +339,70 @@ bool run_document_verb(EditorDocument& doc, PresetLibrary& presets, const Script
   return true;
 }
 
+bool run_session_verb(SessionGuard& guard, EditorDocument& doc, const ScriptLine& line) {
+  const std::string& v = line.verb;
+  const auto& a = line.args;
+  if (v == "quit") {
+    require_args(line, 0, 0, "quit");
+    guard.request(GuardedAction::quit);
+  } else if (v == "new-scene") {
+    require_args(line, 0, 0, "new-scene");
+    guard.request(GuardedAction::new_scene);
+  } else if (v == "load-scene") {
+    require_args(line, 1, 1, "load-scene PATH");
+    guard.request(GuardedAction::open_scene, a[0]);
+  } else if (v == "load-sequence") {
+    require_args(line, 1, 1, "load-sequence PATH");
+    guard.request(GuardedAction::open_sequence, a[0]);
+  } else if (v == "save-scene") {
+    require_args(line, 1, 1, "save-scene PATH");
+    guard.request(GuardedAction::save_scene_as, a[0]);
+  } else if (v == "answer") {
+    require_args(line, 1, 1, "answer save|discard|cancel|overwrite|recover");
+    std::optional<Answer> answer = answer_named(a[0]);
+    if (!answer) line_error(line, "expected save, discard, cancel, overwrite or recover, found '" + a[0] + "'");
+    guard.answer(*answer);
+  } else if (v == "expect-prompt") {
+    require_args(line, 1, 2, "expect-prompt none|unsaved|overwrite|recover [scene|sequence|scene+sequence]");
+    const std::optional<Prompt>& p = guard.prompt();
+    if (a[0] == "none") {
+      if (p) line_error(line, "expected no prompt, found '" + prompt_text(*p) + "'");
+    } else {
+      std::optional<PromptKind> kind = prompt_kind_named(a[0]);
+      if (!kind) line_error(line, "expected none, unsaved, overwrite or recover, found '" + a[0] + "'");
+      if (!p || p->kind != *kind) line_error(line, "expected a " + a[0] + " prompt, found " + (p ? "'" + prompt_text(*p) + "'" : "none"));
+      if (a.size() == 2) {
+        const std::string parts = a[1] == "scene+sequence" ? "scene and sequence" : a[1];
+        if (describe_parts(p->scene, p->sequence) != parts)
+          line_error(line, "expected the prompt to name the " + parts + ", found '" + prompt_text(*p) + "'");
+      }
+    }
+  } else if (v == "expect-dirty") {
+    require_args(line, 2, 2, "expect-dirty scene|sequence yes|no");
+    if (a[0] != "scene" && a[0] != "sequence") line_error(line, "expected scene or sequence, found '" + a[0] + "'");
+    if (a[1] != "yes" && a[1] != "no") line_error(line, "expected yes or no, found '" + a[1] + "'");
+    const bool dirty = a[0] == "scene" ? doc.scene_dirty() : doc.sequence_dirty();
+    if (dirty != (a[1] == "yes"))
+      line_error(line, "expected the " + a[0] + (a[1] == "yes" ? " to have unsaved changes, it has none" : " to be saved, it has unsaved changes"));
+  } else if (v == "autosave-now") {
+    require_args(line, 0, 0, "autosave-now");
+    guard.autosave_now();
+  } else {
+    return false;
+  }
+  return true;
+}
+
+bool verb_allowed_during_prompt(const std::string& verb) {
+  for (const char* v : {"answer", "expect-prompt", "expect-dirty", "wait", "crash", "screenshot", "screenshot-window"})
+    if (verb == v) return true;
+  return false;
+}
+
 const char* script_verbs_help() {
   return R"(Script verbs (one per line; '#' comments; "quotes" group words; $VAR from the environment):
-  load-scene PATH | save-scene PATH | new-scene
+  load-scene PATH | save-scene PATH | new-scene   ask first (a prompt) when they would lose or
+                                      overwrite work, as the menus do
   select NAME | add-entity NAME | remove-entity [NAME] | rename-entity NEW_NAME
   add-component COMPONENT | remove-component COMPONENT          (on the selected entity)
   set COMPONENT/FIELD/PATH VALUE      value as JSON, else text; on the selected entity if it has
@@ -366,7 +427,20 @@ const char* script_verbs_help() {
                                       top-left, at the brush's altitude
   fly FORWARD RIGHT UP LOOK_DX LOOK_DY SECONDS   one step of the fly camera (WASD/QE axes, mouse px)
   show-preset MODULE NAME             show a preset's details (file, error, differing fields)
-  resize WIDTH HEIGHT | wait FRAMES | quit
+  resize WIDTH HEIGHT | wait FRAMES
+  quit                                asks first when the scene or sequence has unsaved changes;
+                                      a script whose last line is an unanswered quit quits without saving
+  answer save|discard|cancel          the unsaved-changes prompt (save writes to the files they came from)
+  answer overwrite|cancel             the save-as prompt for a file that exists
+  answer recover|discard              the prompt at start offering the last session's autosave
+  expect-prompt none|unsaved|overwrite|recover [scene|sequence|scene+sequence]   fails unless that
+                                      prompt waits (naming those parts); while one waits only answer,
+                                      expect-*, wait, crash and screenshots run
+  expect-dirty scene|sequence yes|no  fails unless that part has (yes) or lacks (no) unsaved changes
+  close-window                        as the window's close button: the next frame asks like quit
+  autosave-now                        write the autosave now (normally 30 s after an unsaved edit)
+  crash                               exit at once with status 70, as a crash would: no prompt, no
+                                      cleanup, the autosave left behind (to test recovery)
 )";
 }
 

@@ -8,6 +8,7 @@
 
 #include "model/editor_document.h"
 #include "model/preset_library.h"
+#include "model/session_guard.h"
 
 namespace welkin::editor {
 
@@ -34,6 +35,14 @@ std::vector<ScriptLine> load_script(const std::string& path);
 // Runs a verb that needs only the document and the presets; appends anything it prints to
 // `output`. Returns false when the verb is not one of these. Throws Error on failure.
 bool run_document_verb(EditorDocument& doc, PresetLibrary& presets, const ScriptLine& line, std::string& output);
+
+// Runs a verb that goes through the session guard: the actions that may drop or overwrite work
+// (quit, new-scene, load-scene, load-sequence, save-scene; they raise its prompts) and the verbs
+// that answer and check them (answer, expect-prompt, expect-dirty, autosave-now). Returns false for
+// any other verb. Throws Error on failure. Shadows run_document_verb's verbs of the same names.
+bool run_session_verb(SessionGuard& guard, EditorDocument& doc, const ScriptLine& line);
+// While a prompt waits, a script may only answer or check it (or wait, or take screenshots).
+bool verb_allowed_during_prompt(const std::string& verb);
 
 // One line per verb, for --help and error messages.
 const char* script_verbs_help();

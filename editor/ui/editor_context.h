@@ -1,7 +1,7 @@
 #pragma once
 // What every panel works with: the document and presets (the model), the viewport's camera and
-// frame statistics, the timeline's playhead, the message log, and requests for the application
-// (screenshots, quitting) that it carries out between frames.
+// frame statistics, the timeline's playhead, the message log, the session guard (prompts before
+// work is lost) and requests for the application (screenshots) that it carries out between frames.
 #include <array>
 #include <optional>
 #include <string>
@@ -11,6 +11,7 @@
 #include "model/fly_camera.h"
 #include "model/map_painting.h"
 #include "model/preset_library.h"
+#include "model/session_guard.h"
 #include "ui/message_log.h"
 #include "welkin/gfx/renderer.h"
 
@@ -74,6 +75,7 @@ struct MapBrushState {
 struct EditorContext {
   EditorDocument& doc;
   PresetLibrary& presets;
+  SessionGuard& session;  // quit, open and new go through it: it asks before unsaved work is lost
   ViewportState viewport;
   FrameStats stats;
   TimelineState timeline;
@@ -81,7 +83,6 @@ struct EditorContext {
   MapBrushState map_brush;
   MessageLog log;
   std::vector<std::string> screenshot_requests;  // viewport images to write after this frame
-  bool quit_requested = false;
 
   // Runs an edit, turning a rejected value into a message instead of an exception.
   template <class Fn> bool attempt(Fn&& fn) {

@@ -179,7 +179,7 @@ void draw_timeline_panel(EditorContext& ctx) {
   ImGui::SetNextItemWidth(label_width);
   ImGui::InputText("##file", &s.file);
   ImGui::SameLine();
-  if (ImGui::Button("load")) ctx.attempt([&] { doc.load_sequence(s.file); });
+  if (ImGui::Button("load")) ctx.attempt([&] { ctx.session.request(GuardedAction::open_sequence, s.file); });
   ImGui::SameLine();
   if (ImGui::Button("save")) {
     if (ctx.attempt([&] { doc.save_sequence(s.file); })) ctx.log.info("saved " + s.file);

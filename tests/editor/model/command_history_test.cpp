@@ -70,4 +70,34 @@ TEST(CommandHistory, KeepsAtMostMaxSteps) {
   EXPECT_EQ(h.steps().front().edits[0].before, json(10));
 }
 
+// Versions: what the document compares with its saved point to tell dirty from clean.
+TEST(CommandHistory, EachPartsVersionChangesOnlyWithItsOwnEdits) {
+  CommandHistory h;
+  const PartVersion scene0 = h.version(DocumentPart::scene), sequence0 = h.version(DocumentPart::sequence);
+  h.record(field_edit("ev100", 10, 11), "set", false);
+  EXPECT_NE(h.version(DocumentPart::scene), scene0);
+  EXPECT_EQ(h.version(DocumentPart::sequence), sequence0);
+  const PartVersion scene1 = h.version(DocumentPart::scene);
+  h.record(Edit{.target = EditTarget::sequence, .before = json::object(), .after = json{{"k", 1}}}, "key", false);
+  EXPECT_EQ(h.version(DocumentPart::scene), scene1);
+  EXPECT_NE(h.version(DocumentPart::sequence), sequence0);
+  h.moved_back();
+  h.moved_back();
+  EXPECT_EQ(h.version(DocumentPart::scene), scene0);  // undone: the same as before the edits
+  EXPECT_EQ(h.version(DocumentPart::sequence), sequence0);
+}
+
+TEST(CommandHistory, TrimmingAndClearingNeverBringBackAnOldVersion) {
+  CommandHistory h;
+  const PartVersion start = h.version(DocumentPart::scene);
+  for (size_t i = 0; i <= CommandHistory::kMaxSteps; ++i) h.record(field_edit("ev100", int(i), int(i) + 1), "set", false);
+  ASSERT_EQ(h.steps().size(), CommandHistory::kMaxSteps);  // the first step was dropped
+  while (h.can_undo()) h.moved_back();
+  EXPECT_NE(h.version(DocumentPart::scene), start);  // still one edit past the start
+  const PartVersion before_clear = h.version(DocumentPart::scene);
+  h.clear();
+  EXPECT_NE(h.version(DocumentPart::scene), before_clear);
+  EXPECT_NE(h.version(DocumentPart::scene), start);
+}
+
 }  // namespace
