@@ -41,8 +41,8 @@ clouds::VolumetricClouds measured_clouds() {
   clouds::VolumetricClouds c;
   c.layers = {clouds::CloudLayer{.genus = clouds::Genus::cumulus, .base_altitude_m = 1500.0f, .thickness_m = 1200.0f,
                                  .coverage = 0.6f, .density_per_m = 0.03f}};
-  c.shadows = false;
   c.weather_system_amount = 0.0f;  // the layer's own coverage everywhere: the lighting is what is measured
+  // Shadows on (the default): the march reads the optical depth beyond its light steps from the shadow map.
   return c;
 }
 

@@ -118,7 +118,7 @@ ResolvedQuality resolve_quality(const VolumetricClouds& c) {
   switch (c.quality) {
     case Quality::low: return {64, 120.0f, 2000.0f, 2, 150.0f, false, 0.25f, 0.012f, 4, false};
     case Quality::medium: return {128, 70.0f, 1200.0f, 3, 100.0f, true, 0.4f, 0.008f, 4, false};
-    case Quality::high: return {256, 40.0f, 800.0f, 4, 80.0f, true, 0.5f, 0.005f, 2, true};
+    case Quality::high: return {256, 40.0f, 800.0f, 3, 80.0f, true, 0.5f, 0.005f, 2, true};
     case Quality::ultra: return {768, 20.0f, 500.0f, 6, 50.0f, true, 1.0f, 0.002f, 2, true};
     case Quality::custom: break;
   }

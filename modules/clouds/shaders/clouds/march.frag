@@ -30,9 +30,11 @@ float scene_distance(vec2 ndc) {
   return length(p.xyz / p.w);
 }
 
-// Optical depth toward the light from x: steps that double from the first light step.
-// The detail noise is left out: it erodes edges the light crosses at most once.
-float light_optical_depth(vec3 x, vec3 l) {
+// Optical depth toward the light from x (in density times metres): steps that double from the
+// first light step, then, toward the sun, the rest of the way from the clouds' shadow map (its
+// optical depth between the sun and where the steps end; layers that cast shadows only). The detail
+// noise is left out: it erodes edges the light crosses at most once.
+float light_optical_depth(vec3 x, vec3 l, float extinction_per_density) {
   float tau = 0.0, s = 0.0, step_m = cl_light.x;
   int n = int(cl_steps.w);
   for (int k = 0; k < n; ++k) {
@@ -40,6 +42,7 @@ float light_optical_depth(vec3 x, vec3 l) {
     s += step_m;
     step_m *= 2.0;
   }
+  if (cl_phase.w < 0.5) tau += clouds_shadow_optical_depth(x + l * s) / max(extinction_per_density, 1e-9);
   return tau;
 }
 
@@ -109,7 +112,7 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
       float along = clamp((t - segment.x) * inverse_length, 0.0, 1.0);
       vec3 up = normalize(mix(up0, up1, along));
       vec3 e_light = mix(e_light0, e_light1, along), e_sky = mix(e_sky0, e_sky1, along);
-      float tau = light_optical_depth(x, l) * extinction_per_density;
+      float tau = light_optical_depth(x, l, extinction_per_density) * extinction_per_density;
       float scattered = 0.0;
       if (cl_light_model.x < 0.5) {
         // Wrenninge 2015: octave k scatters b^k of the light, sees a^k of the optical depth, and a
