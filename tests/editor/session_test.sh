@@ -26,15 +26,8 @@ fail() {
   exit 1
 }
 
-Xvfb -displayfd 3 -screen 0 1280x800x24 -nolisten tcp 3> "$OUT/display" 2> "$OUT/xvfb.log" &
-XVFB_PID=$!
-for _ in $(seq 100); do
-  [ -s "$OUT/display" ] && break
-  kill -0 "$XVFB_PID" 2> /dev/null || { cat "$OUT/xvfb.log" >&2; fail "Xvfb did not start"; }
-  sleep 0.1
-done
-[ -s "$OUT/display" ] || fail "Xvfb gave no display number"
-export DISPLAY=":$(head -n1 "$OUT/display")"
+. "$(dirname "$0")/xvfb_display.sh"
+start_private_xvfb "$OUT" 1280x800x24 || fail "no display"
 export SESSION_OUT="$OUT"
 cd "$SOURCE_DIR" || fail "no source dir $SOURCE_DIR"
 

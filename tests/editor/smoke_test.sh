@@ -26,16 +26,8 @@ fail() {
   exit 1
 }
 
-# Xvfb picks a free display itself and writes its number to fd 3 once it accepts clients.
-Xvfb -displayfd 3 -screen 0 1600x900x24 -nolisten tcp 3> "$OUT/display" 2> "$OUT/xvfb.log" &
-XVFB_PID=$!
-for _ in $(seq 100); do
-  [ -s "$OUT/display" ] && break
-  kill -0 "$XVFB_PID" 2> /dev/null || { cat "$OUT/xvfb.log" >&2; fail "Xvfb did not start"; }
-  sleep 0.1
-done
-[ -s "$OUT/display" ] || fail "Xvfb gave no display number"
-export DISPLAY=":$(head -n1 "$OUT/display")"
+. "$(dirname "$0")/xvfb_display.sh"
+start_private_xvfb "$OUT" 1600x900x24 || fail "no display"
 echo "smoke_test: Xvfb on $DISPLAY"
 
 # The editor state goes to the scratch folder, never to the user's config.

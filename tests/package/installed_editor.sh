@@ -9,11 +9,8 @@ command -v Xvfb > /dev/null || { echo "installed_editor: Xvfb not installed; ski
 mkdir -p "$WORK"
 XVFB_PID=""
 trap '[ -n "$XVFB_PID" ] && kill "$XVFB_PID" 2> /dev/null' EXIT
-Xvfb -displayfd 3 -screen 0 640x480x24 -nolisten tcp 3> "$WORK/display" 2> "$WORK/xvfb.log" &
-XVFB_PID=$!
-for _ in $(seq 100); do [ -s "$WORK/display" ] && break; sleep 0.1; done
-[ -s "$WORK/display" ] || { echo "installed_editor: Xvfb gave no display" >&2; exit 1; }
-export DISPLAY=":$(head -n1 "$WORK/display")"
+. "$(dirname "$0")/../editor/xvfb_display.sh"
+start_private_xvfb "$WORK" 640x480x24 || exit 1
 cat > "$WORK/edit.script" <<SCRIPT
 select ball
 set core.DebugShape/albedo [0.25, 0.5, 0.75]
