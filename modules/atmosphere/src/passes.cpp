@@ -3,6 +3,7 @@
 // sky behind everything and aerial perspective on the geometry in front of it.
 #include <cmath>
 
+#include "welkin/atmosphere/ground_region.h"
 #include "welkin/atmosphere/gpu.h"
 #include "welkin/core/error.h"
 #include "welkin/core/world.h"
@@ -333,6 +334,11 @@ void background_system(SystemContext& sc) {
   sky["ATM_SKY_GROUND_LIGHT"] = env->shades_surfaces() ? "1" : "0";
   ShaderDefines discs = sky;
   discs["ATM_SKY_DISCS"] = "1";
+  // With the ground's light: the sky without it everywhere, then the ground's shading over the part
+  // of the frame where rays can meet the ground (a branch would cost every pixel on a software rasteriser).
+  ShaderDefines open_sky = sky;
+  open_sky["ATM_SKY_GROUND_LIGHT"] = "0";
+  const PixelRect ground = sky.at("ATM_SKY_GROUND_LIGHT") == "1" ? ground_pixel_rect(u, rc.view.width, rc.view.height) : PixelRect{};
   const bool any_disc = u.flags.x > 0.5f || u.flags.z > 0.5f;
   // Stars only while the sun is below the camera's horizon, or from space: in daylight the sky
   // outshines them, and the pass would cost every frame for nothing.
@@ -350,16 +356,23 @@ void background_system(SystemContext& sc) {
         b.read(t.color);
         b.write(t.color);
       },
-      [gp, rcp, env, t, pixel_angle, sky, discs, any_disc, draw_stars, stars_draw](PassContext& pc) {
+      [gp, rcp, env, t, pixel_angle, sky, open_sky, ground, discs, any_disc, draw_stars, stars_draw](PassContext& pc) {
         Framebuffer fb(&pc.texture(t.color), nullptr);
         fb.bind();
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_BLEND);
-        if (sky.at("ATM_SKY_GROUND_LIGHT") == "1") env->bind();
+        const bool ground_light = sky.at("ATM_SKY_GROUND_LIGHT") == "1";
+        if (ground_light) env->bind();
         bind_for_materials(*gp);
-        const Program& p = rcp->shaders.graphics("atmosphere/sky.vert", "atmosphere/sky.frag", sky);
-        p.use();
+        rcp->shaders.graphics("atmosphere/sky.vert", "atmosphere/sky.frag", ground_light ? open_sky : sky).use();
         rcp->draw_fullscreen_triangle();
+        if (!ground.empty()) {
+          glEnable(GL_SCISSOR_TEST);
+          glScissor(ground.x0, ground.y0, ground.x1 - ground.x0, ground.y1 - ground.y0);
+          rcp->shaders.graphics("atmosphere/sky.vert", "atmosphere/sky.frag", sky).use();
+          rcp->draw_fullscreen_triangle();
+          glDisable(GL_SCISSOR_TEST);
+        }
         if (any_disc) {
           // Overwrites its squares with sky + disc (no blending: the sum must be fitted to RGBA16F).
           const Program& d = rcp->shaders.graphics("atmosphere/sky.vert", "atmosphere/sky.frag", discs);
