@@ -6,6 +6,12 @@ function(welkin_add_test)
   target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main welkin_warnings)
   target_compile_definitions(${T_NAME} PRIVATE
     WELKIN_SOURCE_DIR="${PROJECT_SOURCE_DIR}" WELKIN_BINARY_DIR="${PROJECT_BINARY_DIR}")
+  # In the fuzz build (clang, instrumented libraries) the tests run under ASan and UBSan too:
+  # tests/runtime/assets/run_fuzz.sh builds and runs the runtime's and the assets' there.
+  if(WELKIN_FUZZ)
+    target_compile_options(${T_NAME} PRIVATE ${WELKIN_FUZZ_SANITIZERS} -fno-omit-frame-pointer)
+    target_link_options(${T_NAME} PRIVATE ${WELKIN_FUZZ_SANITIZERS})
+  endif()
   include(GoogleTest)
   gtest_discover_tests(${T_NAME} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR} DISCOVERY_TIMEOUT 60)
   # Labels are set by a script ctest reads after the discovered tests, from the list of their names

@@ -64,6 +64,17 @@ int main(int argc, char** argv) {
       fs::path(WELKIN_SOURCE_DIR) / "tests/runtime/assets/data/grid-draco-gltf-pipeline.glb";
   std::error_code ec;
   fs::copy_file(third, dir / "gltf-pipeline.glb", fs::copy_options::overwrite_existing, ec);
+  // External files (the fuzzer's scratch folder holds buffer.bin and image.png): a triangle from
+  // buffer.bin (36 bytes of positions, then uint16 indices) and a texture from image.png.
+  put("external.gltf",
+      R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+      R"("buffers":[{"uri":"buffer.bin","byteLength":1080}],)"
+      R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":6}],)"
+      R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},)"
+      R"({"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"}],)"
+      R"("images":[{"uri":"image.png"}],"textures":[{"source":0}],)"
+      R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}],)"
+      R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1,"material":0}]}]})");
   put("minimal.gltf",
       R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"matrix":[1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1]}]})");
   return 0;

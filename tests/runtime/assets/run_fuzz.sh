@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds the fuzz targets with clang (libFuzzer + ASan + UBSan) in their own build folder and runs each
 # for SECONDS: the glTF loader on a seed corpus of generated files, OpenSubdiv refinement on small
-# control meshes, then the scene, sequence and preset JSON readers on the shipped documents.
+# control meshes, then the scene, sequence and preset JSON readers on the shipped documents; then the
+# runtime's unit tests, built in the same folder, under ASan and UBSan.
 # Usage: run_fuzz.sh [SECONDS (default 30)] [BUILD_DIR]
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -55,3 +56,11 @@ printf '\003{"shape": "box", "size_m": [1, 2, 3]}' > "$json_corpus/shape.json"
 ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 "$build/bin/welkin_json_fuzzer" \
   -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 -max_len=1048576 \
   -artifact_prefix="$build/fuzz-artifacts/" "$json_corpus"
+
+# The runtime's own unit tests (ECS, reflection, plugins, bounded file reads, scenes, JSON limits,
+# painted maps) built in the same instrumented folder: under ASan and UBSan, any undefined behaviour
+# (an integer overflow, a bad shift or cast) stops the test binary with a report.
+cmake --build "$build" -j"$jobs" --target welkin_runtime_core_tests welkin_runtime_scene_tests
+for t in welkin_runtime_core_tests welkin_runtime_scene_tests; do
+  (cd "$root" && UBSAN_OPTIONS=print_stacktrace=1 ASAN_OPTIONS=detect_leaks=1 "$build/bin/$t" --gtest_brief=1)
+done
