@@ -64,7 +64,7 @@ void check_png_inflated_size(std::span<const uint8_t> png, const Source& src, co
   } end{z};
   std::array<uint8_t, 64 * 1024> scratch;
   uint64_t allowed = 0, inflated = 0;
-  bool have_header = false, apple_cgbi = false, stream_ended = false;
+  bool have_header = false, apple_cgbi = false, stream_ended = false, idat_data_seen = false;
   size_t zlib_header_left = 2;
   std::string dims;
   for (size_t pos = 8; pos + 12 <= png.size() && !stream_ended;) {
@@ -84,6 +84,11 @@ void check_png_inflated_size(std::span<const uint8_t> png, const Source& src, co
       have_header = true;
       if (apple_cgbi) zlib_header_left = 0;
     } else if (std::memcmp(type, "IDAT", 4) == 0 && have_header) {
+      // stb_image copies an empty IDAT chunk that comes before any image data through a null buffer
+      // (undefined behaviour, found by the fuzzer under UBSan): such a file is refused here.
+      if (length == 0 && !idat_data_seen)
+        fail(src, path, "PNG image data starting in its first IDAT chunk", "an empty IDAT chunk before the image data");
+      idat_data_seen = true;
       size_t skip = std::min<size_t>(zlib_header_left, length);
       zlib_header_left -= skip;
       z.next_in = const_cast<uint8_t*>(data + skip);

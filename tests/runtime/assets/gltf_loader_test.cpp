@@ -566,7 +566,8 @@ TEST(GltfLoaderErrors, DracoHeaderCountsAreCheckedBeforeDecoding) {
 // A PNG of `w` x `h` RGBA8 whose IDAT stream inflates to `inflated_mib` MiB of zero bytes (filter
 // type 0, black pixels): one deflated MiB of zeros (about 1 KiB, ending on a full flush, so it
 // refers to nothing before it) repeated, then an empty final block and the Adler-32 of the whole.
-std::string png_bomb(uint32_t w, uint32_t h, uint32_t inflated_mib) {
+// With `empty_idat_first`, an empty IDAT chunk comes before the data.
+std::string png_bomb(uint32_t w, uint32_t h, uint32_t inflated_mib, bool empty_idat_first = false) {
   std::vector<uint8_t> zeros(1 << 20, 0), block(1 << 16);
   z_stream z{};
   EXPECT_EQ(deflateInit(&z, 9), Z_OK);
@@ -593,7 +594,8 @@ std::string png_bomb(uint32_t w, uint32_t h, uint32_t inflated_mib) {
     return be32(uint32_t(data.size())) + body + be32(uint32_t(crc));
   };
   const std::string ihdr = be32(w) + be32(h) + std::string("\x08\x06\x00\x00\x00", 5);  // RGBA8
-  return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", ihdr) + chunk("IDAT", idat) + chunk("IEND", "");
+  return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", ihdr) + (empty_idat_first ? chunk("IDAT", "") : "") +
+         chunk("IDAT", idat) + chunk("IEND", "");
 }
 
 ErrorInfo image_error(const std::string& png, const std::string& name) {
@@ -617,6 +619,14 @@ TEST(GltfLoaderErrors, PngInflationIsBoundedByItsHeader) {
   // A 1 x 1 header (5 bytes of scanline) with 64 MiB behind it.
   e = image_error(png_bomb(1, 1, 64), "tiny.glb");
   EXPECT_EQ(e.expected, "PNG image data inflating to at most 5 bytes (its header's 1 x 1)");
+}
+
+TEST(GltfLoaderErrors, PngWithAnEmptyFirstIdatIsRefused) {
+  // stb_image would copy it through a null buffer (undefined behaviour the fuzzer found).
+  const ErrorInfo e = image_error(png_bomb(1, 1, 0, true), "empty-idat.glb");
+  EXPECT_EQ(e.path, "/images/0/bufferView");
+  EXPECT_EQ(e.expected, "PNG image data starting in its first IDAT chunk");
+  EXPECT_EQ(e.found, "an empty IDAT chunk before the image data");
 }
 
 TEST(GltfLoaderErrors, CorruptImage) {
