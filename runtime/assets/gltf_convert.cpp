@@ -255,7 +255,9 @@ class Converter {
     const json* draco = nullptr;
     if (jp.contains("extensions") && jp["extensions"].contains("KHR_draco_mesh_compression"))
       draco = &jp["extensions"]["KHR_draco_mesh_compression"];
-    std::unique_ptr<DracoDecoder> dec;
+    // The attributes a primitive is built from, and their component counts.
+    static constexpr std::pair<const char*, int> kAttributes[] = {{"POSITION", 3}, {"NORMAL", 3}, {"TANGENT", 4}, {"TEXCOORD_0", 2}};
+    DracoMesh decoded;
     const std::string dp = pp + "/extensions/KHR_draco_mesh_compression";
     if (draco) {
       p.draco = true;
@@ -263,29 +265,33 @@ class Converter {
       expected.points = gm_.accessors.at(size_t(pos_it->second)).count;  // all attributes agree (validated)
       if (const int ia = jp.value("indices", -1); ia >= 0)
         expected.indices = int64_t(gm_.accessors.at(size_t(ia)).count);
-      dec = std::make_unique<DracoDecoder>(view_bytes((*draco)["bufferView"].get<int>(), dp + "/bufferView"),
-                                           expected, src_, dp);
+      for (const auto& [name, comps] : kAttributes) {
+        const auto it = gp.attributes.find(name);
+        if (it == gp.attributes.end() || !(*draco)["attributes"].contains(name)) continue;
+        const auto& a = gm_.accessors.at(size_t(it->second));
+        expected.attributes.push_back({.name = name,
+                                       .unique_id = (*draco)["attributes"][name].get<int>(),
+                                       .components = comps,
+                                       .component_type = a.componentType,
+                                       .normalized = a.normalized,
+                                       .path = dp + "/attributes/" + name});
+      }
+      decoded = decode_draco(view_bytes((*draco)["bufferView"].get<int>(), dp + "/bufferView"), expected, src_, dp);
       // Every attribute, used here or not, must have exactly the accessor's count of decoded points.
       for (const auto& [name, accessor] : gp.attributes) {
         const auto& a = gm_.accessors.at(size_t(accessor));
-        if (a.count != dec->mesh().num_points)
+        if (a.count != decoded.num_points)
           fail(src_, pp + "/attributes/" + pointer_key(name),
                std::to_string(a.count) + " vertices (accessor " + std::to_string(accessor) + " count)",
-               std::to_string(dec->mesh().num_points) + " decoded by Draco");
+               std::to_string(decoded.num_points) + " decoded by Draco");
       }
     }
     // Reads one attribute from the Draco stream when compressed there, else from its accessor.
     auto attribute = [&](const char* name, int comps) -> std::vector<float> {
       auto it = gp.attributes.find(name);
       if (it == gp.attributes.end()) return {};
-      const std::string ap = pp + "/attributes/" + name;
-      const auto& a = gm_.accessors.at(size_t(it->second));
-      if (draco && (*draco)["attributes"].contains(name))
-        return dec
-            ->attribute((*draco)["attributes"][name].get<int>(), comps, a.componentType, a.normalized,
-                        dp + "/attributes/" + name)
-            .values;
-      return read_floats(it->second, comps, ap);
+      if (auto d = decoded.attributes.find(name); d != decoded.attributes.end()) return std::move(d->second.values);
+      return read_floats(it->second, comps, pp + "/attributes/" + name);
     };
     const std::vector<float> pos = attribute("POSITION", 3);
     const size_t n = pos.size() / 3;
@@ -307,7 +313,7 @@ class Converter {
     const std::string ip = pp + "/indices";
     const int indices = jp.value("indices", -1);  // tinygltf was given Draco primitives without it
     if (draco) {
-      idx = dec->mesh().indices;
+      idx = std::move(decoded.indices);
       if (indices >= 0 && gm_.accessors.at(size_t(indices)).count != idx.size())
         fail(src_, ip,
              std::to_string(gm_.accessors[size_t(indices)].count) + " indices (accessor " +

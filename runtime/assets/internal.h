@@ -2,6 +2,7 @@
 // Shared between the loader's translation units; not installed.
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <span>
 #include <string>
@@ -89,7 +90,7 @@ void parse_with_tinygltf(tinygltf::Model& out, std::span<const uint8_t> bytes, c
 // Builds the CPU model from tinygltf's model; `doc` is the validated JSON (for extension objects).
 Model convert_model(const tinygltf::Model& gm, const nlohmann::json& doc, const Source& src);
 
-// Draco mesh stream decoded into float attributes by unique id and triangle indices.
+// Draco mesh stream decoded into triangle indices and the float attributes the primitive asked for.
 struct DracoAttribute {
   int components = 0;
   std::vector<float> values;  // num_points * components
@@ -97,32 +98,31 @@ struct DracoAttribute {
 struct DracoMesh {
   uint32_t num_points = 0;
   std::vector<uint32_t> indices;
+  std::map<std::string, DracoAttribute> attributes;  // by glTF attribute name
+};
+// An attribute to read from the stream, converted as its accessor's component type and
+// normalization say.
+struct DracoRequest {
+  std::string name;  // glTF attribute name (POSITION ...)
+  int unique_id = 0;
+  int components = 0;
+  int component_type = 0;
+  bool normalized = false;
+  std::string path;  // for errors
 };
 // What the primitive's accessors declare; the stream's header must agree before it is decoded.
 struct DracoExpected {
   uint64_t points = 0;   // the attribute accessors' count
   int64_t indices = -1;  // the indices accessor's count, -1 when the primitive has none
+  std::vector<DracoRequest> attributes;
 };
 
-class DracoDecoder {
- public:
-  // Throws Error at `path` when the stream is not a valid triangle mesh, exceeds the limits or
-  // disagrees with `expected`; the counts in the stream's header are checked before decoding.
-  DracoDecoder(std::span<const uint8_t> stream, const DracoExpected& expected, const Source& src,
-               const std::string& path);
-  ~DracoDecoder();
-  const DracoMesh& mesh() const { return mesh_; }
-  // Values of the attribute with `unique_id`, converted as the accessor's component type and
-  // normalization say. Throws Error at `path` when the id is missing or has another component count.
-  DracoAttribute attribute(int unique_id, int components, int component_type, bool normalized,
-                           const std::string& path) const;
-
- private:
-  struct Impl;
-  Impl* impl_;
-  DracoMesh mesh_;
-  const Source& src_;
-};
+// Throws Error at `path` when the stream is not a valid triangle mesh, exceeds the limits or
+// disagrees with `expected` (its header's counts are checked before decoding), or at a request's
+// path when that attribute is missing or unconvertible. Draco itself runs in a child process under
+// the time and memory budget the header's counts allow (LoadLimits).
+DracoMesh decode_draco(std::span<const uint8_t> stream, const DracoExpected& expected, const Source& src,
+                       const std::string& path);
 
 // Decodes PNG or JPEG to RGBA8 after checking its header against the limits.
 // `total_bytes` accumulates decoded bytes across images for max_total_image_bytes.

@@ -147,6 +147,53 @@ TEST(GltfLoader, ThirdPartyDracoGlbLoads) {
   EXPECT_GT(m.bounds.min.y, 0.8f);  // node translated by +1
 }
 
+// The third-party grid with one count inside its Draco attribute data (past the header Welkin reads)
+// raised from a small value to 2^21 - 1 (a 3-byte varint over 2 bytes; the stream grows by one byte
+// into the BIN chunk's padding). Draco 1.5.5 then spends about 9 s of CPU and 260 MiB before it
+// fails, whatever the mesh's declared size: the class of input the glTF fuzzer found.
+std::string grid_with_hostile_draco_count() {
+  std::string glb = read_bytes(WELKIN_SOURCE_DIR "/tests/runtime/assets/data/grid-draco-gltf-pipeline.glb");
+  const size_t json_length = 1180, stream_at = 20 + json_length + 8, count_at = 431;
+  const size_t view_length = glb.find("\"byteLength\":459");
+  if (glb.size() != 1672 || view_length == std::string::npos || view_length > 20 + json_length) return {};
+  glb.replace(view_length, 16, "\"byteLength\":460");
+  glb.replace(stream_at + count_at, 2, "\xff\xff\x7f");
+  glb.erase(stream_at + 460, 1);  // one byte less padding: the BIN chunk keeps its length
+  return glb;
+}
+
+TEST(GltfLoader, DracoDecodeIsBoundedInTimeAndMemory) {
+  const std::string glb = grid_with_hostile_draco_count();
+  ASSERT_EQ(glb.size(), 1672u);
+  // The budget a 49-vertex grid gets by default; its own decode takes a millisecond.
+  const ErrorInfo e = memory_error(glb, "hostile.glb");
+  EXPECT_EQ(e.file, "hostile.glb");
+  EXPECT_EQ(e.path, "/meshes/0/primitives/0/extensions/KHR_draco_mesh_compression");
+  EXPECT_NE(e.found.find("s of CPU time"), std::string::npos) << e.found;
+  // Under a memory budget smaller than what Draco reaches for, the same stream fails on memory.
+  LoadOptions small;
+  small.limits.draco_seconds = 60.0;
+  small.limits.draco_memory_bytes = 64ull << 20;
+  const ErrorInfo m = memory_error(glb, "hostile.glb", small);
+  EXPECT_NE(m.found.find("MiB of memory"), std::string::npos) << m.found;
+  // The untouched grid decodes in the child process exactly as before (the same bytes back).
+  const Model ok = load_gltf(WELKIN_SOURCE_DIR "/tests/runtime/assets/data/grid-draco-gltf-pipeline.glb");
+  EXPECT_EQ(ok.meshes.at(0).primitives.at(0).positions.size(), 49u);
+}
+
+// An error the decoding process finds (an attribute id the stream lacks) comes back as one error at
+// that attribute's path.
+TEST(GltfLoader, DracoErrorFromTheDecodingProcessKeepsItsPath) {
+  std::string glb = read_bytes(WELKIN_SOURCE_DIR "/tests/runtime/assets/data/grid-draco-gltf-pipeline.glb");
+  const size_t at = glb.find("\"TEXCOORD_0\":2}");
+  ASSERT_NE(at, std::string::npos);
+  glb.replace(at, 15, "\"TEXCOORD_0\":7}");
+  const ErrorInfo e = memory_error(glb, "ids.glb");
+  EXPECT_EQ(e.file, "ids.glb");
+  EXPECT_EQ(e.path, "/meshes/0/primitives/0/extensions/KHR_draco_mesh_compression/attributes/TEXCOORD_0");
+  EXPECT_EQ(e.found, "7");
+}
+
 TEST(GltfLoader, GltfWithExternalFilesBesideIt) {
   const fs::path dir = temp_dir("external");
   GlbWriter w = textured_grid(false);

@@ -28,6 +28,13 @@ struct LoadLimits {
   int max_image_side = 16384;                   // pixels
   uint64_t max_image_pixels = 1u << 26;         // one image (256 MiB as RGBA8)
   uint64_t max_total_image_bytes = 1ull << 30;  // all decoded images together
+  // Draco decodes in a child process with this budget, plus the per-element terms times the faces
+  // and vertices its header declares (Draco trusts counts deep inside a stream; Welkin cannot check
+  // them without decoding).
+  double draco_seconds = 2.0;
+  double draco_seconds_per_element = 2e-6;
+  uint64_t draco_memory_bytes = 256ull << 20;
+  uint64_t draco_memory_bytes_per_element = 512;
 };
 
 struct LoadOptions {
