@@ -152,6 +152,36 @@ void bind_field(const CloudsGpu& gpu) {
   glBindTextureUnit(7, gpu.systems->id());
 }
 
+// The density field's compile-time description (density.glsl): which layers there are and what each
+// uses, so that no shader carries code for a layer's unused noise or a map the scene lacks. Up to
+// CLOUDS_LOCAL_LAYERS layers; more are read with run-time checks.
+ShaderDefines field_defines(const CloudsGpu& gpu) {
+  constexpr int kLocalLayers = 4;
+  ShaderDefines d = {{"CLOUDS_TURBULENCE", gpu.block.noise_mix.x > 0.0f ? "1" : "0"}};
+  const std::vector<LayerBlock>& layers = gpu.layers;
+  if (layers.empty() || layers.size() > size_t(kLocalLayers)) return d;
+  const bool detail = gpu.block.frame.y > 0.5f, map = gpu.block.map_up.w > 0.5f;
+  int detail_mask = 0, map_mask = 0, shadow_mask = 0;
+  for (size_t i = 0; i < layers.size(); ++i) {
+    const LayerBlock& L = layers[i];
+    if (detail && L.shape.z > 0.0f) detail_mask |= 1 << i;
+    if (map && L.model.w > 0.5f) map_mask |= 1 << i;
+    if (L.model.z > 0.5f) shadow_mask |= 1 << i;
+    // The first layer with the same weather origin and period (the same place: one fetch, other channels).
+    size_t source = i;
+    for (size_t j = 0; j < i && source == i; ++j)
+      if (layers[j].weather == L.weather) source = j;
+    if (i > 0) d["CLOUDS_WEATHER_SOURCE_" + std::to_string(i)] = std::to_string(source);
+  }
+  for (size_t i = layers.size(); i < size_t(kLocalLayers); ++i)
+    if (i > 0) d["CLOUDS_WEATHER_SOURCE_" + std::to_string(i)] = std::to_string(i);
+  d["CLOUDS_LAYERS"] = std::to_string(layers.size());
+  d["CLOUDS_DETAIL_MASK"] = std::to_string(detail_mask);
+  d["CLOUDS_MAP_MASK"] = std::to_string(map_mask);
+  d["CLOUDS_SHADOW_MASK"] = std::to_string(shadow_mask);
+  return d;
+}
+
 // The painted coverage map (the editor's brush), uploaded again only when a stroke changed it; a
 // 1 x 1 neutral texel stands for none.
 void upload_coverage_map(World& world, const VolumetricClouds& clouds, CloudsGpu& gpu, CloudsContext& ctx) {
@@ -367,10 +397,10 @@ void shadow_system(SystemContext& sc) {
         b.write(map);
         b.side_effect();  // read by every material through the light environment
       },
-      [gp, &rc, s, remade, size](PassContext&) {
+      [gp, &rc, s, remade, size, defines = field_defines(gpu)](PassContext&) {
         bind_field(*gp);
         bind_image_for_write(0, *gp->shadow_map);
-        const Program& p = rc.shaders.compute("clouds/shadow_map.comp");
+        const Program& p = rc.shaders.compute("clouds/shadow_map.comp", defines);
         for (int k : remade) {
           const float side = s.axis_v[k].w;
           // The plane through the cascade's centre (camera-relative, this frame).
@@ -401,8 +431,9 @@ void clouds_system(SystemContext& sc) {
   const int w = int(gpu.block.frame.z), h = int(gpu.block.frame.w);
   const FrameView& view = rc.view;
   const char* ap_mode = camera_in_space(world, gpu.block) ? "2" : clouds->aerial_perspective == CloudAerialPerspective::mean_depth ? "1" : "0";
-  // Turbulence is compiled in only where it displaces anything (quality high and ultra, or custom).
-  ShaderDefines defines = {{"CLOUDS_AP_MODE", ap_mode}, {"CLOUDS_TURBULENCE", gpu.block.noise_mix.x > 0.0f ? "1" : "0"}};
+  // The field's layers and what each uses are compiled in, turbulence only where it displaces anything.
+  ShaderDefines defines = field_defines(gpu);
+  defines["CLOUDS_AP_MODE"] = ap_mode;
   const bool temporal = clouds->temporal_upscaling && w >= 2 && h >= 2;
   if (temporal)
     for (int i = 0; i < 2; ++i)

@@ -130,7 +130,6 @@ float clouds_detail_displacement = 0.0;
 // The cloud below the last point clouds_density evaluated: its layers' depth under the point (m),
 // weighted by their density there (the light reflected up from it).
 float clouds_depth_below_m = 0.0;
-vec4 clouds_weather_at = vec4(-1.0), clouds_weather_sample = vec4(0.0);
 float clouds_painted_sample = 2.0;  // > 1: not read yet at this point
 
 // The weather systems' signal where the caller marches: it changes over hundreds of kilometres, so
@@ -160,18 +159,18 @@ float clouds_painted_coverage(vec3 x) {
   return clouds_painted_sample;
 }
 
-float clouds_layer_envelope(CloudLayerGpu L, vec3 x, float h, out float t, out float d0) {
+// The weather sample a layer reads at x (its three genus channels and the base's variation).
+vec4 clouds_weather_fetch(CloudLayerGpu L, vec3 x) {
+  return textureLod(cl_weather_noise, L.weather.xyz + x * L.weather.w, clouds_lod(1.0 / (L.weather.w * 64.0)));
+}
+
+// `w4`: the layer's weather sample at x; `follows_map`: the painted map adds to its coverage.
+float clouds_layer_envelope(CloudLayerGpu L, vec4 w4, bool follows_map, vec3 x, float h, out float t, out float d0) {
   t = 0.0, d0 = 0.0;
-  // Outside the layer's reach (its base can move by the variation): no texture fetch at all.
   if (h < L.altitude.x - L.altitude.z || h > L.altitude.x + L.altitude.y + L.altitude.z) return 0.0;
   float c = clouds_system_coverage(L.shape.x, clouds_system_g);
-  if (L.model.w > 0.5) c = clamp(c + clouds_painted_coverage(x), 0.0, 1.0);
+  if (follows_map) c = clamp(c + clouds_painted_coverage(x), 0.0, 1.0);
   if (c <= 0.0) return 0.0;
-  if (L.weather != clouds_weather_at) {
-    clouds_weather_at = L.weather;
-    clouds_weather_sample = textureLod(cl_weather_noise, L.weather.xyz + x * L.weather.w, clouds_lod(1.0 / (L.weather.w * 64.0)));
-  }
-  vec4 w4 = clouds_weather_sample;
   int channel = int(L.model.y);
   float w = channel == 0 ? w4.r : channel == 1 ? w4.g : w4.b;
   float base = L.altitude.x + L.altitude.z * (w4.a - 0.5) * 2.0;
@@ -189,30 +188,36 @@ float clouds_layer_envelope(CloudLayerGpu L, vec3 x, float h, out float t, out f
   return d0 * envelope * profile;
 }
 
-// Extinction (1/m) of one layer at x; `detail` adds the detail noise's erosion. `envelope` is what
-// the weather allowed before any noise (0: empty space the march may skip).
-float clouds_layer_density(CloudLayerGpu L, vec3 x, float h, bool detail, out float envelope) {
+// The detail noise at xd (what the layers erode with).
+float clouds_detail_fetch(vec3 xd) {
+  return textureLod(cl_detail_noise, cl_detail_origin.xyz + xd * cl_detail_origin.w, clouds_lod(1.0 / (cl_detail_origin.w * 32.0))).r;
+}
+
+// Extinction (1/m) of one layer at x, from the shape sample already read (clouds_shape_sample);
+// `detail` adds the detail noise's erosion. `envelope` is what the weather allowed before any noise
+// (0: empty space the march may skip).
+float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool detail, vec3 x, float h, out float envelope) {
   float t, d0;
-  envelope = clouds_layer_envelope(L, x, h, t, d0);
+  envelope = clouds_layer_envelope(L, w4, follows_map, x, h, t, d0);
   if (envelope <= 0.0) return 0.0;
-  if (clouds_shape_sample.x < 0.0)
-    clouds_shape_sample = textureLod(cl_shape_noise, cl_shape_origin.xyz + x * cl_shape_origin.w, clouds_lod(1.0 / (cl_shape_origin.w * 128.0)));
   float s = clouds_shape_sample.x;
   float erosion = (1.0 - s) * L.shape.y;
   float d = clamp((envelope - erosion) / max(1.0 - erosion, 1e-3), 0.0, 1.0);
   if (detail && d > 0.0 && L.shape.z > 0.0) {
-    vec3 xd = x;
 #if CLOUDS_TURBULENCE
     // Curl turbulence (Schneider 2015): the detail noise is read where the curl field, fetched with
     // the shape, moves the point; in the lowest 30% of the layer, as far as the weather there holds
     // cloud (takram's weighting). A compile-time switch: a software rasteriser pays for the
     // arithmetic of a branch even where no pixel takes it.
     float k = cl_noise_mix.x * d0 * clamp(1.0 - t / 0.3, 0.0, 1.0);
-    if (k != clouds_detail_displacement) clouds_detail_displacement = k, clouds_detail_sample = -1.0;
-    xd += (clouds_shape_sample.yzw * 2.0 - 1.0) * k;
+    if (k != clouds_detail_displacement || clouds_detail_sample < 0.0) {
+      clouds_detail_displacement = k;
+      clouds_detail_sample = clouds_detail_fetch(x + (clouds_shape_sample.yzw * 2.0 - 1.0) * k);
+    }
+#else
+    // Read once per point for every layer (clouds_density), before the layers.
+    if (clouds_detail_sample < 0.0) clouds_detail_sample = clouds_detail_fetch(x);
 #endif
-    if (clouds_detail_sample < 0.0)
-      clouds_detail_sample = textureLod(cl_detail_noise, cl_detail_origin.xyz + xd * cl_detail_origin.w, clouds_lod(1.0 / (cl_detail_origin.w * 32.0))).r;
     float n = clouds_detail_sample;
     // Wisps at the base, billows at the top (Schneider): the detail erodes thin parts most.
     float e = mix(n, 1.0 - n, clamp(t * 4.0, 0.0, 1.0)) * L.shape.z * 0.35 * (1.0 - d);
@@ -222,30 +227,99 @@ float clouds_layer_density(CloudLayerGpu L, vec3 x, float h, bool detail, out fl
   return d * L.altitude.w;
 }
 
+// The field's layers are compiled in (CLOUDS_LAYERS of them, at most CLOUDS_LOCAL_LAYERS), each with
+// what it needs and nothing else, so that a software rasteriser (which runs both sides of every
+// branch for its whole group of pixels) does not pay for what no layer uses. Bit i of a mask is
+// layer i's (passes.cpp's field_defines writes them):
+//   CLOUDS_DETAIL_MASK  the detail noise erodes it;  CLOUDS_MAP_MASK  it follows the painted map;
+//   CLOUDS_SHADOW_MASK  it casts shadows;  CLOUDS_WEATHER_SOURCE_i  the layer (<= i) whose weather
+//   sample it shares (the same place and period, other channels).
+// CLOUDS_LAYERS 0: any number of layers, read from the buffer with run-time checks.
+#ifndef CLOUDS_LAYERS
+#define CLOUDS_LAYERS 0
+#endif
+#ifndef CLOUDS_DETAIL_MASK
+#define CLOUDS_DETAIL_MASK 15
+#define CLOUDS_MAP_MASK 15
+#define CLOUDS_SHADOW_MASK 15
+#define CLOUDS_WEATHER_SOURCE_1 1
+#define CLOUDS_WEATHER_SOURCE_2 2
+#define CLOUDS_WEATHER_SOURCE_3 3
+#endif
+#define CLOUDS_HAS(mask, i) ((((mask) >> (i)) & 1) != 0)
+
+// Each compiled layer's weather sample at x, read once for the layers that share it.
+void clouds_weather_samples(vec3 x, out vec4 w[CLOUDS_LOCAL_LAYERS]) {
+  w[0] = clouds_weather_fetch(cl_local_layers[0], x);
+#if CLOUDS_LAYERS > 1
+#if CLOUDS_WEATHER_SOURCE_1 == 1
+  w[1] = clouds_weather_fetch(cl_local_layers[1], x);
+#else
+  w[1] = w[CLOUDS_WEATHER_SOURCE_1];
+#endif
+#endif
+#if CLOUDS_LAYERS > 2
+#if CLOUDS_WEATHER_SOURCE_2 == 2
+  w[2] = clouds_weather_fetch(cl_local_layers[2], x);
+#else
+  w[2] = w[CLOUDS_WEATHER_SOURCE_2];
+#endif
+#endif
+#if CLOUDS_LAYERS > 3
+#if CLOUDS_WEATHER_SOURCE_3 == 3
+  w[3] = clouds_weather_fetch(cl_local_layers[3], x);
+#else
+  w[3] = w[CLOUDS_WEATHER_SOURCE_3];
+#endif
+#endif
+}
+
+#define CLOUDS_ADD_LAYER(i)                                                                           \
+  if (!shadow_only || CLOUDS_HAS(CLOUDS_SHADOW_MASK, i)) {                                            \
+    sum += clouds_layer_density(cl_local_layers[i], w[i], CLOUDS_HAS(CLOUDS_MAP_MASK, i),             \
+                                detail && CLOUDS_HAS(CLOUDS_DETAIL_MASK, i), x, h, envelope);         \
+    empty = empty && envelope <= 0.0;                                                                 \
+  }
+
 // Total extinction of the layers at x (shadow_only: only layers that cast shadows); `empty` when no
-// layer's weather allows cloud there.
+// layer's weather allows cloud there. `detail`: the detail noise erodes the layers that use it.
 float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
   empty = true;
-  clouds_shape_sample = vec4(-1.0), clouds_detail_sample = -1.0, clouds_weather_at = vec4(-1.0), clouds_painted_sample = 2.0;
+  clouds_detail_sample = -1.0, clouds_painted_sample = 2.0;
   clouds_detail_displacement = 0.0;
   clouds_depth_below_m = 0.0;
   float h = clouds_altitude(x);
   if (h < cl_shell.x || h > cl_shell.y) return 0.0;
+  // The shape noise is the same for every layer: read once.
+  clouds_shape_sample = textureLod(cl_shape_noise, cl_shape_origin.xyz + x * cl_shape_origin.w, clouds_lod(1.0 / (cl_shape_origin.w * 128.0)));
   float sum = 0.0, envelope;
-  if (cl_layer_count <= CLOUDS_LOCAL_LAYERS) {
-    for (int i = 0; i < CLOUDS_LOCAL_LAYERS; ++i) {
-      if (i >= cl_layer_count || (shadow_only && cl_local_layers[i].model.z < 0.5)) continue;
-      sum += clouds_layer_density(cl_local_layers[i], x, h, detail, envelope);
-      empty = empty && envelope <= 0.0;
-    }
-    clouds_depth_below_m /= max(sum, 1e-12);
-    return sum;
-  }
+#if CLOUDS_LAYERS > 0
+#if !CLOUDS_TURBULENCE
+  if (detail && CLOUDS_DETAIL_MASK != 0) clouds_detail_sample = clouds_detail_fetch(x);
+#endif
+  vec4 w[CLOUDS_LOCAL_LAYERS];
+  clouds_weather_samples(x, w);
+  CLOUDS_ADD_LAYER(0)
+#if CLOUDS_LAYERS > 1
+  CLOUDS_ADD_LAYER(1)
+#endif
+#if CLOUDS_LAYERS > 2
+  CLOUDS_ADD_LAYER(2)
+#endif
+#if CLOUDS_LAYERS > 3
+  CLOUDS_ADD_LAYER(3)
+#endif
+#else
+  detail = detail && cl_frame.y > 0.5;
+  vec4 weather_at = vec4(-1.0), w4 = vec4(0.0);
   for (int i = 0; i < cl_layer_count; ++i) {
-    if (shadow_only && cl_layers[i].model.z < 0.5) continue;
-    sum += clouds_layer_density(cl_layers[i], x, h, detail, envelope);
+    CloudLayerGpu L = cl_layers[i];
+    if (shadow_only && L.model.z < 0.5) continue;
+    if (L.weather != weather_at) weather_at = L.weather, w4 = clouds_weather_fetch(L, x);
+    sum += clouds_layer_density(L, w4, L.model.w > 0.5, detail, x, h, envelope);
     empty = empty && envelope <= 0.0;
   }
+#endif
   clouds_depth_below_m /= max(sum, 1e-12);
   return sum;
 }
@@ -254,14 +328,18 @@ float clouds_density(vec3 x, bool detail, bool shadow_only) {
   return clouds_density(x, detail, shadow_only, empty);
 }
 
+// The occupancy of a layer's weather around x: the largest signal in the 16^3 block x lies in.
+vec4 clouds_weather_block(CloudLayerGpu L, vec3 x) {
+  vec3 cells = fract(L.weather.xyz + x * L.weather.w) * 16.0;
+  return texelFetch(cl_weather_maximum, clamp(ivec3(cells), ivec3(0), ivec3(15)), 0);
+}
+
 // How far the march may go from x along dir without passing any cloud: to the far side of the
 // occupancy block x lies in, when no layer within reach (altitudes widened by the largest block) can
-// hold cloud anywhere in its block. 0 when one might.
-float clouds_skip_layer(CloudLayerGpu L, vec3 x, vec3 dir, float h, float skip) {
+// hold cloud anywhere in its block. 0 when one might. `m`: the layer's block maximum.
+float clouds_skip_layer(CloudLayerGpu L, vec4 m, vec3 x, vec3 dir, float h, float skip) {
   float reach = 1.8 * cl_shell.w;
   if (h < L.altitude.x - L.altitude.z - reach || h > L.altitude.x + L.altitude.y + L.altitude.z + reach) return skip;
-  vec3 cells = fract(L.weather.xyz + x * L.weather.w) * 16.0;
-  vec4 m = texelFetch(cl_weather_maximum, clamp(ivec3(cells), ivec3(0), ivec3(15)), 0);
   int channel = int(L.model.y);
   float w = channel == 0 ? m.r : channel == 1 ? m.g : m.b;
   // The weather systems may raise the coverage anywhere in the block by what their signal changes
@@ -273,7 +351,7 @@ float clouds_skip_layer(CloudLayerGpu L, vec3 x, vec3 dir, float h, float skip) 
   float fw = L.shape.w, c = min(clouds_system_coverage(L.shape.x, g) + L.model.w * max(cl_map_north.w, 0.0), 1.0);
   if (w > (1.0 - c) * (1.0 + fw) - fw) return 0.0;
   // Metres to the block's far side along dir (cells per metre: 16 x the layer's 1 / period).
-  vec3 f = fract(cells);
+  vec3 f = fract(fract(L.weather.xyz + x * L.weather.w) * 16.0);
   vec3 rate = abs(dir) * (16.0 * L.weather.w) + 1e-12;
   vec3 to_side = mix(f, 1.0 - f, step(0.0, dir)) / rate;
   return min(skip, min(to_side.x, min(to_side.y, to_side.z)) + 1.0);
@@ -281,12 +359,41 @@ float clouds_skip_layer(CloudLayerGpu L, vec3 x, vec3 dir, float h, float skip) 
 
 float clouds_empty_skip(vec3 x, vec3 dir) {
   float h = clouds_altitude(x), skip = cl_shell.w;
-  if (cl_layer_count <= CLOUDS_LOCAL_LAYERS) {
-    for (int i = 0; i < CLOUDS_LOCAL_LAYERS; ++i)
-      if (i < cl_layer_count && skip > 0.0) skip = clouds_skip_layer(cl_local_layers[i], x, dir, h, skip);
-    return skip;
+#if CLOUDS_LAYERS > 0
+  // Layers that share a weather sample share its block too.
+  vec4 m[CLOUDS_LOCAL_LAYERS];
+  m[0] = clouds_weather_block(cl_local_layers[0], x);
+  skip = clouds_skip_layer(cl_local_layers[0], m[0], x, dir, h, skip);
+#if CLOUDS_LAYERS > 1
+#if CLOUDS_WEATHER_SOURCE_1 == 1
+  m[1] = clouds_weather_block(cl_local_layers[1], x);
+#else
+  m[1] = m[CLOUDS_WEATHER_SOURCE_1];
+#endif
+  skip = clouds_skip_layer(cl_local_layers[1], m[1], x, dir, h, skip);
+#endif
+#if CLOUDS_LAYERS > 2
+#if CLOUDS_WEATHER_SOURCE_2 == 2
+  m[2] = clouds_weather_block(cl_local_layers[2], x);
+#else
+  m[2] = m[CLOUDS_WEATHER_SOURCE_2];
+#endif
+  skip = clouds_skip_layer(cl_local_layers[2], m[2], x, dir, h, skip);
+#endif
+#if CLOUDS_LAYERS > 3
+#if CLOUDS_WEATHER_SOURCE_3 == 3
+  m[3] = clouds_weather_block(cl_local_layers[3], x);
+#else
+  m[3] = m[CLOUDS_WEATHER_SOURCE_3];
+#endif
+  skip = clouds_skip_layer(cl_local_layers[3], m[3], x, dir, h, skip);
+#endif
+#else
+  for (int i = 0; i < cl_layer_count && skip > 0.0; ++i) {
+    CloudLayerGpu L = cl_layers[i];
+    skip = clouds_skip_layer(L, clouds_weather_block(L, x), x, dir, h, skip);
   }
-  for (int i = 0; i < cl_layer_count && skip > 0.0; ++i) skip = clouds_skip_layer(cl_layers[i], x, dir, h, skip);
+#endif
   return skip;
 }
 

@@ -57,7 +57,7 @@ struct Accumulated {
 };
 
 void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) {
-  bool detail = cl_frame.y > 0.5;
+  bool detail = true;  // for the layers that use it (density.glsl)
   vec3 l = cl_phase.w > 0.5 ? welkin_moon_direction() : welkin_sun_direction();
   float mu = dot(dir, l);
   int octaves = int(cl_light.y);
