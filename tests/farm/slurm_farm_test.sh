@@ -48,7 +48,7 @@ farm() {
   [ -n "$render" ] && [ -n "$assemble" ] || fail "no job ids in: $submitted"
   slurm_wait_idle 300 || fail "the jobs did not finish within 300 s"
   local states
-  states=$(scontrol show job "$render" "$assemble" | grep -o 'JobState=[A-Z_]*' | sort | uniq -c | tr -s ' ')
+  states=$( (scontrol show job "$render" && scontrol show job "$assemble") | grep -o 'JobState=[A-Z_]*' | sort | uniq -c | tr -s ' ')
   [ "$states" = " $((tasks + 1)) JobState=COMPLETED" ] || { cat "$out"/slurm/*.log >&2; fail "job states: $states"; }
   echo $((SECONDS - started))
 }

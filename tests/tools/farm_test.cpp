@@ -142,6 +142,23 @@ TEST(FarmRunFolder, OfManyShardsStartingAtOnceExactlyOneWritesTheManifest) {
   EXPECT_EQ(leftovers, 0u) << "no private copies left behind";
 }
 
+TEST(FarmRunFolder, ShardsStartingAtOnceAllJoinOneFreshFolder) {
+  const RunManifest run = noon_run();
+  for (int round = 0; round < 20; ++round) {
+    const fs::path dir = tmp("fresh-" + std::to_string(round));
+    fs::remove_all(dir);
+    std::array<std::string, 8> errors;
+    std::vector<std::thread> shards;
+    for (size_t i = 0; i < errors.size(); ++i)
+      shards.emplace_back([&, i] { errors[i] = error_of([&] { join_run_folder(dir.string(), run, /*create=*/true); }); });
+    for (auto& t : shards) t.join();
+    for (const std::string& e : errors) EXPECT_EQ(e, "") << "round " << round;
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+    EXPECT_EQ(names, std::vector<std::string>{kRunManifestName});
+  }
+}
+
 TEST(FarmRunFolder, TemporaryFilesOfTheWriterNameTheirFrame) {
   EXPECT_EQ(frame_of_temporary_file(".frame_00042.png.tmp-123-0-4567", false), 42);
   EXPECT_EQ(frame_of_temporary_file(".frame_00042.png.tmp-123-0-4567", true), -1);
@@ -177,7 +194,10 @@ TEST(FarmSlurmScript, ShellQuotingKeepsEveryNameLiteral) {
   EXPECT_FALSE(fs::exists(cwd / "pwned")) << "a name ran as a command";
 }
 
-SlurmFarm hostile_farm(const fs::path& root) {
+// A farm in a scratch folder of its own, every name in it hostile.
+SlurmFarm hostile_farm(const std::string& folder) {
+  const fs::path root = tmp(folder);
+  fs::create_directories(root);
   RunManifest run = noon_run();
   run.scene = (root / ("scene " + kHostile + ".json")).string();
   run.sequence = (root / "seq'uence.json").string();
@@ -192,7 +212,8 @@ SlurmFarm hostile_farm(const fs::path& root) {
 }
 
 // The fake welkin records its arguments, one per file (a name may hold a newline).
-std::vector<std::string> run_script_with_fake_welkin(const SlurmFarm& farm, const std::string& script, const fs::path& root) {
+std::vector<std::string> run_script_with_fake_welkin(const SlurmFarm& farm, const std::string& script) {
+  const fs::path root = fs::path(farm.welkin).parent_path();
   const fs::path args = root / "args";
   fs::remove_all(args);
   fs::create_directories(args);
@@ -208,19 +229,17 @@ std::vector<std::string> run_script_with_fake_welkin(const SlurmFarm& farm, cons
 }
 
 TEST(FarmSlurmScript, TheRenderScriptRunsOneShardPerArrayTaskWithNamesLiteral) {
-  const fs::path root = tmp("script-run");
-  fs::create_directories(root);
-  const SlurmFarm farm = hostile_farm(root);
+  const SlurmFarm farm = hostile_farm("script-run");
   const std::string script = render_script(farm);
   EXPECT_NE(script.find("#SBATCH --array=0-3\n"), std::string::npos) << script;
   EXPECT_NE(script.find("#SBATCH --partition=debug\n"), std::string::npos);
   EXPECT_NE(script.find("#SBATCH --time=0:10:00\n"), std::string::npos);
   EXPECT_NE(script.find("#SBATCH --output=slurm/render-%A_%a.log\n"), std::string::npos);
-  const std::vector<std::string> argv = run_script_with_fake_welkin(farm, script, root);
+  const std::vector<std::string> argv = run_script_with_fake_welkin(farm, script);
   const std::vector<std::string> expected{"sequence", farm.run.scene, farm.run.sequence, "--out", farm.out_dir, "--fps", "0.125",
                                           "--size", "64x36", "--from", "0.0", "--to", "24.0", "--shard", "2/4", "--resume"};
   EXPECT_EQ(argv, expected);
-  EXPECT_FALSE(fs::exists(root / "pwned"));
+  EXPECT_FALSE(fs::exists(tmp("script-run") / "pwned"));
   // sbatch reads #SBATCH lines up to the first command; there, only the script's own (a name with a
   // newline and "#SBATCH" in it comes after, inside quotes).
   const std::string head = script.substr(0, script.find("\nset -euo pipefail\n"));
@@ -231,15 +250,14 @@ TEST(FarmSlurmScript, TheRenderScriptRunsOneShardPerArrayTaskWithNamesLiteral) {
 }
 
 TEST(FarmSlurmScript, TheAssemblingScriptFinishesTheWholeRunAndWritesTheSheet) {
-  const fs::path root = tmp("script-assemble");
-  fs::create_directories(root);
-  const SlurmFarm farm = hostile_farm(root);
+  const SlurmFarm farm = hostile_farm("script-assemble");
   const std::string script = assemble_script(farm);
   EXPECT_NE(script.find("#SBATCH --kill-on-invalid-dep=yes\n"), std::string::npos) << script;
-  const std::vector<std::string> argv = run_script_with_fake_welkin(farm, script, root);
+  const std::vector<std::string> argv = run_script_with_fake_welkin(farm, script);
   ASSERT_GE(argv.size(), 3u);
   EXPECT_EQ(std::vector<std::string>(argv.end() - 3, argv.end()), (std::vector<std::string>{"--resume", "--contact-sheet", farm.contact_sheet}));
   EXPECT_EQ(std::count(argv.begin(), argv.end(), "--shard"), 0);
+  EXPECT_FALSE(fs::exists(tmp("script-assemble") / "pwned"));
   const std::vector<std::string> sbatch = sbatch_arguments(farm, "assemble.sbatch", "41");
   EXPECT_EQ(sbatch, (std::vector<std::string>{"sbatch", "--parsable", "--chdir=" + farm.out_dir, "--dependency=afterok:41",
                                               farm.out_dir + "/slurm/assemble.sbatch"}));

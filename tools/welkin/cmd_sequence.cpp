@@ -152,7 +152,8 @@ int run_sequence(const SequenceOptions& o) {
     }
     render(i);
     // After the first frame: a bad scene or sequence (checked as it is applied) leaves the folder alone.
-    if (written == 0) joining ? join_run_folder(o.out_dir, run, /*create=*/true) : prepare_out_dir(o.out_dir, run, o.overwrite);
+    if (written == 0 && joining) join_run_folder(o.out_dir, run, /*create=*/true);
+    if (written == 0 && !joining) prepare_out_dir(o.out_dir, run, o.overwrite);
     ImageU8 ldr = renderer.read_output();
     if (run.exr) write_exr(frame_path(i), renderer.read_hdr());
     else write_png(frame_path(i), ldr);

@@ -24,6 +24,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
+constexpr const char* kPendingSuffix = ".pending-";  // create_file_exclusively's private copies
+
 // Sequence duration without loading the module's code: the document's own keys.
 // Checked before use: a file's 1e300 must not become a frame count.
 double sequence_duration(const std::string& path) {
@@ -158,7 +160,7 @@ bool create_file_exclusively(const std::string& path, const std::string& bytes) 
   // replaces a file, so of many shards starting at once exactly one creates it, and nobody reads a
   // half-written one. (Atomic on NFS too.)
   static std::atomic<uint64_t> counter{0};  // threads of one process share its pid
-  const std::string mine = path + ".pending-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  const std::string mine = path + kPendingSuffix + std::to_string(::getpid()) + "-" + std::to_string(counter++);
   write_file_atomically(mine, bytes);
   const int linked = ::link(mine.c_str(), path.c_str());
   const int err = errno;
@@ -176,10 +178,15 @@ void join_run_folder(const std::string& dir, const RunManifest& run, bool create
     throw Error(ErrorInfo{.file = dir, .message = "cannot create the output folder" + (ec ? ": " + ec.message() : "")});
   std::optional<RunManifest> found = read_run_manifest(dir);
   if (!found) {
-    if (!fs::is_empty(dir, ec))
-      throw Error(ErrorInfo{.file = dir,
-                            .message = "the output folder is not empty and holds no " + std::string(kRunManifestName) +
-                                       "; shards and resumed runs share only a folder of their own run"});
+    // Nothing else may be there but another shard's manifest on its way in (its private copy).
+    const std::string pending = std::string(kRunManifestName) + kPendingSuffix;
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+      const std::string name = e.path().filename().string();
+      if (!name.starts_with(pending) && !name.starts_with("." + pending))
+        throw Error(ErrorInfo{.file = dir,
+                              .message = "the output folder is not empty and holds no " + std::string(kRunManifestName) +
+                                         "; shards and resumed runs share only a folder of their own run"});
+    }
     if (!create) return;
     const std::string manifest = (fs::path(dir) / kRunManifestName).string();
     if (create_file_exclusively(manifest, manifest_json(run))) return;
