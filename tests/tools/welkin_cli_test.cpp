@@ -13,6 +13,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "welkin/core/files.h"
 #include "welkin/gfx/image.h"
 
 namespace {
@@ -208,18 +209,182 @@ TEST(WelkinCli, SequenceNeverMixesFramesOfTwoRuns) {
   // 24 s at 1/8 fps: frames 0..3.
   CliRun r = run("sequence " WELKIN_FLIGHT WELKIN_DAWN "--fps 0.125 --size 8x8 --out " + dir.string());
   ASSERT_EQ(r.code, 0) << r.out;
-  ASSERT_EQ(names_in(dir).size(), 4u);
+  ASSERT_EQ(names_in(dir).size(), 5u) << "4 frames and the run's manifest";
   std::ofstream(dir / "notes.txt") << "mine";
   // A second, shorter run would leave frames 2 and 3 of the first one for ffmpeg to pick up.
   r = run("sequence " WELKIN_FLIGHT WELKIN_DAWN "--fps 0.0625 --size 8x8 --out " + dir.string());
   EXPECT_EQ(r.code, 3) << r.out;
   EXPECT_NE(r.out.find(dir.string() + ": the output folder is not empty"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("--overwrite"), std::string::npos) << r.out;
-  EXPECT_EQ(names_in(dir).size(), 5u) << "a refused run changes nothing";
-  // --overwrite removes this command's own frames only.
+  EXPECT_EQ(names_in(dir).size(), 6u) << "a refused run changes nothing";
+  // --overwrite removes this command's own frames (and manifest) only.
   r = run("sequence " WELKIN_FLIGHT WELKIN_DAWN "--fps 0.0625 --size 8x8 --overwrite --out " + dir.string());
   ASSERT_EQ(r.code, 0) << r.out;
-  EXPECT_EQ(names_in(dir), (std::vector<std::string>{"frame_00000.png", "frame_00001.png", "notes.txt"}));
+  EXPECT_EQ(names_in(dir), (std::vector<std::string>{"frame_00000.png", "frame_00001.png", "notes.txt", "welkin-run.json"}));
+  EXPECT_NE(welkin::read_file_text((dir / "welkin-run.json").string()).find("\"fps\": 0.0625"), std::string::npos);
+}
+
+std::string bytes_of(const fs::path& file) { return welkin::read_file_text(file.string()); }
+
+// 24 s at 1/4 fps: frames 0..6, at 16x9.
+#define WELKIN_SEVEN WELKIN_FLIGHT WELKIN_DAWN "--fps 0.25 --size 16x9 "
+
+TEST(WelkinCli, ShardsAndFrameRangesTogetherEqualOneRunByteForByte) {
+  const fs::path whole = tmp("shards-whole"), sharded = tmp("shards-sharded"), ranged = tmp("shards-ranged");
+  for (const fs::path& d : {whole, sharded, ranged}) fs::remove_all(d);
+  CliRun r = run("sequence " WELKIN_SEVEN "--out " + whole.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  ASSERT_EQ(names_in(whole).size(), 8u);
+  // Three shards into one folder (in reverse order: order must not matter), and two ranges.
+  for (const char* shard : {"2/3", "1/3", "0/3"}) {
+    r = run("sequence " WELKIN_SEVEN "--out " + sharded.string() + " --shard " + shard);
+    ASSERT_EQ(r.code, 0) << shard << ": " << r.out;
+  }
+  for (const char* range : {"4:6", "0:3"}) {
+    r = run("sequence " WELKIN_SEVEN "--out " + ranged.string() + " --frames " + range);
+    ASSERT_EQ(r.code, 0) << range << ": " << r.out;
+  }
+  EXPECT_EQ(names_in(sharded), names_in(whole));
+  EXPECT_EQ(names_in(ranged), names_in(whole));
+  for (const std::string& name : names_in(whole)) {
+    if (name == "welkin-run.json") continue;
+    EXPECT_EQ(bytes_of(sharded / name), bytes_of(whole / name)) << name;
+    EXPECT_EQ(bytes_of(ranged / name), bytes_of(whole / name)) << name;
+  }
+  // A shard of another run (another size) is refused, and writes nothing.
+  r = run("sequence " WELKIN_FLIGHT WELKIN_DAWN "--fps 0.25 --size 16x8 --out " + sharded.string() + " --shard 0/3");
+  EXPECT_EQ(r.code, 3) << r.out;
+  EXPECT_NE(r.out.find("the folder holds frames of another run"), std::string::npos) << r.out;
+  EXPECT_EQ(bytes_of(sharded / "frame_00000.png"), bytes_of(whole / "frame_00000.png"));
+  // A folder of somebody else's files is no shard's folder.
+  const fs::path foreign = tmp("shards-foreign");
+  fs::create_directories(foreign);
+  std::ofstream(foreign / "thesis.tex") << "mine";
+  r = run("sequence " WELKIN_SEVEN "--out " + foreign.string() + " --shard 0/2");
+  EXPECT_EQ(r.code, 3) << r.out;
+  EXPECT_EQ(names_in(foreign), (std::vector<std::string>{"thesis.tex"}));
+}
+
+TEST(WelkinCli, ResumeRendersOnlyWhatIsMissingAndNeverTrustsAnInterruptedWrite) {
+  const fs::path dir = tmp("resume"), reference = tmp("resume-reference");
+  fs::remove_all(dir);
+  fs::remove_all(reference);
+  ASSERT_EQ(run("sequence " WELKIN_SEVEN "--out " + reference.string()).code, 0);
+  CliRun r = run("sequence " WELKIN_SEVEN "--out " + dir.string() + " --frames 0:3");
+  ASSERT_EQ(r.code, 0) << r.out;
+  // Frame 4's write was interrupted: only its temporary file is there. Frame 1 is marked so a
+  // re-render would show.
+  std::ofstream(dir / ".frame_00004.png.tmp-999-0-1") << "half a PNG";
+  std::ofstream(dir / "frame_00001.png") << "kept as written";
+  r = run("sequence " WELKIN_SEVEN "--out " + dir.string() + " --resume");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("wrote 3 frames to " + dir.string() + " (4 of them already there)"), std::string::npos) << r.out;
+  EXPECT_EQ(bytes_of(dir / "frame_00001.png"), "kept as written") << "a finished frame is skipped";
+  for (const char* name : {"frame_00004.png", "frame_00005.png", "frame_00006.png"})
+    EXPECT_EQ(bytes_of(dir / name), bytes_of(reference / name)) << name;
+  // The status names what is done, missing and interrupted.
+  fs::remove(dir / "frame_00005.png");
+  fs::remove(dir / "frame_00004.png");
+  r = run("farm status " + dir.string(), false);
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("done         5 of 7"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("missing      2: 4-5"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("interrupted  frame 4: .frame_00004.png.tmp-999-0-1"), std::string::npos) << r.out;
+  // A whole run without --resume still refuses the folder.
+  r = run("sequence " WELKIN_SEVEN "--out " + dir.string());
+  EXPECT_EQ(r.code, 3) << r.out;
+  EXPECT_NE(r.out.find("--resume"), std::string::npos) << r.out;
+}
+
+TEST(WelkinCli, BadShardsAndRangesAreOneClearError) {
+  const fs::path dir = tmp("bad-shards");
+  fs::remove_all(dir);
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"--shard 5/4", "--shard: expected I/N"},         {"--shard 0/0", "--shard: expected I/N"},
+      {"--shard 4/4", "--shard: expected I/N"},         {"--shard x/4", "--shard: expected I/N"},
+      {"--shard 1/99999999999999999999", "--shard"},    {"--frames 9:3", "--frames: expected FIRST:LAST"},
+      {"--frames 1:x", "--frames: expected FIRST:LAST"}, {"--frames 0:99999999999", "--frames"},
+      {"--frames 3:7", "--frames: expected frames within the run's 0 to 6"},
+      {"--shard 0/2 --contact-sheet " + tmp("s.png").string(), "--contact-sheet: needs every frame"},
+      {"--frames 0:1 --video " + tmp("v.mp4").string(), "--video: needs every frame"},
+      {"--shard 0/2 --overwrite", "--overwrite: cannot be combined with --shard or --resume"}};
+  for (const auto& [options, message] : cases) {
+    CliRun r = run("sequence " WELKIN_SEVEN "--out " + dir.string() + " " + options);
+    EXPECT_FALSE(r.signaled) << options;
+    EXPECT_EQ(r.code, 3) << options << ": " << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << options << ": " << r.out;
+    EXPECT_NE(r.out.find(message), std::string::npos) << options << ": " << r.out;
+  }
+  EXPECT_FALSE(fs::exists(dir)) << "nothing was written";
+  for (const std::string& options : {std::string("--tasks 9"), std::string("--tasks 0"), std::string("--partition 'a b'"),
+                                     std::string("--time soon"), std::string("--exr --video ") + tmp("v.mp4").string()}) {
+    CliRun r = run("farm slurm " WELKIN_SEVEN "--out " + dir.string() + " " + options);
+    EXPECT_NE(r.code, 0) << options << ": " << r.out;
+    EXPECT_NE(r.code, 1) << options << ": " << r.out;
+  }
+  CliRun r = run("farm status " + tmp("no-such-folder").string());
+  EXPECT_EQ(r.code, 3) << r.out;
+  EXPECT_NE(r.out.find("holds no welkin-run.json"), std::string::npos) << r.out;
+}
+
+TEST(WelkinCli, FarmSlurmSubmitsOnceThroughSbatchWithLiteralNames) {
+  // A stand-in sbatch on PATH: records its arguments (one file each) and answers with job ids.
+  const fs::path bin = tmp("fake-sbatch-bin"), calls = tmp("sbatch-calls");
+  fs::remove_all(calls);
+  fs::create_directories(bin);
+  fs::create_directories(calls);
+  std::ofstream(bin / "sbatch") << "#!/bin/bash\nn=$(ls " + calls.string() + " | wc -l)\nmkdir " + calls.string() +
+                                       "/$n\ni=0\nfor a in \"$@\"; do printf '%s' \"$a\" > " + calls.string() +
+                                       "/$n/$i; i=$((i+1)); done\necho \"$((41 + n));cluster\"\n";
+  fs::permissions(bin / "sbatch", fs::perms::owner_all);
+  const fs::path dir = tmp("farm it's; $(touch pwned)");
+  fs::remove_all(dir);
+  const std::string old_path = std::getenv("PATH") ? std::getenv("PATH") : "";
+  setenv("PATH", (bin.string() + ":" + old_path).c_str(), 1);
+  const std::string command = "farm slurm " WELKIN_SEVEN "--tasks 3 --out " + shell_quoted(dir.string());
+  CliRun r = run(command + " --submit", false);
+  CliRun again = run(command + " --submit");
+  CliRun resubmit = run(command + " --resubmit", false);
+  setenv("PATH", bin.string().c_str(), 1);  // no sbatch: only the fake one's folder, emptied
+  fs::remove(bin / "sbatch");
+  CliRun missing = run("farm slurm " WELKIN_SEVEN "--tasks 3 --submit --out " + tmp("farm-no-sbatch").string());
+  setenv("PATH", old_path.c_str(), 1);
+
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("#SBATCH --array=0-2"), std::string::npos) << "the scripts are printed: " << r.out;
+  EXPECT_NE(r.out.find("submitted render job 41 (3 tasks) and assembling job 42"), std::string::npos) << r.out;
+  auto arg = [&](int call, int i) { return bytes_of(calls / std::to_string(call) / std::to_string(i)); };
+  EXPECT_EQ(arg(0, 0), "--parsable");
+  EXPECT_EQ(arg(0, 1), "--chdir=" + dir.string());
+  EXPECT_EQ(arg(0, 2), (dir / "slurm/render.sbatch").string());
+  EXPECT_EQ(arg(1, 2), "--dependency=afterok:41");
+  EXPECT_EQ(arg(1, 3), (dir / "slurm/assemble.sbatch").string());
+  EXPECT_FALSE(fs::exists(tmp("pwned")));
+  EXPECT_FALSE(fs::exists("pwned"));
+  // Not twice, unless asked.
+  EXPECT_EQ(again.code, 3) << again.out;
+  EXPECT_NE(again.out.find("jobs were already submitted for this folder (render job 41, assembling job 42)"), std::string::npos) << again.out;
+  ASSERT_EQ(resubmit.code, 0) << resubmit.out;
+  EXPECT_NE(resubmit.out.find("submitted render job 43 (3 tasks) and assembling job 44"), std::string::npos) << resubmit.out;
+  EXPECT_EQ(names_in(calls).size(), 4u) << "the refused submission ran no sbatch";
+  const nlohmann::json jobs = nlohmann::json::parse(bytes_of(dir / "slurm/jobs.json"));
+  EXPECT_EQ(jobs["render_job"], "43");
+  EXPECT_EQ(jobs["assemble_job"], "44");
+  // Status reads the folder: no frames yet, the last jobs, and a task log that says it failed.
+  std::ofstream(dir / "slurm/render-43_1.log") << "frame 1/3\nwelkin: error: out of memory\n";
+  std::ofstream(dir / "slurm/render-41_2.log") << "slurmstepd: error: *** JOB 41 CANCELLED ***\n";  // an earlier submission
+  CliRun status = run("farm status " + shell_quoted(dir.string()), false);
+  ASSERT_EQ(status.code, 0) << status.out;
+  EXPECT_NE(status.out.find("done         0 of 7"), std::string::npos) << status.out;
+  EXPECT_NE(status.out.find("missing      7: 0-6"), std::string::npos) << status.out;
+  EXPECT_NE(status.out.find("failed       slurm/render-43_1.log: welkin: error: out of memory"), std::string::npos) << status.out;
+  EXPECT_EQ(status.out.find("render-41_2"), std::string::npos) << status.out;
+  EXPECT_NE(status.out.find("jobs         render job 43, assembling job 44"), std::string::npos) << status.out;
+  // Without sbatch: one clear line, exit 1, and nothing recorded as submitted.
+  EXPECT_EQ(missing.code, 1) << missing.out;
+  EXPECT_NE(missing.out.find("welkin: error: sbatch is not installed"), std::string::npos) << missing.out;
+  EXPECT_FALSE(fs::exists(tmp("farm-no-sbatch") / "slurm/jobs.json"));
+  EXPECT_TRUE(fs::exists(tmp("farm-no-sbatch") / "slurm/render.sbatch"));
 }
 
 TEST(WelkinCli, FrameCountsAndImageSizesAreCheckedBeforeUse) {

@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <regex>
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -32,24 +31,6 @@ struct RenderOptions {
   bool window = false;
   std::vector<std::string> sets;
 };
-
-}  // namespace
-
-void parse_size(const std::string& s, int& w, int& h) {
-  static const std::regex re(R"((\d{1,5})x(\d{1,5}))");
-  std::smatch m;
-  if (!std::regex_match(s, m, re)) throw Error(ErrorInfo{.path = "--size", .expected = "WIDTHxHEIGHT, e.g. 640x360", .found = "'" + s + "'"});
-  w = std::stoi(m[1]);
-  h = std::stoi(m[2]);
-  // The pixel bound keeps one frame's float readback (16 bytes a pixel) to 1 GiB.
-  if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide || uint64_t(w) * uint64_t(h) > kMaxImagePixels)
-    throw Error(ErrorInfo{.path = "--size",
-                          .expected = "1.." + std::to_string(kMaxImageSide) + " per side and at most " +
-                                      std::to_string(kMaxImagePixels) + " pixels",
-                          .found = "'" + s + "'"});
-}
-
-namespace {
 
 void print_timings(const std::vector<PassTiming>& avg, int frames) {
   std::fprintf(stdout, "%-36s %10s %10s   (mean over the %d frame%s each pass ran in)\n", "pass", "gpu ms", "cpu ms", frames, frames == 1 ? "" : "s");

@@ -1,25 +1,25 @@
 // welkin sequence SCENE SEQUENCE --out DIR [--fps N] [--size WxH] [--from S] [--to S] [--exr]
 //                 [--video out.mp4] [--contact-sheet sheet.png] [--overwrite]
+//                 [--frames A:B] [--shard I/N] [--resume]
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
-#include <regex>
-#include <spawn.h>
+#include <optional>
 #include <string>
-#include <sys/wait.h>
 #include <vector>
 
 #include "commands.h"
+#include "program.h"
+#include "run_folder.h"
 #include "session.h"
 #include "welkin/core/error.h"
 #include "welkin/gfx/gl_context.h"
 #include "welkin/gfx/image.h"
 #include "welkin/gfx/renderer.h"
-#include "welkin/scene/json_fields.h"
+#include "welkin/scene/field_path.h"
 #include "welkin/scene/scene_file.h"
 
 namespace welkin::cli {
@@ -27,70 +27,15 @@ namespace welkin::cli {
 namespace {
 
 struct SequenceOptions {
-  std::string scene, sequence, out_dir, size = "320x180", video, contact_sheet;
-  double fps = 24.0, from = 0.0, to = -1.0;
-  bool exr = false, overwrite = false;
+  RunSettings run;
+  std::string out_dir, video, contact_sheet, frames, shard;
+  bool overwrite = false, resume = false;
 };
 
-// Frames per run: frame_%05d names stay five digits, and a run stays under about 70 minutes of
-// 24 fps video however large --to or the sequence's duration is.
-constexpr double kMaxSequenceFrames = 100000;
 constexpr int kContactSheetFrames = 12, kContactSheetColumns = 4, kContactSheetGap = 4;
-
-extern "C" char** environ;
-
-// Runs a program found on PATH with an argument vector, never through a shell, so file names are
-// passed to it literally. Returns its exit status, or -1 where it could not be started (not installed).
-int run_program(const std::vector<std::string>& args) {
-  std::vector<char*> argv;
-  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  if (posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0) return -1;
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) return -1;
-  }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
 
 // A file argument starting with '-' would read as an ffmpeg option.
 std::string literal_file_argument(const std::string& path) { return path.starts_with('-') ? "./" + path : path; }
-
-// Sequence duration without loading the module's code: the document's own keys.
-// Checked before use: a file's 1e300 must not become a frame count.
-double sequence_duration(const std::string& path) {
-  nlohmann::json doc = read_json_file(path);
-  auto checked = [&](const nlohmann::json& v, const std::string& where) {
-    const double d = v.get<double>();
-    if (!(d >= 0.0 && d <= 1e7))
-      throw Error(ErrorInfo{.file = path, .path = where, .expected = "0 to 1e7 seconds", .found = describe_json(v)});
-    return d;
-  };
-  if (doc.is_object() && doc.contains("duration_s") && doc["duration_s"].is_number()) return checked(doc["duration_s"], "/duration_s");
-  double last = 0;
-  if (doc.is_object() && doc.contains("tracks") && doc["tracks"].is_array())
-    for (size_t i = 0; i < doc["tracks"].size(); ++i) {
-      const auto& t = doc["tracks"][i];
-      if (t.is_object() && t.contains("keys") && t["keys"].is_array())
-        for (size_t j = 0; j < t["keys"].size(); ++j) {
-          const auto& k = t["keys"][j];
-          if (k.is_object() && k.contains("t") && k["t"].is_number())
-            last = std::max(last, checked(k["t"], "/tracks/" + std::to_string(i) + "/keys/" + std::to_string(j) + "/t"));
-        }
-    }
-  return last;
-}
-
-// Frames in [from, to] at fps, computed in double and bounded before it becomes an int.
-int frame_count(double from, double to, double fps) {
-  const double n = std::floor((to - from) * fps + 1e-9) + 1;
-  if (!(n >= 1 && n <= kMaxSequenceFrames))
-    throw Error(ErrorInfo{.path = "--fps/--from/--to",
-                          .expected = "at most " + std::to_string(int(kMaxSequenceFrames)) + " frames",
-                          .found = std::to_string(to - from) + " s at " + std::to_string(fps) + " fps"});
-  return int(n);
-}
 
 // The contact sheet's size, checked before any frame is rendered (its pixels are allocated at the end).
 void check_contact_sheet_size(int frames, int w, int h) {
@@ -103,33 +48,31 @@ void check_contact_sheet_size(int frames, int w, int h) {
                           .found = std::to_string(sw) + "x" + std::to_string(sh)});
 }
 
-// Frames this command writes, and only those, are what --overwrite removes.
-bool is_frame_file(const std::string& name) {
-  static const std::regex re(R"(frame_\d{5,}\.(png|exr))");
-  return std::regex_match(name, re);
-}
-
-// Two runs never mix their frames into one video: a folder holding anything is refused, unless
-// --overwrite, which deletes the frames an earlier run wrote (nothing else) before rendering.
-void prepare_out_dir(const std::string& dir, bool overwrite) {
+// Two runs never mix their frames into one video: a whole run refuses a folder holding anything,
+// unless --overwrite, which deletes the frames and the manifest an earlier run wrote (nothing else)
+// before this run's manifest is written.
+void prepare_out_dir(const std::string& dir, const RunManifest& run, bool overwrite) {
   namespace fs = std::filesystem;
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec || !fs::is_directory(dir, ec))
     throw Error(ErrorInfo{.file = dir, .message = "cannot create the output folder" + (ec ? ": " + ec.message() : "")});
-  std::vector<fs::path> frames;
+  std::vector<fs::path> earlier;
   size_t others = 0;
   for (const auto& e : fs::directory_iterator(dir, ec)) {
-    if (is_frame_file(e.path().filename().string()) && !e.is_directory()) frames.push_back(e.path());
+    const std::string name = e.path().filename().string();
+    if ((is_frame_file(name) || name == kRunManifestName) && !e.is_directory()) earlier.push_back(e.path());
     else ++others;
   }
   if (ec) throw Error(ErrorInfo{.file = dir, .message = "cannot list the output folder: " + ec.message()});
-  if (!overwrite && (others || !frames.empty()))
+  if (!overwrite && (others || !earlier.empty()))
     throw Error(ErrorInfo{.file = dir,
-                          .message = "the output folder is not empty (" + std::to_string(frames.size() + others) +
-                                     " entries); choose an empty folder, or pass --overwrite to replace earlier frames"});
-  for (const fs::path& f : frames)
+                          .message = "the output folder is not empty (" + std::to_string(earlier.size() + others) +
+                                     " entries); choose an empty folder, pass --resume to finish the run it holds, or --overwrite to replace earlier frames"});
+  for (const fs::path& f : earlier)
     if (!fs::remove(f, ec) && ec) throw Error(ErrorInfo{.file = f.string(), .message = "cannot remove an earlier frame: " + ec.message()});
+  if (!create_file_exclusively((fs::path(dir) / kRunManifestName).string(), manifest_json(run)))
+    throw Error(ErrorInfo{.file = dir, .message = "another run started writing into the output folder"});
 }
 
 // Thumbnails of up to 12 evenly spaced frames, 4 per row.
@@ -146,54 +89,105 @@ ImageU8 make_contact_sheet(const std::vector<ImageU8>& frames) {
   return sheet;
 }
 
+// Every frame is rendered alone, with no history from the frames before it: the clouds' temporal
+// upscaling, which reprojects the last frame (in a sequence, another time of day), marches every
+// pixel of every frame instead. So a frame is the same bytes whichever shard renders it, after
+// whichever frames.
+void render_every_frame_alone(World& world) {
+  const ComponentInfo* clouds = world.modules().component("clouds.VolumetricClouds");
+  const ComponentPool* pool = clouds ? world.registry().pool(clouds->type->id) : nullptr;
+  if (!pool) return;  // a scene without clouds
+  for (Entity e : pool->entities())
+    resolve_field(*clouds->type, world.registry().get(e, clouds->type->id), "temporal_upscaling").set_json(false);
+}
+
 int run_sequence(const SequenceOptions& o) {
+  namespace fs = std::filesystem;
+  const RunManifest run = describe_run(o.run);
+  const std::optional<FrameRange> range = o.frames.empty() ? std::nullopt : std::optional(parse_frame_range(o.frames));
+  const std::optional<Shard> shard = o.shard.empty() ? std::nullopt : std::optional(parse_shard(o.shard));
+  const std::vector<int> selected = select_frames(run.frames, range, shard);
+  const bool partial = range || shard;
+  if (partial && (!o.contact_sheet.empty() || !o.video.empty()))
+    throw Error(ErrorInfo{.path = o.video.empty() ? "--contact-sheet" : "--video",
+                          .message = "needs every frame: make it in a run without --frames and --shard once the shards are done "
+                                     "(with --resume it renders only what is missing), as `welkin farm slurm` does"});
+  if (o.overwrite && (shard || o.resume))
+    throw Error(ErrorInfo{.path = "--overwrite", .message = "cannot be combined with --shard or --resume (it would delete the frames other shards wrote)"});
+  check_assembly_options(run, o.video, o.contact_sheet);
   int w = 0, h = 0;
-  parse_size(o.size, w, h);
-  double duration = sequence_duration(o.sequence);
-  double to = o.to < 0 ? duration : o.to;
-  if (!(to >= o.from)) throw Error(ErrorInfo{.path = "--from/--to", .expected = "from <= to", .found = std::to_string(o.from) + " > " + std::to_string(to)});
-  const int count = frame_count(o.from, to, o.fps);
-  if (!o.contact_sheet.empty()) check_contact_sheet_size(count, w, h);
+  parse_size(run.size, w, h);
+  // Shards and resumed runs share the folder with frames of the same run; a whole run starts afresh.
+  const bool joining = partial || o.resume;
+  if (joining) join_run_folder(o.out_dir, run, /*create=*/false);  // before any work: a foreign folder is refused now
+  auto frame_path = [&](int i) { return (fs::path(o.out_dir) / frame_file_name(i, run.exr)).string(); };
 
   std::unique_ptr<GlContext> gl;  // before the world: the world's GL objects die first
   auto world = make_world();
-  load_scene_file(*world, o.scene);
-  apply_assignment(*world, "timeofday.SequencePlayer/file=" + nlohmann::json(o.sequence).dump());
+  load_scene_file(*world, o.run.scene);
+  apply_assignment(*world, "timeofday.SequencePlayer/file=" + nlohmann::json(o.run.sequence).dump());
   apply_assignment(*world, "timeofday.SequencePlayer/playing=false");
+  render_every_frame_alone(*world);
   gl = create_headless_context();
   Renderer renderer(*world);
-  std::vector<ImageU8> thumbs;
-  // Up to 12 frames evenly spread over the range, first and last included.
-  std::vector<int> wanted;
-  for (int k = 0, n = std::min(count, kContactSheetFrames); k < n; ++k) wanted.push_back(n == 1 ? 0 : int(std::lround(k * (count - 1) / double(n - 1))));
-  for (int i = 0; i < count; ++i) {
-    double t = o.from + i / o.fps;
-    // Every frame is a scrub to its time: the result never depends on the frames before it.
+  auto render = [&](int i) {
+    const double t = run.from + i / run.fps;
+    // Every frame is a scrub to its time: the result never depends on the frames before it (or on
+    // which shard renders it).
     apply_assignment(*world, "timeofday.SequencePlayer/time_s=" + nlohmann::json(t).dump());
     renderer.render_frame(FrameInfo{.time_s = t, .dt_s = 0.0, .index = uint64_t(i)}, w, h);
+  };
+  // Up to 12 frames evenly spread over the run, first and last included.
+  std::map<int, ImageU8> thumbs;
+  if (!o.contact_sheet.empty())
+    for (int k = 0, n = std::min(run.frames, kContactSheetFrames); k < n; ++k)
+      thumbs[n == 1 ? 0 : int(std::lround(k * (run.frames - 1) / double(n - 1)))] = ImageU8{};
+  int written = 0, already = 0;
+  for (size_t k = 0; k < selected.size(); ++k) {
+    const int i = selected[k];
+    // A frame exists under its name only once written whole (the writer renames a finished file).
+    if (o.resume && fs::is_regular_file(frame_path(i))) {
+      ++already;
+      continue;
+    }
+    render(i);
     // After the first frame: a bad scene or sequence (checked as it is applied) leaves the folder alone.
-    if (i == 0) prepare_out_dir(o.out_dir, o.overwrite);
-    char name[64];
-    std::snprintf(name, sizeof name, "frame_%05d.%s", i, o.exr ? "exr" : "png");
-    std::string path = (std::filesystem::path(o.out_dir) / name).string();
+    if (written == 0 && joining) join_run_folder(o.out_dir, run, /*create=*/true);
+    if (written == 0 && !joining) prepare_out_dir(o.out_dir, run, o.overwrite);
     ImageU8 ldr = renderer.read_output();
-    if (o.exr) write_exr(path, renderer.read_hdr());
-    else write_png(path, ldr);
-    if (!o.contact_sheet.empty() && std::find(wanted.begin(), wanted.end(), i) != wanted.end()) thumbs.push_back(std::move(ldr));
-    int bar = (i + 1) * 30 / count;
-    std::fprintf(stderr, "\r[%.*s%*s] frame %d/%d  t=%.2f s", bar, "==============================", 30 - bar, "", i + 1, count, t);
+    if (run.exr) write_exr(frame_path(i), renderer.read_hdr());
+    else write_png(frame_path(i), ldr);
+    if (thumbs.count(i)) thumbs[i] = std::move(ldr);
+    ++written;
+    const int bar = int((k + 1) * 30 / selected.size());
+    std::fprintf(stderr, "\r[%.*s%*s] frame %zu/%zu  t=%.2f s", bar, "==============================", 30 - bar, "", k + 1,
+                 selected.size(), run.from + i / run.fps);
   }
-  std::fprintf(stderr, "\n");
-  std::printf("wrote %d frames to %s\n", count, o.out_dir.c_str());
+  if (written) std::fprintf(stderr, "\n");
+  if (!joining) std::printf("wrote %d frames to %s\n", written, o.out_dir.c_str());
+  else
+    std::printf("wrote %d frames to %s (%s%d of them already there)\n", written, o.out_dir.c_str(),
+                shard ? ("shard " + o.shard + ", " + std::to_string(selected.size()) + " frames; ").c_str() : "", already);
   if (!o.contact_sheet.empty()) {
-    write_png(o.contact_sheet, make_contact_sheet(thumbs));
+    std::vector<ImageU8> sheet;
+    for (auto& [i, thumb] : thumbs) {
+      // Frames an earlier run wrote: a PNG is the tone-mapped frame itself; an EXR is linear, so the
+      // frame is rendered again for its tone-mapped image.
+      if (thumb.rgba.empty() && !run.exr) thumb = read_png(frame_path(i));
+      if (thumb.rgba.empty()) {
+        render(i);
+        thumb = renderer.read_output();
+      }
+      sheet.push_back(std::move(thumb));
+    }
+    write_png(o.contact_sheet, make_contact_sheet(sheet));
     std::printf("wrote contact sheet %s\n", o.contact_sheet.c_str());
   }
   if (!o.video.empty()) {
-    if (o.exr) throw Error(ErrorInfo{.path = "--video", .message = "needs PNG frames (drop --exr)"});
-    const int status = run_program({"ffmpeg", "-loglevel", "error", "-y", "-framerate", std::to_string(o.fps), "-i",
+    const int status = run_program({"ffmpeg", "-loglevel", "error", "-y", "-framerate", std::to_string(run.fps), "-i",
                                     literal_file_argument(o.out_dir + "/frame_%05d.png"), "-pix_fmt", "yuv420p", "-vf",
-                                    "scale=trunc(iw/2)*2:trunc(ih/2)*2", literal_file_argument(o.video)});
+                                    "scale=trunc(iw/2)*2:trunc(ih/2)*2", literal_file_argument(o.video)})
+                           .status;
     if (status < 0) {
       std::fprintf(stderr, "welkin: ffmpeg is not installed; frames are in %s, no video written\n", o.out_dir.c_str());
       return kFailure;
@@ -206,21 +200,39 @@ int run_sequence(const SequenceOptions& o) {
 
 }  // namespace
 
+void check_assembly_options(const RunManifest& run, const std::string& video, const std::string& contact_sheet) {
+  if (!video.empty() && run.exr) throw Error(ErrorInfo{.path = "--video", .message = "needs PNG frames (drop --exr)"});
+  int w = 0, h = 0;
+  parse_size(run.size, w, h);
+  if (!contact_sheet.empty()) check_contact_sheet_size(run.frames, w, h);
+}
+
 void add_sequence_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<SequenceOptions>();
   CLI::App* cmd = app.add_subcommand("sequence", "Render a time-of-day sequence over a scene to numbered frames");
-  cmd->add_option("scene", o->scene, "Scene file")->required()->check(CLI::ExistingFile);
-  cmd->add_option("sequence", o->sequence, "Sequence file")->required()->check(CLI::ExistingFile);
+  cmd->add_option("scene", o->run.scene, "Scene file")->required()->check(CLI::ExistingFile);
+  cmd->add_option("sequence", o->run.sequence, "Sequence file")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--out", o->out_dir, "Folder for the frames")->required();
-  cmd->add_option("--fps", o->fps, "Frames per second of sequence time")->check(CLI::Range(0.001, 1000.0))->capture_default_str();
-  cmd->add_option("-s,--size", o->size, "Frame size WxH")->capture_default_str();
-  cmd->add_option("--from", o->from, "Start time, seconds")->check(CLI::Range(0.0, 1e7));
-  cmd->add_option("--to", o->to, "End time, seconds (default: the sequence's duration)")->check(CLI::Range(0.0, 1e7));
-  cmd->add_flag("--exr", o->exr, "Write linear HDR OpenEXR frames instead of PNG");
+  add_run_options(*cmd, o->run);
   cmd->add_flag("--overwrite", o->overwrite, "Delete the frames of an earlier run in --out first (else a non-empty folder is refused)");
-  cmd->add_option("--video", o->video, "Also encode an MP4 with ffmpeg, where installed");
-  cmd->add_option("--contact-sheet", o->contact_sheet, "Also write a PNG of up to 12 thumbnails");
+  cmd->add_option("--frames", o->frames, "Render only frames FIRST:LAST (inclusive, numbered from 0)");
+  cmd->add_option("--shard", o->shard, "Render only shard I/N: every N-th frame from the I-th (I from 0), for N machines");
+  cmd->add_flag("--resume", o->resume, "Skip frames already written to --out by this same run; render the rest");
+  add_assembly_options(*cmd, o->video, o->contact_sheet);
   cmd->callback([o, &exit_code] { exit_code = run_sequence(*o); });
+}
+
+void add_run_options(CLI::App& cmd, RunSettings& run) {
+  cmd.add_option("--fps", run.fps, "Frames per second of sequence time")->check(CLI::Range(0.001, 1000.0))->capture_default_str();
+  cmd.add_option("-s,--size", run.size, "Frame size WxH")->capture_default_str();
+  cmd.add_option("--from", run.from, "Start time, seconds")->check(CLI::Range(0.0, 1e7));
+  cmd.add_option("--to", run.to, "End time, seconds (default: the sequence's duration)")->check(CLI::Range(0.0, 1e7));
+  cmd.add_flag("--exr", run.exr, "Write linear HDR OpenEXR frames instead of PNG");
+}
+
+void add_assembly_options(CLI::App& cmd, std::string& video, std::string& contact_sheet) {
+  cmd.add_option("--video", video, "Also encode an MP4 with ffmpeg, where installed");
+  cmd.add_option("--contact-sheet", contact_sheet, "Also write a PNG of up to 12 thumbnails");
 }
 
 }  // namespace welkin::cli

@@ -3,6 +3,8 @@
 #include <string>
 #include <vector>
 
+#include "run_folder.h"
+
 namespace welkin::cli {
 // Each adds its subcommand to the app; the callback stores the exit code in `exit_code`.
 void add_render_command(CLI::App& app, int& exit_code);
@@ -12,6 +14,15 @@ void add_sequence_command(CLI::App& app, int& exit_code);
 void add_bench_command(CLI::App& app, int& exit_code);
 void add_probe_command(CLI::App& app, int& exit_code);
 void add_accuracy_command(CLI::App& app, int& exit_code);
+// `welkin farm slurm` (batch scripts for a Slurm cluster) and `welkin farm status` (a frames folder's progress).
+void add_farm_command(CLI::App& app, int& exit_code);
+// The options that decide a sequence run's frames (--fps, --size, --from, --to, --exr), shared by
+// `welkin sequence` and `welkin farm slurm` so both take them alike.
+void add_run_options(CLI::App& cmd, RunSettings& run);
+// --video and --contact-sheet: made from a whole run's frames.
+void add_assembly_options(CLI::App& cmd, std::string& video, std::string& contact_sheet);
+// Checks them against the run before any frame is rendered; throws Error naming the option.
+void check_assembly_options(const RunManifest& run, const std::string& video, const std::string& contact_sheet);
 // `welkin accuracy clouds`: the GPU march against the path-traced reference per quality preset and
 // multiple-scattering model, with GPU time; writes a CSV and a plot into `out`.
 struct CloudAccuracyOptions {
