@@ -89,18 +89,6 @@ ImageU8 make_contact_sheet(const std::vector<ImageU8>& frames) {
   return sheet;
 }
 
-// Every frame is rendered alone, with no history from the frames before it: the clouds' temporal
-// upscaling, which reprojects the last frame (in a sequence, another time of day), marches every
-// pixel of every frame instead. So a frame is the same bytes whichever shard renders it, after
-// whichever frames.
-void render_every_frame_alone(World& world) {
-  const ComponentInfo* clouds = world.modules().component("clouds.VolumetricClouds");
-  const ComponentPool* pool = clouds ? world.registry().pool(clouds->type->id) : nullptr;
-  if (!pool) return;  // a scene without clouds
-  for (Entity e : pool->entities())
-    resolve_field(*clouds->type, world.registry().get(e, clouds->type->id), "temporal_upscaling").set_json(false);
-}
-
 int run_sequence(const SequenceOptions& o) {
   namespace fs = std::filesystem;
   const RunManifest run = describe_run(o.run);
@@ -127,7 +115,6 @@ int run_sequence(const SequenceOptions& o) {
   load_scene_file(*world, o.run.scene);
   apply_assignment(*world, "timeofday.SequencePlayer/file=" + nlohmann::json(o.run.sequence).dump());
   apply_assignment(*world, "timeofday.SequencePlayer/playing=false");
-  render_every_frame_alone(*world);
   gl = create_headless_context();
   Renderer renderer(*world);
   auto render = [&](int i) {
@@ -135,7 +122,9 @@ int run_sequence(const SequenceOptions& o) {
     // Every frame is a scrub to its time: the result never depends on the frames before it (or on
     // which shard renders it).
     apply_assignment(*world, "timeofday.SequencePlayer/time_s=" + nlohmann::json(t).dump());
-    renderer.render_frame(FrameInfo{.time_s = t, .dt_s = 0.0, .index = uint64_t(i)}, w, h);
+    // Every frame alone (FrameInfo::alone): the same bytes whichever shard renders it, after
+    // whichever frames.
+    renderer.render_frame(FrameInfo{.time_s = t, .dt_s = 0.0, .index = uint64_t(i), .alone = true}, w, h);
   };
   // Up to 12 frames evenly spread over the run, first and last included.
   std::map<int, ImageU8> thumbs;

@@ -178,11 +178,12 @@ void join_run_folder(const std::string& dir, const RunManifest& run, bool create
     throw Error(ErrorInfo{.file = dir, .message = "cannot create the output folder" + (ec ? ": " + ec.message() : "")});
   std::optional<RunManifest> found = read_run_manifest(dir);
   if (!found) {
-    // Nothing else may be there but another shard's manifest on its way in (its private copy).
+    // Nothing else may be there but another shard's manifest on its way in (its private copy), or
+    // already in since it was read above (the exclusive creation below then reads it).
     const std::string pending = std::string(kRunManifestName) + kPendingSuffix;
     for (const auto& e : fs::directory_iterator(dir, ec)) {
       const std::string name = e.path().filename().string();
-      if (!name.starts_with(pending) && !name.starts_with("." + pending))
+      if (name != kRunManifestName && !name.starts_with(pending) && !name.starts_with("." + pending))
         throw Error(ErrorInfo{.file = dir,
                               .message = "the output folder is not empty and holds no " + std::string(kRunManifestName) +
                                          "; shards and resumed runs share only a folder of their own run"});

@@ -434,7 +434,8 @@ void clouds_system(SystemContext& sc) {
   // The field's layers and what each uses are compiled in, turbulence only where it displaces anything.
   ShaderDefines defines = field_defines(gpu);
   defines["CLOUDS_AP_MODE"] = ap_mode;
-  const bool temporal = clouds->temporal_upscaling && w >= 2 && h >= 2;
+  // A frame rendered alone marches every pixel (the history is another moment's).
+  const bool temporal = clouds->temporal_upscaling && !sc.frame.alone && w >= 2 && h >= 2;
   if (temporal)
     for (int i = 0; i < 2; ++i)
       if (ensure_texture(gpu.history_color[i], {.width = w, .height = h, .format = TextureFormat::rgba16f}))

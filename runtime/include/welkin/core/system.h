@@ -20,6 +20,10 @@ struct FrameInfo {
   double time_s = 0;   // time since the world started
   double dt_s = 0;     // this frame's step
   uint64_t index = 0;  // frame number
+  // Rendered alone: nothing carried over from earlier frames that would change its pixels (temporal
+  // reuse such as the clouds' upscaling). A sequence's frames are, so that any shard of a render
+  // farm gives the same bytes for them.
+  bool alone = false;
 };
 
 struct SystemContext {
