@@ -248,31 +248,14 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
 #endif
 #define CLOUDS_HAS(mask, i) ((((mask) >> (i)) & 1) != 0)
 
-// Each compiled layer's weather sample at x, read once for the layers that share it.
-void clouds_weather_samples(vec3 x, out vec4 w[CLOUDS_LOCAL_LAYERS]) {
-  w[0] = clouds_weather_fetch(cl_local_layers[0], x);
-#if CLOUDS_LAYERS > 1
-#if CLOUDS_WEATHER_SOURCE_1 == 1
-  w[1] = clouds_weather_fetch(cl_local_layers[1], x);
-#else
-  w[1] = w[CLOUDS_WEATHER_SOURCE_1];
-#endif
-#endif
-#if CLOUDS_LAYERS > 2
-#if CLOUDS_WEATHER_SOURCE_2 == 2
-  w[2] = clouds_weather_fetch(cl_local_layers[2], x);
-#else
-  w[2] = w[CLOUDS_WEATHER_SOURCE_2];
-#endif
-#endif
-#if CLOUDS_LAYERS > 3
-#if CLOUDS_WEATHER_SOURCE_3 == 3
-  w[3] = clouds_weather_fetch(cl_local_layers[3], x);
-#else
-  w[3] = w[CLOUDS_WEATHER_SOURCE_3];
-#endif
-#endif
-}
+// Layer i's value of `fn` at x into arr[i], or layer s's already there when the two read the same
+// weather (s < i); the condition is a compile-time constant, so the unneeded side is not compiled.
+#define CLOUDS_SHARED(arr, fn, i, s) arr[i] = (s) == (i) ? fn(cl_local_layers[i], x) : arr[(s) == (i) ? 0 : (s)];
+#define CLOUDS_FOR_COMPILED_LAYERS(arr, fn)                          \
+  arr[0] = fn(cl_local_layers[0], x);                                \
+  if (CLOUDS_LAYERS > 1) { CLOUDS_SHARED(arr, fn, 1, CLOUDS_WEATHER_SOURCE_1) } \
+  if (CLOUDS_LAYERS > 2) { CLOUDS_SHARED(arr, fn, 2, CLOUDS_WEATHER_SOURCE_2) } \
+  if (CLOUDS_LAYERS > 3) { CLOUDS_SHARED(arr, fn, 3, CLOUDS_WEATHER_SOURCE_3) }
 
 #define CLOUDS_ADD_LAYER(i)                                                                           \
   if (!shadow_only || CLOUDS_HAS(CLOUDS_SHADOW_MASK, i)) {                                            \
@@ -298,17 +281,11 @@ float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
   if (detail && CLOUDS_DETAIL_MASK != 0) clouds_detail_sample = clouds_detail_fetch(x);
 #endif
   vec4 w[CLOUDS_LOCAL_LAYERS];
-  clouds_weather_samples(x, w);
+  CLOUDS_FOR_COMPILED_LAYERS(w, clouds_weather_fetch)
   CLOUDS_ADD_LAYER(0)
-#if CLOUDS_LAYERS > 1
-  CLOUDS_ADD_LAYER(1)
-#endif
-#if CLOUDS_LAYERS > 2
-  CLOUDS_ADD_LAYER(2)
-#endif
-#if CLOUDS_LAYERS > 3
-  CLOUDS_ADD_LAYER(3)
-#endif
+  if (CLOUDS_LAYERS > 1) { CLOUDS_ADD_LAYER(1) }
+  if (CLOUDS_LAYERS > 2) { CLOUDS_ADD_LAYER(2) }
+  if (CLOUDS_LAYERS > 3) { CLOUDS_ADD_LAYER(3) }
 #else
   detail = detail && cl_frame.y > 0.5;
   vec4 weather_at = vec4(-1.0), w4 = vec4(0.0);
@@ -362,32 +339,11 @@ float clouds_empty_skip(vec3 x, vec3 dir) {
 #if CLOUDS_LAYERS > 0
   // Layers that share a weather sample share its block too.
   vec4 m[CLOUDS_LOCAL_LAYERS];
-  m[0] = clouds_weather_block(cl_local_layers[0], x);
+  CLOUDS_FOR_COMPILED_LAYERS(m, clouds_weather_block)
   skip = clouds_skip_layer(cl_local_layers[0], m[0], x, dir, h, skip);
-#if CLOUDS_LAYERS > 1
-#if CLOUDS_WEATHER_SOURCE_1 == 1
-  m[1] = clouds_weather_block(cl_local_layers[1], x);
-#else
-  m[1] = m[CLOUDS_WEATHER_SOURCE_1];
-#endif
-  skip = clouds_skip_layer(cl_local_layers[1], m[1], x, dir, h, skip);
-#endif
-#if CLOUDS_LAYERS > 2
-#if CLOUDS_WEATHER_SOURCE_2 == 2
-  m[2] = clouds_weather_block(cl_local_layers[2], x);
-#else
-  m[2] = m[CLOUDS_WEATHER_SOURCE_2];
-#endif
-  skip = clouds_skip_layer(cl_local_layers[2], m[2], x, dir, h, skip);
-#endif
-#if CLOUDS_LAYERS > 3
-#if CLOUDS_WEATHER_SOURCE_3 == 3
-  m[3] = clouds_weather_block(cl_local_layers[3], x);
-#else
-  m[3] = m[CLOUDS_WEATHER_SOURCE_3];
-#endif
-  skip = clouds_skip_layer(cl_local_layers[3], m[3], x, dir, h, skip);
-#endif
+  if (CLOUDS_LAYERS > 1) skip = clouds_skip_layer(cl_local_layers[1], m[1], x, dir, h, skip);
+  if (CLOUDS_LAYERS > 2) skip = clouds_skip_layer(cl_local_layers[2], m[2], x, dir, h, skip);
+  if (CLOUDS_LAYERS > 3) skip = clouds_skip_layer(cl_local_layers[3], m[3], x, dir, h, skip);
 #else
   for (int i = 0; i < cl_layer_count && skip > 0.0; ++i) {
     CloudLayerGpu L = cl_layers[i];
