@@ -121,7 +121,8 @@ GpuUniforms make_uniforms(const Atmosphere& a, const Sun* sun_in, const Moon* mo
   const double n = q.sky_view_height;
   u.sky_view_params = {float(std::sin(sv.beta)), float(std::cos(sv.beta)),
                        float(1.0 / std::tan(0.5 * sv.zenith_horizon)), float(1.0 / std::tan(0.5 * sv.beta))};
-  u.sky_view_params_v = {float(n / (n + 1.0)), float(0.5 / (n + 1.0)), float(sv.zenith_horizon),
+  // v's texel mapping, unit_to_sub_uv(v, n) = v (n - 1) / n + 0.5 / n, as a scale and an offset.
+  u.sky_view_params_v = {float((n - 1.0) / n), float(0.5 / n), float(sv.zenith_horizon),
                          float(sv.beta)};
   return u;
 }

@@ -162,8 +162,9 @@ float atm_distance_to_top(float r, float mu) { return atm_distance_to_top(atm_pa
 
 // ---- LUT parameterisations (Bruneton 2017 / Hillaire 2020) -------------------------------------
 
-// Texel centres at the ends of [0, 1]: the LUT holds exactly its domain's boundary values.
-float atm_unit_to_sub_uv(float u, float size) { return (u + 0.5 / size) * (size / (size + 1.0)); }
+// Texel centres at the ends of [0, 1]: the LUT holds exactly its domain's boundary values. The two
+// are exact inverses (texel i's centre holds the parameter i / (size - 1); lut_mapping.h, tested).
+float atm_unit_to_sub_uv(float u, float size) { return (0.5 + u * (size - 1.0)) / size; }
 float atm_sub_uv_to_unit(float u, float size) { return (u - 0.5 / size) * (size / (size - 1.0)); }
 
 // Transmittance to the top: x_r = rho / H and x_mu = the distance to the top normalised between

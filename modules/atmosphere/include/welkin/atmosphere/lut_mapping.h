@@ -11,9 +11,10 @@ struct RadiusMu {
   double mu;
 };
 
-// Texel centres at the ends of [0, 1] (the LUT holds its domain's boundary values exactly).
+// Texel centres at the ends of [0, 1] (the LUT holds its domain's boundary values exactly): texel
+// i's centre (i + 0.5) / size holds the parameter i / (size - 1), and the two are exact inverses.
 inline double unit_to_sub_uv(double u, double size) {
-  return (u + 0.5 / size) * (size / (size + 1.0));
+  return (0.5 + u * (size - 1.0)) / size;
 }
 inline double sub_uv_to_unit(double u, double size) {
   return (u - 0.5 / size) * (size / (size - 1.0));
@@ -30,6 +31,21 @@ inline RadiusMu transmittance_texel_r_mu(int x, int y, int width, int height, do
   double d = d_min + x_mu * (d_max - d_min);
   double mu = d <= 0.0 ? 1.0 : (H * H - rho * rho - d * d) / (2.0 * r * d);
   return {r, std::clamp(mu, -1.0, 1.0)};
+}
+
+// Where the shaders look (r, mu) up (common.glsl, atm_transmittance_uv): the inverse of
+// transmittance_texel_r_mu, as texture coordinates in [0, 1].
+struct TextureUv {
+  double u, v;
+};
+inline TextureUv transmittance_uv(double r_km, double mu, int width, int height, double bottom_km, double top_km) {
+  const double H = std::sqrt(top_km * top_km - bottom_km * bottom_km);
+  const double rho = std::sqrt(std::max(0.0, (r_km - bottom_km) * (r_km + bottom_km)));
+  const double disc = r_km * r_km * (mu * mu - 1.0) + top_km * top_km;
+  const double d = std::max(0.0, -r_km * mu + std::sqrt(std::max(0.0, disc)));
+  const double d_min = top_km - r_km, d_max = rho + H;
+  const double x_mu = d_max > d_min ? (d - d_min) / (d_max - d_min) : 0.0;
+  return {unit_to_sub_uv(std::clamp(x_mu, 0.0, 1.0), width), unit_to_sub_uv(std::clamp(rho / H, 0.0, 1.0), height)};
 }
 
 // The sky-view LUT's horizon seen from radius r: beta is its angle from the nadir, zenith_horizon
