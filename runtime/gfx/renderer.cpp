@@ -61,8 +61,9 @@ FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height
     throw Error(ErrorInfo{.expected = "an entity with a core.Camera component", .found = "none", .message = "the scene has no camera"});
   ctx_.view = make_frame_view(view_camera ? *view_camera : *reg.get<Camera>(cam), width, height);
 
-  if (!hdr_ || hdr_->desc().width != width || hdr_->desc().height != height) {
-    hdr_ = std::make_unique<Texture>(TextureDesc{.width = width, .height = height, .format = TextureFormat::rgba16f});
+  const TextureFormat hdr_format = ctx_.radiance_format();
+  if (!hdr_ || hdr_->desc().width != width || hdr_->desc().height != height || hdr_->desc().format != hdr_format) {
+    hdr_ = std::make_unique<Texture>(TextureDesc{.width = width, .height = height, .format = hdr_format});
     ldr_ = std::make_unique<Texture>(TextureDesc{.width = width, .height = height, .format = TextureFormat::rgba8, .linear_filter = false});
   }
 

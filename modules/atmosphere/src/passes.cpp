@@ -145,11 +145,12 @@ void lut_system(SystemContext& sc) {
                             .format = TextureFormat::rgba32f};
   resized |= ensure_texture(gpu.multiscattering, ms_desc);
   if (q.multiscattering_iterations > 0) ensure_texture(gpu.multiscattering_scratch, ms_desc);
-  if (ensure_texture(gpu.sky_view, {.width = q.sky_view_width, .height = q.sky_view_height}))
+  if (ensure_texture(gpu.sky_view, {.width = q.sky_view_width, .height = q.sky_view_height, .format = rc.radiance_format()}))
     glTextureParameteri(gpu.sky_view->id(), GL_TEXTURE_WRAP_S, GL_REPEAT);  // azimuth is periodic
   const TextureDesc froxels{.width = q.aerial_perspective_width,
                             .height = q.aerial_perspective_height,
-                            .depth = q.aerial_perspective_slices};
+                            .depth = q.aerial_perspective_slices,
+                            .format = rc.radiance_format()};
   ensure_texture(gpu.aerial_inscattering, froxels);
   ensure_texture(gpu.aerial_transmittance, froxels);
   ensure_texture(gpu.sky_irradiance,
@@ -160,7 +161,9 @@ void lut_system(SystemContext& sc) {
   const bool rebuild = resized || !gpu.luts_valid || luts_differ(u, gpu.lut_uniforms);
   const bool space = in_space(u);
   const bool raymarch = atm.method == SkyMethod::raymarch;
-  const ShaderDefines moon_defs = moon_defines(u);
+  ShaderDefines moon_defs = moon_defines(u);
+  // The sky view and the froxels hold radiance: half floats, or full ones for measurement.
+  moon_defs["ATM_RADIANCE_FORMAT"] = rc.full_precision ? "rgba32f" : "rgba16f";
   ShaderDefines irradiance_defines = moon_defs;
   irradiance_defines["ATM_IRRADIANCE_MARCH"] = space || raymarch ? "1" : "0";
 

@@ -125,6 +125,7 @@ GpuProbe::GpuProbe(const Atmosphere& atmosphere, SkyMethod method, bool single_s
   world_->modules().add_static(welkin::modules::atmosphere_module());
   load_scene(*world_, doc, "probe");
   renderer_ = std::make_unique<Renderer>(*world_);
+  renderer_->set_full_precision(true);  // twilight radiance is below half floats' normal range
 }
 
 GpuProbe::~GpuProbe() = default;

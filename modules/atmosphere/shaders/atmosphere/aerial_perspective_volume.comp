@@ -3,8 +3,11 @@
 // lies at distance D ((k + 0.5) / N)^2, so nearby geometry gets most of the slices.
 #include "atmosphere/integrate.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(rgba16f, binding = 0) uniform writeonly image3D o_inscattering;
-layout(rgba16f, binding = 1) uniform writeonly image3D o_transmittance;
+#ifndef ATM_RADIANCE_FORMAT
+#define ATM_RADIANCE_FORMAT rgba16f  // rgba32f where the renderer measures (full precision)
+#endif
+layout(ATM_RADIANCE_FORMAT, binding = 0) uniform writeonly image3D o_inscattering;
+layout(ATM_RADIANCE_FORMAT, binding = 1) uniform writeonly image3D o_transmittance;
 
 void main() {
   ivec2 column = ivec2(gl_GlobalInvocationID.xy);

@@ -2,7 +2,10 @@
 // the camera's frame (see atm_sky_view_uv_local). Rays that reach the ground include the lit ground.
 #include "atmosphere/integrate.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(rgba16f, binding = 0) uniform writeonly image2D o_lut;
+#ifndef ATM_RADIANCE_FORMAT
+#define ATM_RADIANCE_FORMAT rgba16f  // rgba32f where the renderer measures (full precision)
+#endif
+layout(ATM_RADIANCE_FORMAT, binding = 0) uniform writeonly image2D o_lut;
 
 void main() {
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);

@@ -27,6 +27,10 @@ struct RenderContext {
   GlGraphBackend backend;
   FrameView view;
   GlVertexArrayName empty_vao;  // full-screen triangles generate their vertices
+  // Measurement (Renderer::set_full_precision): the frame's colour and the radiance that modules
+  // keep between passes (sky tables, froxels) in 32-bit floats.
+  bool full_precision = false;
+  TextureFormat radiance_format() const { return full_precision ? TextureFormat::rgba32f : TextureFormat::rgba16f; }
   void draw_fullscreen_triangle() const;
 };
 
@@ -52,6 +56,10 @@ class Renderer {
   const Texture& output_texture() const { return *ldr_; }
   const Texture& hdr_texture() const { return *hdr_; }
   RenderContext& context() { return ctx_; }
+  // The HDR colour, and what modules keep of radiance between passes, in 32-bit floats instead of 16
+  // (measurement: a twilight sky's radiance per lux of sun sits in half floats' subnormal range,
+  // where their steps are 6e-8). From the next frame on.
+  void set_full_precision(bool full) { ctx_.full_precision = full; }
 
  private:
   World& world_;

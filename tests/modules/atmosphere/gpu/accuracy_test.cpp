@@ -65,6 +65,26 @@ TEST(AtmosphereAccuracy, SingleScatteringWithinTwoPercentOfQuadrature) {
   }
 }
 
+// Twilight radiance per lux of sun is 1e-5 at -6 degrees and 1e-8 to 1e-10 deeper: half floats
+// (normal from 6e-5, steps of 6e-8 below) read it as a few steps or zero (measured: red and green 0 at
+// -12 degrees, everything 0 at -18). The probe reads at full float precision, so the sky is there
+// and darkens smoothly as the sun sinks, in every channel.
+TEST(AtmosphereAccuracy, TwilightRadianceIsReadAtFullFloatPrecision) {
+  gl().make_current();
+  const Atmosphere earth;
+  GpuProbe probe(earth, SkyMethod::lut, /*single_scattering=*/false);
+  glm::dvec3 previous(1.0);
+  for (double sun : {-6.0, -9.0, -12.0, -15.0, -18.0}) {
+    const glm::dvec3 L = probe.evaluate(ray(0.0, sun, 30.0, 180.0)).radiance;
+    std::printf("sun %+.0f: radiance %.4g %.4g %.4g\n", sun, L.r, L.g, L.b);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_GT(L[c], 0.0) << "sun " << sun << " channel " << c;
+      EXPECT_LT(L[c], previous[c]) << "sun " << sun << " channel " << c;
+    }
+    previous = L;
+  }
+}
+
 TEST(AtmosphereAccuracy, AllOrdersAgainstCachedPathTracedReferences) {
   gl().make_current();
   const Atmosphere earth;
