@@ -16,6 +16,7 @@
 #include "commands.h"
 #include "welkin/core/error.h"
 #include "welkin/core/files.h"
+#include "welkin/core/type_id.h"
 #include "welkin/scene/json_fields.h"
 
 namespace welkin::cli {
@@ -62,11 +63,12 @@ int frame_count(double from, double to, double fps) {
 }
 
 std::string inputs_hash(const std::vector<std::string>& files) {
-  uint64_t h = 14695981039346656037ull;
+  uint64_t h = kFnv1aOffset;
   for (const std::string& f : files) {
+    const auto bytes = read_file_bytes(f);
+    h = fnv1a_64(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), h);
     // A separator, so moving bytes from one file to the other changes the hash.
-    for (uint8_t b : read_file_bytes(f)) h = (h ^ b) * 1099511628211ull;
-    h = (h ^ 0xff) * 1099511628211ull;
+    h = fnv1a_64("\xff", h);
   }
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
