@@ -98,16 +98,18 @@ std::string LightEnvironment::composed_source() const {
   s += "\n";
   const LightTerm* lights = nullptr;
   const LightTerm* aerial = nullptr;
+  const LightTerm* medium = nullptr;
   for (const LightTerm& t : terms_) {
     if (!t.lights.empty() && (!lights || t.priority > lights->priority)) lights = &t;
     if (!t.aerial_perspective.empty() && (!aerial || t.priority > aerial->priority)) aerial = &t;
+    if (!t.medium.empty() && (!medium || t.priority > medium->priority)) medium = &t;
   }
   // The light functions are declared first, so that terms may use them.
   s += "vec3 welkin_sun_direction();\nvec3 welkin_sun_irradiance(vec3 p);\nvec3 welkin_moon_direction();\n"
        "vec3 welkin_moon_irradiance(vec3 p);\nvec3 welkin_sky_irradiance(vec3 n);\n";
   // Only the terms whose functions are called are included: an unused provider compiles nothing.
   for (const LightTerm& t : terms_) {
-    bool used = &t == lights || &t == aerial || !t.light_visibility.empty() || !t.sky_visibility.empty() ||
+    bool used = &t == lights || &t == aerial || &t == medium || !t.light_visibility.empty() || !t.sky_visibility.empty() ||
                 !t.added_irradiance.empty();
     if (used && !t.include.empty()) s += "#include \"" + t.include + "\"\n";
   }
@@ -148,6 +150,13 @@ std::string LightEnvironment::composed_source() const {
          "(p, transmittance); }\n";
   else
     s += "vec3 welkin_aerial_perspective(vec3 p, out vec3 transmittance) { transmittance = vec3(1.0); return vec3(0.0); }\n";
+  s += "// Light of unit irradiance the medium at p scatters back along view_dir (1/(m sr)), and its extinction (1/m).\n";
+  if (medium)
+    s += "vec3 welkin_medium_scattering(vec3 p, vec3 view_dir, int light, out vec3 extinction) { return " +
+         medium->medium + "(p, view_dir, light, extinction); }\n";
+  else
+    s += "vec3 welkin_medium_scattering(vec3 p, vec3 view_dir, int light, out vec3 extinction) { extinction = vec3(0.0); "
+         "return vec3(0.0); }\n";
   return s;
 }
 

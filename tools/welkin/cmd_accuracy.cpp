@@ -39,8 +39,8 @@ using atmosphere::Quality;
 using atmosphere::SkyMethod;
 
 struct AccuracyOptions {
-  std::string technique, out = "out/accuracy", cache, size = "640x360";
-  std::string ghosting_scene = "assets/scenes/clouds-peer.json";
+  std::string technique, out = "out/accuracy", cache, size;  // size: each technique's own default when empty
+  std::string ghosting_scene = "assets/scenes/clouds-peer.json", scene = "assets/scenes/godrays-sunset.json";
   std::vector<std::string> methods{"lut", "raymarch"}, qualities{"low", "medium", "high", "ultra"};
   int frames = 7, threads = 2;
   bool quick = false, json = false;
@@ -155,12 +155,17 @@ std::string steps_of(const atmosphere::Atmosphere& a) {
   return buf;
 }
 
-int run_accuracy(const AccuracyOptions& o) {
+int run_accuracy(const AccuracyOptions& options) {
+  AccuracyOptions o = options;
+  if (o.technique == "godrays")
+    return run_god_ray_accuracy({.out = o.out, .size = o.size.empty() ? "320x180" : o.size, .scene = o.scene,
+                                 .frames = o.frames, .quick = o.quick, .json = o.json});
+  if (o.size.empty()) o.size = "640x360";
   if (o.technique == "clouds")
     return run_cloud_accuracy({.out = o.out, .size = o.size, .ghosting_scene = o.ghosting_scene,
                                .qualities = o.qualities, .frames = o.frames, .quick = o.quick, .json = o.json});
   if (o.technique != "atmosphere")
-    throw Error(ErrorInfo{.path = "technique", .expected = "atmosphere or clouds", .found = "'" + o.technique + "'"});
+    throw Error(ErrorInfo{.path = "technique", .expected = "atmosphere, clouds or godrays", .found = "'" + o.technique + "'"});
   int width = 0, height = 0;
   parse_size(o.size, width, height);
   std::vector<Config> configs;
@@ -357,14 +362,15 @@ void add_accuracy_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<AccuracyOptions>();
   CLI::App* cmd = app.add_subcommand(
       "accuracy", "Error against run time of every method and quality preset of a technique (CSV and plot)");
-  cmd->add_option("technique", o->technique, "The technique to measure: atmosphere, clouds")->required();
+  cmd->add_option("technique", o->technique, "The technique to measure: atmosphere, clouds, godrays")->required();
   cmd->add_option("--out", o->out, "Folder for the CSVs and the plot")->capture_default_str();
   cmd->add_option(
       "--cache", o->cache,
       "Path-traced reference cache (default: the atmosphere module's validation/ folder, else --out)");
-  cmd->add_option("-s,--size", o->size, "Frame size WxH for GPU time")->capture_default_str();
+  cmd->add_option("-s,--size", o->size, "Frame size WxH for GPU time (godrays: also of the measured frame; default 320x180, else 640x360)");
   cmd->add_option("--ghosting-scene", o->ghosting_scene, "clouds: the scene the temporal upscaling flies through")
       ->capture_default_str();
+  cmd->add_option("--scene", o->scene, "godrays: the scene whose frame is measured")->check(CLI::ExistingFile)->capture_default_str();
   cmd->add_option("-n,--frames", o->frames, "Frames per GPU time (median)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();

@@ -33,6 +33,15 @@ struct CloudAccuracyOptions {
   bool quick = false, json = false;
 };
 int run_cloud_accuracy(const CloudAccuracyOptions& options);
+// `welkin accuracy godrays`: each method and setting against a reference march of the same scene's
+// frame, with the shafts' GPU time; writes a CSV, a plot and images of the shafts into `out`.
+struct GodRayAccuracyOptions {
+  std::string out = "out/accuracy", size = "320x180";
+  std::string scene = "assets/scenes/godrays-sunset.json";
+  int frames = 5;
+  bool quick = false, json = false;
+};
+int run_god_ray_accuracy(const GodRayAccuracyOptions& options);
 // Prints nodes, meshes, counts, materials, extensions and bounds of a glTF; throws welkin::Error.
 void print_asset_info(const std::string& file, bool json);
 // Parses WIDTHxHEIGHT (1..kMaxImageSide per side, at most kMaxImagePixels); throws Error naming --size.

@@ -95,6 +95,7 @@ void add_light_term(World& world) {
                     .lights = "atmosphere",
                     .priority = 10,
                     .aerial_perspective = "atmosphere_term_aerial_perspective",
+                    .medium = "atmosphere_term_medium",
                     .textures = {"atmosphere.transmittance", "atmosphere.multiscattering", "atmosphere.sky_view",
                                  "atmosphere.aerial_inscattering", "atmosphere.aerial_transmittance",
                                  "atmosphere.sky_irradiance"},

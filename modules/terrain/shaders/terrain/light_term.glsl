@@ -10,6 +10,7 @@ layout(binding = WELKIN_UNIT_TERRAIN_SHADOW_ATLAS) uniform sampler2DShadow terra
 
 // Fraction of the sun reaching a point: the nearest cascade that covers it, 3x3 hardware-PCF taps.
 // The cascades are made for the sun only (the moon's light is left unshadowed by the terrain).
+// Shaders that sample the light at many points per pixel define WELKIN_VOLUME_SAMPLES: one tap each.
 float terrain_light_visibility(vec3 camera_relative, vec3 normal, int light) {
   if (light != 0 || terrain_cascade_far.w < 0.5) return 1.0;
   float d = length(camera_relative);
@@ -20,6 +21,10 @@ float terrain_light_visibility(vec3 camera_relative, vec3 normal, int light) {
   vec3 p = clip.xyz / clip.w;
   vec2 uv = p.xy * 0.5 + 0.5;
   if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 1.0;
+#ifdef WELKIN_VOLUME_SAMPLES
+  // Many samples per pixel (shafts in the air): one hardware-filtered tap, their sum filters.
+  return texture(terrain_shadow_atlas, vec3((float(c) + uv.x) / 3.0, uv.y, p.z));
+#else
   vec2 texel = 1.0 / vec2(textureSize(terrain_shadow_atlas, 0));
   float lit = 0.0;
   for (int y = -1; y <= 1; ++y)
@@ -28,4 +33,5 @@ float terrain_light_visibility(vec3 camera_relative, vec3 normal, int light) {
       lit += texture(terrain_shadow_atlas, vec3(a, p.z));
     }
   return lit / 9.0;
+#endif
 }

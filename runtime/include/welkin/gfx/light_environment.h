@@ -40,6 +40,11 @@ struct LightTerm {
   // vec3 F(vec3 p, out vec3 transmittance): light added between p and the camera, and the
   // transmittance of that path (one provider; materials that write no depth call it).
   std::string aerial_perspective;
+  // vec3 F(vec3 p, vec3 view_dir, int light, out vec3 extinction): light of unit irradiance from light
+  // 0 (sun) or 1 (moon) that the medium at p scatters back along view_dir (the camera's ray), per
+  // metre (scattering coefficient x phase, 1/(m sr)), and the medium's extinction (1/m); one
+  // provider (the highest priority). What volumetric shadowing of the air (god rays) integrates.
+  std::string medium;
   std::vector<std::string> textures;  // names; each gets a unit: #define WELKIN_UNIT_<NAME>
   std::vector<std::string> blocks;    // names; each gets a binding: #define WELKIN_BLOCK_<NAME>
   // Binds the term's textures and blocks at the units the environment assigned.

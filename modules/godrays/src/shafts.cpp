@@ -1,0 +1,135 @@
+// God rays: the atmosphere's aerial perspective adds the light that all the air in front of a surface
+// scatters toward the camera; here the part that air in shadow does not scatter is found per ray, at a
+// fraction of the frame's resolution, upsampled and subtracted from the frame.
+#include "shafts.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "welkin/core/world.h"
+#include "welkin/gfx/light_environment.h"
+#include "welkin/gfx/renderer.h"
+#include "welkin/scene/painted_map.h"
+
+namespace welkin::godrays {
+
+std::optional<glm::vec2> sun_on_screen(const glm::mat4& view_projection, const glm::vec3& sun_direction) {
+  const glm::vec4 clip = view_projection * glm::vec4(sun_direction, 0.0f);
+  if (!(clip.w > 0.0f)) return std::nullopt;
+  const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+  if (!(std::abs(ndc.x) <= 1.0f && std::abs(ndc.y) <= 1.0f)) return std::nullopt;
+  return ndc * 0.5f + 0.5f;
+}
+
+namespace {
+
+const GodRays* first_god_rays(World& world) {
+  Registry& reg = world.registry();
+  const Entity e = reg.first<GodRays>();
+  return e.is_null() ? nullptr : reg.get<GodRays>(e);
+}
+
+// The planet below the camera, as the shaders see it: up, radius and altitude (from doubles, so the
+// ground distance keeps its precision a metre above the surface).
+struct PlanetView {
+  glm::vec3 up;
+  glm::vec2 radius_altitude;
+};
+PlanetView planet_view(const MapFrame& planet, const glm::dvec3& camera_m) {
+  const glm::dvec3 from_centre = camera_m - planet.planet_center_m;
+  const double r = glm::length(from_centre);
+  return {glm::vec3(from_centre / r), glm::vec2(float(planet.planet_radius_m), float(r - planet.planet_radius_m))};
+}
+
+// Whether any air within reach of the camera's rays can see the sun: the highest point a ray reaches
+// (the camera's height plus the distance the shafts look) has the horizon this far below it.
+bool sun_lights_air(const MapFrame& planet, const glm::vec3& sun, const glm::dvec3& camera_m, float max_distance_m) {
+  const glm::dvec3 from_centre = camera_m - planet.planet_center_m;
+  const double r = glm::length(from_centre) + double(max_distance_m);
+  const double dip = std::acos(std::clamp(planet.planet_radius_m / r, -1.0, 1.0));
+  const double elevation = std::asin(std::clamp(double(glm::dot(glm::dvec3(sun), from_centre / glm::length(from_centre))), -1.0, 1.0));
+  return elevation > -dip;
+}
+
+}  // namespace
+
+void shafts_system(SystemContext& sc) {
+  World& world = sc.world;
+  const GodRays* rays = first_god_rays(world);
+  if (!rays) return;
+  auto& rc = world.resource<RenderContext>();
+  const FrameView view = rc.view;
+  const std::optional<glm::vec3> sun = scene_sun_direction(world);
+  const MapFrame planet = scene_map_frame(world, 1.0);
+  if (!sun || !sun_lights_air(planet, *sun, view.camera_position_m, rays->max_distance_m)) return;
+  const PlanetView ground = planet_view(planet, view.camera_position_m);
+  std::optional<glm::vec2> sun_uv;
+  if (rays->method == ShaftMethod::screen_space) {
+    sun_uv = sun_on_screen(view.view_projection, *sun);
+    if (!sun_uv) return;
+  }
+  const int d = std::max(rays->resolution_divisor, 1);
+  const int w = std::max((view.width + d - 1) / d, 1), h = std::max((view.height + d - 1) / d, 1);
+  // Counts are compiled in: llvmpipe runs a loop of run-time length for its whole group of pixels.
+  const ShaderDefines defines = {
+      {"GODRAYS_METHOD", rays->method == ShaftMethod::marched ? "0" : "1"},
+      {"GODRAYS_STEPS", std::to_string(std::clamp(rays->steps, 1, kMaxStepsPerRay))},
+      {"GODRAYS_SCREEN_SAMPLES", std::to_string(std::clamp(rays->screen_samples, 1, kMaxStepsPerRay))},
+      {"GODRAYS_AIR_STEPS", std::to_string(std::clamp(rays->air_steps, 1, kMaxStepsPerRay))},
+      {"GODRAYS_JITTER", rays->jitter ? "1" : "0"}};
+  const float max_distance = rays->max_distance_m, reach = rays->screen_reach;
+  const glm::vec2 sun_at = sun_uv.value_or(glm::vec2(0.5f));
+  // The jitter moves with the frame, and a frame of a sequence draws the same noise when scrubbed.
+  const float jitter = float(std::fmod(double(sc.frame.index) * 0.6180339887498949, 1.0));
+
+  const FrameTargets t = *sc.targets;
+  RenderGraph& g = *sc.graph;
+  auto loss = std::make_shared<ResourceHandle>();
+  g.add_pass(
+      "godrays.shafts",
+      [&](PassBuilder& b) {
+        b.read(t.depth);
+        *loss = b.create("godrays.loss", TextureDesc{.width = w, .height = h, .format = rc.radiance_format()});
+      },
+      [&rc, &world, t, loss, defines, max_distance, reach, sun_at, jitter, ground, inverse_vp = view.inverse_view_projection](PassContext& pc) {
+        Framebuffer fb(&pc.texture(*loss), nullptr);
+        fb.bind();
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_BLEND);
+        world.resource<LightEnvironment>().bind();
+        glBindTextureUnit(0, pc.texture(t.depth).id());
+        const Program& p = rc.shaders.graphics("fullscreen.vert", "godrays/shafts.frag", defines);
+        p.use();
+        p.set("u_inverse_view_projection", inverse_vp);
+        p.set("u_max_distance_m", max_distance);
+        p.set("u_up", ground.up);
+        p.set("u_planet", ground.radius_altitude);
+        p.set("u_sun_uv", sun_at);
+        p.set("u_reach", reach);
+        p.set("u_jitter", jitter);
+        rc.draw_fullscreen_triangle();
+      });
+  g.add_pass(
+      "godrays.apply",
+      [&](PassBuilder& b) {
+        b.read(*loss);
+        b.read(t.color);
+        b.write(t.color);
+      },
+      [&rc, t, loss](PassContext& pc) {
+        Framebuffer fb(&pc.texture(t.color), nullptr);
+        fb.bind();
+        glDisable(GL_DEPTH_TEST);
+        glEnable(GL_BLEND);
+        glBlendEquation(GL_FUNC_REVERSE_SUBTRACT);  // the frame less the light the shadowed air withholds
+        glBlendFunc(GL_ONE, GL_ONE);
+        glBindTextureUnit(0, pc.texture(*loss).id());
+        rc.shaders.graphics("fullscreen.vert", "godrays/apply.frag").use();
+        rc.draw_fullscreen_triangle();
+        glBlendEquation(GL_FUNC_ADD);
+        glDisable(GL_BLEND);
+      });
+}
+
+}  // namespace welkin::godrays

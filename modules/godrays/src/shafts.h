@@ -1,0 +1,17 @@
+#pragma once
+// The god-rays render system (src/shafts.cpp).
+#include <glm/glm.hpp>
+#include <optional>
+
+#include "welkin/core/system.h"
+#include "welkin/godrays/components.h"
+
+namespace welkin::godrays {
+
+void shafts_system(SystemContext& sc);
+
+// Where the sun's image lies on the screen, in [0, 1]^2 texture coordinates (y up, as GL's), or
+// nothing when the sun is behind the camera or off the screen: the screen-space shafts run only then.
+std::optional<glm::vec2> sun_on_screen(const glm::mat4& view_projection, const glm::vec3& sun_direction);
+
+}  // namespace welkin::godrays

@@ -1,0 +1,238 @@
+// The god rays against an exact case (air under an opaque cloud deck, whose shafts are the whole
+// single-scattered sunlight of the air, from the atmosphere's double-precision quadrature), a scene
+// with nothing casting shadows (no light taken), convergence with steps, and the stiff cases.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "reference/single_scattering.h"
+#include "shafts.h"
+#include "validation/reference_model.h"
+#include "welkin/atmosphere/components.h"
+#include "welkin/atmosphere/gpu.h"
+#include "welkin/core/module.h"
+#include "welkin/core/world.h"
+#include "welkin/gfx/gl_context.h"
+#include "welkin/gfx/light_environment.h"
+#include "welkin/gfx/renderer.h"
+#include "welkin/godrays/components.h"
+#include "welkin/scene/json_fields.h"
+#include "welkin/scene/scene_file.h"
+
+namespace welkin::modules {
+const ModuleDefinition& atmosphere_module();
+const ModuleDefinition& clouds_module();
+const ModuleDefinition& godrays_module();
+}  // namespace welkin::modules
+
+namespace welkin::godrays {
+namespace {
+
+namespace ref = welkin::atmosphere::reference;
+using nlohmann::json;
+
+GlContext& gl_context() {
+  static std::unique_ptr<GlContext> context = create_headless_context();
+  return *context;
+}
+
+json scene(const json& components) {
+  json entities = json::array();
+  for (auto& [name, value] : components.items()) entities.push_back({{"name", name}, {"components", {{name, value}}}});
+  return {{"welkin_scene", 1}, {"entities", entities}};
+}
+
+// A deck of stratus 1-3 km up, uniform and opaque (optical depth > 60 along the sun's path): the air
+// below it is in shadow (as far as the clouds' shadow map resolves it: its nearer cascades).
+json opaque_deck() {
+  return {{"weather_system_amount", 0.0},
+          {"layers", {{{"genus", "stratus"}, {"base_altitude_m", 1000}, {"thickness_m", 2000}, {"coverage", 1.0},
+                       {"density_per_m", 0.1}, {"shape_amount", 0.0}, {"detail_amount", 0.0}, {"base_variation_m", 0.0}}}}};
+}
+
+// Camera 300 m up looking 3 degrees down with a 10-degree field: the lower rows see the ground
+// within 9 km, under the deck and inside its shadow map.
+json looking_down(const json& extra, const json& sun = {{"azimuth_deg", 10}, {"elevation_deg", 55}}) {
+  json c = {{"core.Camera", {{"position_m", {0, 0, 300}}, {"heading_deg", 30}, {"pitch_deg", -3}, {"vertical_fov_deg", 10}, {"ev100", 14}}},
+            {"atmosphere.Atmosphere", json::object()},
+            {"atmosphere.Sun", sun}};
+  for (auto& [k, v] : extra.items()) c[k] = v;
+  return scene(c);
+}
+
+struct Render {
+  std::unique_ptr<World> world;
+  std::unique_ptr<Renderer> renderer;
+  FrameResult last;
+  bool ran(const std::string& pass) const {
+    for (const auto& t : last.timings)
+      if (t.name == pass) return true;
+    return false;
+  }
+};
+
+Render render(const json& doc, int width, int height) {
+  gl_context().make_current();
+  Render r;
+  r.world = std::make_unique<World>();
+  r.world->modules().add_static(modules::atmosphere_module());
+  r.world->modules().add_static(modules::clouds_module());
+  r.world->modules().add_static(modules::godrays_module());
+  load_scene(*r.world, doc, "test scene");
+  r.renderer = std::make_unique<Renderer>(*r.world);
+  r.renderer->set_full_precision(true);  // the shafts are differences of two frames
+  r.last = r.renderer->render_frame(FrameInfo{.index = 3, .alone = true}, width, height);
+  return r;
+}
+
+double luminance(const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
+
+constexpr int kW = 24, kH = 24;
+
+// Largest relative error, over the rows that see the ground within the shafts' reach, of the light the
+// marched shafts take away against the quadrature's single scattering of the same air.
+double exact_case_error(int steps) {
+  const json shafts = {{"method", "marched"}, {"resolution_divisor", 1}, {"steps", steps}, {"jitter", false}, {"max_distance_m", 4500}};
+  Render without = render(looking_down({{"clouds.VolumetricClouds", opaque_deck()}}), kW, kH);
+  Render with = render(looking_down({{"clouds.VolumetricClouds", opaque_deck()}, {"godrays.GodRays", shafts}}), kW, kH);
+  EXPECT_TRUE(with.ran("godrays.shafts"));
+  const ImageF a = without.renderer->read_hdr(), b = with.renderer->read_hdr();
+  World& w = *with.world;
+  const auto& atm = *w.registry().get<atmosphere::Atmosphere>(w.registry().first<atmosphere::Atmosphere>());
+  const ref::AtmosphereModel model = atmosphere::to_reference(atm);
+  const glm::vec3 e_sun = glm::vec3(w.resource<atmosphere::AtmosphereGpu>().uniforms.sun_illuminance);
+  const glm::dvec3 sun = glm::dvec3(*scene_sun_direction(w));
+  const FrameView& view = w.resource<RenderContext>().view;
+  const glm::dvec3 camera_km(0.0, 0.0, model.bottom_radius_km + 0.3);
+  double worst = 0.0;
+  int rows = 0;
+  for (int y = 0; y < kH; ++y) {
+    const glm::dvec3 probe = glm::dvec3(pixel_direction(view, kW / 2 + 0.5, y + 0.5));
+    // The ground within 4 km: beyond, the clouds' shadow map (its second cascade, 40 steps over 15 km
+    // per column) lets part of the sun through a 2 km deck, which is the clouds' error, not the shafts'.
+    if (probe.z > -0.075) continue;
+    ++rows;
+    for (int x = 0; x < kW; x += 5) {
+      const glm::dvec3 dir = glm::normalize(glm::dvec3(pixel_direction(view, x + 0.5, y + 0.5)));
+      ref::SingleScatteringSettings settings;
+      settings.max_distance_km = 4.5;
+      const glm::dvec3 l = ref::single_scattering(model, camera_km, dir, sun, settings).radiance * glm::dvec3(e_sun);
+      const double expected = 0.2126 * l.x + 0.7152 * l.y + 0.0722 * l.z;
+      // Images run top to bottom in rows: read_hdr's row 0 is the top.
+      const double taken = luminance(a.pixel(x, y)) - luminance(b.pixel(x, y));
+      EXPECT_GT(expected, 0.0);
+      worst = std::max(worst, std::abs(taken - expected) / expected);
+    }
+  }
+  EXPECT_GE(rows, 6);
+  return worst;
+}
+
+TEST(GodRays, UnderAnOpaqueDeckTheShaftsAreTheAirsWholeSingleScattering) {
+  // Each step integrates its own exponential exactly: even one step is within 0.1% here (the air
+  // changes little over 4 km); what remains is the transmittance LUT's and float's error.
+  EXPECT_LT(exact_case_error(1), 0.005);
+  EXPECT_LT(exact_case_error(32), 0.005);
+}
+
+// Under broken cloud the shadow along a ray comes and goes: there the steps matter, and the marched
+// shafts must approach the converged march (512 steps) as they grow.
+TEST(GodRays, UnderBrokenCloudTheShaftsConvergeWithSteps) {
+  json broken = opaque_deck();
+  broken["layers"][0]["coverage"] = 0.5;
+  broken["layers"][0]["shape_amount"] = 1.0;
+  auto shafts_image = [&](int steps) {
+    const json shafts = {{"method", "marched"}, {"resolution_divisor", 1}, {"steps", steps}, {"jitter", false}, {"max_distance_m", 20000}};
+    const json sun = {{"azimuth_deg", 30}, {"elevation_deg", 25}};
+    Render r = render(looking_down({{"clouds.VolumetricClouds", broken}, {"godrays.GodRays", shafts}}, sun), kW, kH);
+    return r.renderer->read_hdr();
+  };
+  const ImageF reference = shafts_image(512);
+  auto error = [&](int steps) {
+    const ImageF img = shafts_image(steps);
+    double e = 0.0;
+    for (size_t i = 0; i < img.rgba.size(); i += 4) e += std::abs(luminance(&img.rgba[i]) - luminance(&reference.rgba[i]));
+    return e;
+  };
+  const double e2 = error(2), e8 = error(8), e64 = error(64);
+  EXPECT_GT(e2, 0.0) << "two steps must miss some of the shadow";
+  EXPECT_LT(e8, e2);
+  EXPECT_LT(e64, e8);
+}
+
+TEST(GodRays, NothingCastingShadowsTakesNoLight) {
+  Render without = render(looking_down({}), kW, kH);
+  Render with = render(looking_down({{"godrays.GodRays", {{"steps", 8}}}}), kW, kH);
+  ASSERT_TRUE(with.ran("godrays.shafts"));
+  EXPECT_EQ(without.renderer->read_hdr().rgba, with.renderer->read_hdr().rgba);
+}
+
+TEST(GodRays, SunOnScreenOnlyWhereItsImageIs) {
+  const glm::mat4 vp = glm::perspective(glm::radians(90.0f), 1.0f, 0.1f, 100.0f);  // looking down -z
+  EXPECT_FALSE(sun_on_screen(vp, {0, 0, 1}).has_value()) << "behind the camera";
+  const auto centre = sun_on_screen(vp, {0, 0, -1});
+  ASSERT_TRUE(centre.has_value());
+  EXPECT_NEAR(centre->x, 0.5f, 1e-6f);
+  const auto edge = sun_on_screen(vp, glm::normalize(glm::vec3(1, 0, -1)));  // exactly on the right edge
+  ASSERT_TRUE(edge.has_value());
+  EXPECT_NEAR(edge->x, 1.0f, 1e-5f);
+  EXPECT_FALSE(sun_on_screen(vp, glm::normalize(glm::vec3(1.01f, 0, -1))).has_value()) << "just off the edge";
+  EXPECT_FALSE(sun_on_screen(vp, {1, 0, 0}).has_value()) << "in the image plane (w = 0)";
+}
+
+TEST(GodRays, StiffCasesStayFiniteNonNegativeAndBounded) {
+  auto check = [](const json& sun, const json& shafts, bool runs, bool deck = false) {
+    const json clouds = deck ? json{{"clouds.VolumetricClouds", opaque_deck()}} : json::object();
+    json with_shafts = clouds;
+    with_shafts["godrays.GodRays"] = shafts;
+    Render base = render(looking_down(clouds, sun), 16, 16);
+    Render r = render(looking_down(with_shafts, sun), 16, 16);
+    EXPECT_EQ(r.ran("godrays.shafts"), runs) << sun.dump() << shafts.dump();
+    const ImageF a = base.renderer->read_hdr(), b = r.renderer->read_hdr();
+    for (size_t i = 0; i < b.rgba.size(); ++i) {
+      ASSERT_TRUE(std::isfinite(b.rgba[i])) << sun.dump() << shafts.dump();
+      // Never more light than without shafts, never below zero (beyond float rounding of the subtraction).
+      ASSERT_LE(b.rgba[i], a.rgba[i] * (1.0f + 1e-5f) + 1e-6f) << sun.dump() << shafts.dump();
+      ASSERT_GE(b.rgba[i], -1e-3f * std::abs(a.rgba[i]) - 1e-6f) << sun.dump() << shafts.dump();
+    }
+  };
+  const json overhead = {{"azimuth_deg", 0}, {"elevation_deg", 90}};
+  check(overhead, {{"steps", 1}}, true, true);
+  check(overhead, {{"steps", kMaxStepsPerRay}, {"resolution_divisor", 8}}, true, true);
+  check(overhead, {{"max_distance_m", 1e6}}, true);
+  check({{"azimuth_deg", 30}, {"elevation_deg", 0}}, {{"steps", 8}}, true);   // on the horizon, in front
+  check({{"azimuth_deg", 30}, {"elevation_deg", -30}}, {{"steps", 8}}, false);  // no sunlit air within reach
+  check({{"azimuth_deg", 210}, {"elevation_deg", 5}}, {{"method", "screen_space"}}, false);  // behind the camera
+  check({{"azimuth_deg", 30}, {"elevation_deg", -1}}, {{"method", "screen_space"}, {"screen_samples", 1}}, true);
+}
+
+}  // namespace
+}  // namespace welkin::godrays
+
+namespace welkin::godrays {
+namespace {
+
+// Every preset is a valid godrays.GodRays whose method is the one its name says.
+TEST(GodRaysPresets, EveryPresetFileLoads) {
+  gl_context().make_current();
+  World world;
+  world.modules().add_static(modules::godrays_module());
+  world.modules().require_component("godrays.GodRays");
+  int presets = 0;
+  for (const auto& e : std::filesystem::directory_iterator(WELKIN_SOURCE_DIR "/modules/godrays/presets")) {
+    if (e.path().extension() != ".json") continue;
+    GodRays g;
+    EXPECT_NO_THROW(object_from_json(type_desc<GodRays>(), &g, read_json_file(e.path().string()))) << e.path();
+    const bool screen = e.path().filename().string().rfind("screen", 0) == 0;
+    EXPECT_EQ(g.method, screen ? ShaftMethod::screen_space : ShaftMethod::marched) << e.path();
+    ++presets;
+  }
+  EXPECT_GE(presets, 3);
+}
+
+}  // namespace
+}  // namespace welkin::godrays
