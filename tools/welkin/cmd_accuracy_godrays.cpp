@@ -132,8 +132,8 @@ int run_god_ray_accuracy(const GodRayAccuracyOptions& o) {
   std::vector<ShaftConfig> configs;
   for (int d : {4, 2})
     for (int steps : o.quick ? std::vector<int>{16} : std::vector<int>{8, 16, 32}) configs.push_back({"marched", d, steps});
-  for (int d : {4, 2})
-    for (int taps : o.quick ? std::vector<int>{24} : std::vector<int>{16, 32}) configs.push_back({"screen_space", d, taps});
+  for (int d : {8, 4})
+    for (int taps : o.quick ? std::vector<int>{16} : std::vector<int>{16, 32}) configs.push_back({"screen_space", d, taps});
 
   std::ostringstream csv;
   csv << "method,resolution_divisor,steps,godrays_ms,copy_ms,ratio_to_copy,shaft_relative_rmse,image_relative_rmse\n";
@@ -164,7 +164,7 @@ int run_god_ray_accuracy(const GodRayAccuracyOptions& o) {
     PlotSeries& p = series[c.method + std::to_string(c.divisor)];
     p.name = c.method + " 1/" + std::to_string(c.divisor);
     p.colour = c.method == "marched" ? (c.divisor == 4 ? glm::u8vec3(31, 119, 180) : glm::u8vec3(23, 190, 207))
-                                     : (c.divisor == 4 ? glm::u8vec3(214, 39, 40) : glm::u8vec3(255, 127, 14));
+                                     : (c.divisor == 8 ? glm::u8vec3(214, 39, 40) : glm::u8vec3(255, 127, 14));
     p.points.push_back({ms, shaft_error, shaft_error, std::to_string(c.steps)});
     results.push_back({{"method", c.method}, {"resolution_divisor", c.divisor}, {"steps", c.steps}, {"godrays_ms", ms},
                        {"copy_ms", copy_ms}, {"shaft_relative_rmse", shaft_error}, {"image_relative_rmse", image_error}});

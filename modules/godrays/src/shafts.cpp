@@ -1,6 +1,7 @@
 // God rays: the atmosphere's aerial perspective adds the light that all the air in front of a surface
 // scatters toward the camera; here the part that air in shadow does not scatter is found per ray, at a
-// fraction of the frame's resolution, upsampled and subtracted from the frame.
+// fraction of the frame's resolution, upsampled and subtracted from the frame. The haze is applied in
+// the same pass.
 #include "shafts.h"
 
 #include <algorithm>
@@ -22,13 +23,13 @@ std::optional<glm::vec2> sun_on_screen(const glm::mat4& view_projection, const g
   return ndc * 0.5f + 0.5f;
 }
 
-namespace {
-
-const GodRays* first_god_rays(World& world) {
-  Registry& reg = world.registry();
-  const Entity e = reg.first<GodRays>();
-  return e.is_null() ? nullptr : reg.get<GodRays>(e);
+MarchSteps march_steps(int steps) {
+  steps = std::clamp(steps, 1, kMaxStepsPerRay);
+  const int substeps = std::min(steps, kSubsteps);
+  return {(steps + substeps - 1) / substeps, substeps};
 }
+
+namespace {
 
 // The planet below the camera, as the shaders see it: up, radius and altitude (from doubles, so the
 // ground distance keeps its precision a metre above the surface).
@@ -56,76 +57,112 @@ bool sun_lights_air(const MapFrame& planet, const glm::vec3& sun, const glm::dve
 
 void shafts_system(SystemContext& sc) {
   World& world = sc.world;
-  const GodRays* rays = first_god_rays(world);
-  if (!rays) return;
+  Registry& reg = world.registry();
+  const GodRays* rays = reg.first<GodRays>().is_null() ? nullptr : reg.get<GodRays>(reg.first<GodRays>());
+  const Haze* haze = reg.first<Haze>().is_null() ? nullptr : reg.get<Haze>(reg.first<Haze>());
   auto& rc = world.resource<RenderContext>();
   const FrameView view = rc.view;
   const std::optional<glm::vec3> sun = scene_sun_direction(world);
   const MapFrame planet = scene_map_frame(world, 1.0);
-  if (!sun || !sun_lights_air(planet, *sun, view.camera_position_m, rays->max_distance_m)) return;
   const PlanetView ground = planet_view(planet, view.camera_position_m);
+  // The shafts run where some air within their reach sees the sun, and in screen space only with the
+  // sun's image on the screen.
+  bool shafts = rays && sun && sun_lights_air(planet, *sun, view.camera_position_m, rays->max_distance_m);
   std::optional<glm::vec2> sun_uv;
-  if (rays->method == ShaftMethod::screen_space) {
+  if (shafts && rays->method == ShaftMethod::screen_space) {
     sun_uv = sun_on_screen(view.view_projection, *sun);
-    if (!sun_uv) return;
+    shafts = sun_uv.has_value();
   }
-  const int d = std::max(rays->resolution_divisor, 1);
-  const int w = std::max((view.width + d - 1) / d, 1), h = std::max((view.height + d - 1) / d, 1);
-  // Counts are compiled in: llvmpipe runs a loop of run-time length for its whole group of pixels.
-  const ShaderDefines defines = {
-      {"GODRAYS_METHOD", rays->method == ShaftMethod::marched ? "0" : "1"},
-      {"GODRAYS_STEPS", std::to_string(std::clamp(rays->steps, 1, kMaxStepsPerRay))},
-      {"GODRAYS_SCREEN_SAMPLES", std::to_string(std::clamp(rays->screen_samples, 1, kMaxStepsPerRay))},
-      {"GODRAYS_AIR_STEPS", std::to_string(std::clamp(rays->air_steps, 1, kMaxStepsPerRay))},
-      {"GODRAYS_JITTER", rays->jitter ? "1" : "0"}};
-  const float max_distance = rays->max_distance_m, reach = rays->screen_reach;
-  const glm::vec2 sun_at = sun_uv.value_or(glm::vec2(0.5f));
-  // The jitter moves with the frame, and a frame of a sequence draws the same noise when scrubbed.
-  const float jitter = float(std::fmod(double(sc.frame.index) * 0.6180339887498949, 1.0));
+  if (!shafts && !haze) return;
+  const glm::vec4 haze_block = haze ? glm::vec4(haze->density_per_m, 1.0f / haze->scale_height_m, haze->scattering, haze->absorption)
+                                    : glm::vec4(0.0f);
+  const float haze_g = haze ? haze->phase_g : 0.0f;
+  const char* with_haze = haze ? "1" : "0";
+  // Uniforms both passes share: the view ray, the planet, the haze.
+  auto set_common = [inverse_vp = view.inverse_view_projection, ground, haze_block, haze_g](const Program& p, float max_distance) {
+    p.set("u_inverse_view_projection", inverse_vp);
+    p.set("u_max_distance_m", max_distance);
+    p.set("u_up", ground.up);
+    p.set("u_planet", ground.radius_altitude);
+    p.set("u_haze", haze_block);
+    p.set("u_haze_g", haze_g);
+  };
 
   const FrameTargets t = *sc.targets;
   RenderGraph& g = *sc.graph;
   auto loss = std::make_shared<ResourceHandle>();
-  g.add_pass(
-      "godrays.shafts",
-      [&](PassBuilder& b) {
-        b.read(t.depth);
-        *loss = b.create("godrays.loss", TextureDesc{.width = w, .height = h, .format = rc.radiance_format()});
-      },
-      [&rc, &world, t, loss, defines, max_distance, reach, sun_at, jitter, ground, inverse_vp = view.inverse_view_projection](PassContext& pc) {
-        Framebuffer fb(&pc.texture(*loss), nullptr);
-        fb.bind();
-        glDisable(GL_DEPTH_TEST);
-        glDisable(GL_BLEND);
-        world.resource<LightEnvironment>().bind();
-        glBindTextureUnit(0, pc.texture(t.depth).id());
-        const Program& p = rc.shaders.graphics("fullscreen.vert", "godrays/shafts.frag", defines);
-        p.use();
-        p.set("u_inverse_view_projection", inverse_vp);
-        p.set("u_max_distance_m", max_distance);
-        p.set("u_up", ground.up);
-        p.set("u_planet", ground.radius_altitude);
-        p.set("u_sun_uv", sun_at);
-        p.set("u_reach", reach);
-        p.set("u_jitter", jitter);
-        rc.draw_fullscreen_triangle();
-      });
+  if (shafts) {
+    const int d = std::max(rays->resolution_divisor, 1);
+    const int w = std::max((view.width + d - 1) / d, 1), h = std::max((view.height + d - 1) / d, 1);
+    const MarchSteps march = march_steps(rays->steps);
+    // Counts are compiled in: llvmpipe runs a loop of run-time length for its whole group of pixels.
+    const ShaderDefines defines = {
+        {"GODRAYS_METHOD", rays->method == ShaftMethod::marched ? "0" : "1"},
+        {"GODRAYS_SEGMENTS", std::to_string(march.segments)},
+        {"GODRAYS_SUBSTEPS", std::to_string(march.substeps)},
+        {"GODRAYS_SCREEN_SAMPLES", std::to_string(std::clamp(rays->screen_samples, 1, kMaxStepsPerRay))},
+        {"GODRAYS_AIR_STEPS", std::to_string(std::clamp(rays->air_steps, 1, kMaxStepsPerRay))},
+        {"GODRAYS_JITTER", rays->jitter ? "1" : "0"},
+        {"GODRAYS_HAZE", with_haze}};
+    const float max_distance = rays->max_distance_m, reach = rays->screen_reach;
+    const glm::vec2 sun_at = sun_uv.value_or(glm::vec2(0.5f));
+    // The jitter moves with the frame, and a frame of a sequence draws the same noise when scrubbed.
+    const float jitter = float(std::fmod(double(sc.frame.index) * 0.6180339887498949, 1.0));
+    g.add_pass(
+        "godrays.shafts",
+        [&](PassBuilder& b) {
+          b.read(t.depth);
+          *loss = b.create("godrays.loss", TextureDesc{.width = w, .height = h, .format = rc.radiance_format()});
+        },
+        [&rc, &world, t, loss, defines, max_distance, reach, sun_at, jitter, set_common](PassContext& pc) {
+          Framebuffer fb(&pc.texture(*loss), nullptr);
+          fb.bind();
+          glDisable(GL_DEPTH_TEST);
+          glDisable(GL_BLEND);
+          world.resource<LightEnvironment>().bind();
+          glBindTextureUnit(0, pc.texture(t.depth).id());
+          const Program& p = rc.shaders.graphics("fullscreen.vert", "godrays/shafts.frag", defines);
+          p.use();
+          set_common(p, max_distance);
+          p.set("u_sun_uv", sun_at);
+          p.set("u_reach", reach);
+          p.set("u_jitter", jitter);
+          rc.draw_fullscreen_triangle();
+        });
+  }
+  const ShaderDefines apply_defines = {{"GODRAYS_SHAFTS", shafts ? "1" : "0"}, {"GODRAYS_HAZE", with_haze}};
   g.add_pass(
       "godrays.apply",
       [&](PassBuilder& b) {
-        b.read(*loss);
+        if (shafts) b.read(*loss);
+        if (haze) b.read(t.depth);
         b.read(t.color);
         b.write(t.color);
       },
-      [&rc, t, loss](PassContext& pc) {
+      [&rc, &world, t, loss, shafts, haze_on = haze != nullptr, apply_defines, set_common,
+       sun_direction = sun.value_or(glm::vec3(0.0f, 0.0f, 1.0f))](PassContext& pc) {
         Framebuffer fb(&pc.texture(t.color), nullptr);
         fb.bind();
         glDisable(GL_DEPTH_TEST);
         glEnable(GL_BLEND);
-        glBlendEquation(GL_FUNC_REVERSE_SUBTRACT);  // the frame less the light the shadowed air withholds
-        glBlendFunc(GL_ONE, GL_ONE);
-        glBindTextureUnit(0, pc.texture(*loss).id());
-        rc.shaders.graphics("fullscreen.vert", "godrays/apply.frag").use();
+        if (haze_on) {
+          // haze light - shafts + the haze's transmittance x the frame; the frame's alpha stays
+          glBlendFuncSeparate(GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_ONE);
+        } else {
+          glBlendEquation(GL_FUNC_REVERSE_SUBTRACT);  // the frame less the shafts (alpha less 0)
+          glBlendFunc(GL_ONE, GL_ONE);
+        }
+        if (shafts) glBindTextureUnit(0, pc.texture(*loss).id());
+        if (haze_on) {
+          world.resource<LightEnvironment>().bind();
+          glBindTextureUnit(1, pc.texture(t.depth).id());
+        }
+        const Program& p = rc.shaders.graphics("godrays/apply.vert", "godrays/apply.frag", apply_defines);
+        p.use();
+        if (haze_on) {
+          set_common(p, 0.0f);
+          p.set("u_sun_direction", sun_direction);
+        }
         rc.draw_fullscreen_triangle();
         glBlendEquation(GL_FUNC_ADD);
         glDisable(GL_BLEND);

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
+#include <tuple>
 #include <nlohmann/json.hpp>
 
 #include "reference/single_scattering.h"
@@ -20,6 +21,7 @@
 #include "welkin/gfx/light_environment.h"
 #include "welkin/gfx/renderer.h"
 #include "welkin/godrays/components.h"
+#include "golden.h"
 #include "welkin/scene/json_fields.h"
 #include "welkin/scene/scene_file.h"
 
@@ -232,6 +234,129 @@ TEST(GodRaysPresets, EveryPresetFileLoads) {
     ++presets;
   }
   EXPECT_GE(presets, 3);
+}
+
+}  // namespace
+}  // namespace welkin::godrays
+
+namespace welkin::modules {
+const ModuleDefinition& terrain_module();
+const ModuleDefinition& timeofday_module();
+}  // namespace welkin::modules
+
+namespace welkin::godrays {
+namespace {
+
+// The valley at sunset looking into the low sun under cumulus (assets/scenes/godrays-sunset.json),
+// or at noon, with the god rays' method set, rendered alone at a small size.
+ImageU8 valley(const std::string& method, double local_time_h, bool haze = false) {
+  gl_context().make_current();
+  World world;
+  for (const ModuleDefinition* m : {&modules::atmosphere_module(), &modules::terrain_module(), &modules::timeofday_module(),
+                                    &modules::clouds_module(), &modules::godrays_module()})
+    world.modules().add_static(*m);
+  json doc = read_json_file(WELKIN_SOURCE_DIR "/assets/scenes/godrays-sunset.json");
+  for (auto& e : doc["entities"]) {  // the scene names the terrain relative to the repository root
+    json& c = e["components"];
+    if (c.contains("terrain.Terrain")) c["terrain.Terrain"]["file"] = WELKIN_SOURCE_DIR "/assets/terrain/valley.glb";
+    if (c.contains("godrays.GodRays")) c["godrays.GodRays"]["method"] = method;
+    if (c.contains("timeofday.TimeOfDay")) c["timeofday.TimeOfDay"]["local_time_h"] = local_time_h;
+  }
+  if (haze) doc["entities"].push_back({{"name", "haze"}, {"components", {{"godrays.Haze", {{"density_per_m", 1e-4}}}}}});
+  load_scene(world, doc, "godrays-sunset.json");
+  Renderer r(world);
+  r.render_frame({.index = 1, .alone = true}, 160, 90);
+  return r.read_output();
+}
+
+// Each path at sunset, the marched shafts at noon (the sun is off the screen: no screen-space pass),
+// and the haze with the marched shafts at sunset.
+TEST(GodRaysGolden, EachPathAtSunsetAndNoon) {
+  const welkin::testing::GoldenTolerance tolerance{.max_channel_difference = 10, .max_failing_fraction = 0.02};
+  for (const auto& [method, hour, name] : {std::tuple{"marched", 20.6, "godrays/sunset_marched"},
+                                           std::tuple{"screen_space", 20.6, "godrays/sunset_screen_space"},
+                                           std::tuple{"marched", 13.0, "godrays/noon_marched"}}) {
+    const auto res = welkin::testing::compare_with_golden(valley(method, hour), name, tolerance);
+    EXPECT_TRUE(res.passed) << name << ": " << res.message;
+  }
+  const auto res = welkin::testing::compare_with_golden(valley("marched", 20.6, true), "godrays/sunset_haze", tolerance);
+  EXPECT_TRUE(res.passed) << "godrays/sunset_haze: " << res.message;
+}
+
+}  // namespace
+}  // namespace welkin::godrays
+
+namespace welkin::godrays {
+namespace {
+
+// Optical depth of an exponential layer along a ray on the curved planet (the altitude exact), by
+// Simpson's rule in double precision, to the ground or 400 km.
+double layer_optical_depth(const glm::dvec3& camera_m, const glm::dvec3& dir, double radius_m, double density,
+                           double scale_height_m) {
+  const double b = glm::dot(camera_m, dir), c = glm::dot(camera_m, camera_m) - radius_m * radius_m;
+  const double disc = b * b - c;
+  const double end = (b < 0.0 && disc >= 0.0) ? -b - std::sqrt(disc) : 4.0e5;
+  const int n = 20000;
+  double sum = 0.0;
+  for (int i = 0; i <= n; ++i) {
+    const double t = end * i / n, h = glm::length(camera_m + t * dir) - radius_m;
+    sum += (i == 0 || i == n ? 1.0 : i % 2 ? 4.0 : 2.0) * density * std::exp(-h / scale_height_m);
+  }
+  return sum * end / (3.0 * n);
+}
+
+// A haze that only absorbs scales the frame by its transmittance: against the optical depth on the
+// curved planet, within 1% where the ray meets the ground within 9 km (the shader takes the layer as
+// flat along a ray); the sky's rows within 5% from 6 degrees above the horizon up (at 3 degrees the
+// flat layer makes the haze 8% too opaque).
+TEST(GodRaysHaze, AnAbsorbingHazeScalesTheFrameByItsTransmittance) {
+  const double density = 2e-4, scale_height = 800.0;
+  const json haze = {{"density_per_m", density}, {"scale_height_m", scale_height}, {"scattering", 0.0}, {"absorption", 1.0}};
+  json view = {{"position_m", {0, 0, 300}}, {"heading_deg", 30}, {"pitch_deg", 1}, {"vertical_fov_deg", 20}, {"ev100", 14}};
+  auto doc = [&](bool with) {
+    json c = {{"core.Camera", view}, {"atmosphere.Atmosphere", json::object()},
+              {"atmosphere.Sun", {{"azimuth_deg", 10}, {"elevation_deg", 35}}}};
+    if (with) c["godrays.Haze"] = haze;
+    return scene(c);
+  };
+  Render without = render(doc(false), kW, kH), with = render(doc(true), kW, kH);
+  ASSERT_TRUE(with.ran("godrays.apply"));
+  EXPECT_FALSE(with.ran("godrays.shafts")) << "haze alone draws no shafts";
+  const ImageF a = without.renderer->read_hdr(), b = with.renderer->read_hdr();
+  World& w = *with.world;
+  const FrameView& v = w.resource<RenderContext>().view;
+  const double radius = 6360000.0;
+  const glm::dvec3 camera(0.0, 0.0, radius + 300.0);
+  int ground_rows = 0, sky_rows = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; x += 7) {
+      const glm::dvec3 dir = glm::normalize(glm::dvec3(pixel_direction(v, x + 0.5, y + 0.5)));
+      const bool ground = dir.z < -0.035, sky = dir.z > 0.1;
+      if (!ground && !sky) continue;
+      const double expected = std::exp(-layer_optical_depth(camera, dir, radius, density, scale_height));
+      const double got = double(b.pixel(x, y)[1]) / double(a.pixel(x, y)[1]);
+      EXPECT_NEAR(got, expected, (ground ? 0.01 : 0.05) * expected) << "pixel " << x << "," << y << " dir.z " << dir.z;
+      (ground ? ground_rows : sky_rows) += x == 0;
+    }
+  EXPECT_GE(ground_rows, 3);
+  EXPECT_GE(sky_rows, 3);
+}
+
+// A scattering haze adds light and dims what lies behind: stays finite and non-negative at the
+// extremes (dense, thin, the camera in and far above it).
+TEST(GodRaysHaze, ExtremeHazeStaysFiniteAndNonNegative) {
+  for (const json& haze : {json{{"density_per_m", 1.0}, {"scale_height_m", 1.0}}, json{{"density_per_m", 1.0}, {"scale_height_m", 100000.0}},
+                           json{{"density_per_m", 0.0}}, json{{"density_per_m", 1e-3}, {"phase_g", 0.999}}})
+    for (double altitude : {0.0, 300.0, 5.0e5}) {
+      json c = {{"core.Camera", {{"position_m", {0, 0, altitude}}, {"pitch_deg", -20}, {"vertical_fov_deg", 90}}},
+                {"atmosphere.Atmosphere", json::object()}, {"atmosphere.Sun", {{"azimuth_deg", 0}, {"elevation_deg", 10}}},
+                {"godrays.Haze", haze}, {"godrays.GodRays", {{"steps", 4}}}};
+      Render r = render(scene(c), 16, 16);
+      for (float value : r.renderer->read_hdr().rgba) {
+        ASSERT_TRUE(std::isfinite(value)) << haze.dump() << " at " << altitude << " shafts " << r.ran("godrays.shafts");
+        ASSERT_GE(value, -1e-3f) << haze.dump() << " at " << altitude;
+      }
+    }
 }
 
 }  // namespace

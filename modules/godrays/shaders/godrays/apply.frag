@@ -1,7 +1,16 @@
-// Subtracts the shafts from the frame (reverse-subtract blending: frame - loss), upsampled bilinearly:
-// the shafts vary slowly across the screen, and at silhouettes the blend spreads over a few pixels
-// (a depth-aware upsampling of four taps cost 4.9 copies of the frame against this one's 1.1).
+// The god rays and the haze applied to the frame through blending. With haze: frame x T_haze +
+// (haze light - shafts) (source 1, destination source alpha). Shafts alone: frame - shafts (reverse
+// subtraction of 1 x source), which llvmpipe blends into the half-float frame at 1.1 copies of it
+// against 1.6 for the general form (and a compute pass storing in place, 2.5).
 in vec2 v_ndc;
-layout(location = 0, index = 0) out vec4 o_loss;
-layout(binding = 0) uniform sampler2D u_loss;
-void main() { o_loss = vec4(textureLod(u_loss, v_ndc * 0.5 + 0.5, 0.0).rgb, 0.0); }
+layout(location = 0, index = 0) out vec4 o_color;
+#include "godrays/apply.glsl"
+
+void main() {
+  vec4 c = haze_and_shafts(v_ndc, ivec2(gl_FragCoord.xy));
+#if GODRAYS_HAZE
+  o_color = c;
+#else
+  o_color = vec4(-c.rgb, 0.0);
+#endif
+}
