@@ -129,6 +129,27 @@ void shafts_system(SystemContext& sc) {
           p.set("u_jitter", jitter);
           rc.draw_fullscreen_triangle();
         });
+    // The marched shafts' jitter is filtered out at their resolution; the screen-space path stays
+    // unfiltered to stay cheap (its taps' jitter shows as fine noise).
+    if (rays->jitter && rays->method == ShaftMethod::marched) {
+      auto filtered = std::make_shared<ResourceHandle>();
+      g.add_pass(
+          "godrays.filter",
+          [&](PassBuilder& b) {
+            b.read(*loss);
+            *filtered = b.create("godrays.loss_filtered", TextureDesc{.width = w, .height = h, .format = rc.radiance_format()});
+          },
+          [&rc, loss, filtered](PassContext& pc) {
+            Framebuffer fb(&pc.texture(*filtered), nullptr);
+            fb.bind();
+            glDisable(GL_DEPTH_TEST);
+            glDisable(GL_BLEND);
+            glBindTextureUnit(0, pc.texture(*loss).id());
+            rc.shaders.graphics("fullscreen.vert", "godrays/filter.frag").use();
+            rc.draw_fullscreen_triangle();
+          });
+      loss = filtered;
+    }
   }
   const ShaderDefines apply_defines = {{"GODRAYS_SHAFTS", shafts ? "1" : "0"}, {"GODRAYS_HAZE", with_haze}};
   g.add_pass(

@@ -1,4 +1,5 @@
-// The sunlight that shadowed air withholds along each view ray, at the shafts' resolution (rgb).
+// The sunlight that shadowed air withholds along each view ray, at the shafts' resolution (rgb), and
+// the distance the ray was followed (a).
 //   GODRAYS_METHOD 0 (marched): GODRAYS_SEGMENTS x GODRAYS_SUBSTEPS jittered samples of the composed
 //     light environment's visibility (every term that casts shadows), weighting the air's light.
 //   GODRAYS_METHOD 1 (screen space): the fraction of GODRAYS_SCREEN_SAMPLES depth taps toward the
@@ -92,5 +93,5 @@ void main() {
   }
   vec3 loss = (covered / float(GODRAYS_SCREEN_SAMPLES)) * air_light(dir, end, GODRAYS_AIR_STEPS, 1, offset, false);
 #endif
-  o_loss = vec4(loss, 0.0);
+  o_loss = vec4(loss, end);  // a: where the ray ends, for the filter's edges
 }
