@@ -67,6 +67,19 @@ void backdrop_system(SystemContext& sc) {
   });
 }
 
+// Slices of a sphere's latitude-longitude grid (stacks: half as many), from 8 to 64, enough that a
+// facet's chord lies within a quarter of a pixel of the sphere on screen; -1 when it is wholly behind the
+// camera.
+int sphere_slices(const FrameView& view, const glm::vec3& centre, float radius) {
+  if (glm::dot(centre, view.forward) < -radius) return -1;
+  const float distance = std::max(glm::length(centre) - radius, view.near_m);
+  const float radius_px = radius / distance * (0.5f * float(view.height)) / std::tan(0.5f * view.vertical_fov_rad);
+  if (!(radius_px > 0.25f)) return 8;
+  // The sagitta of a facet, r (1 - cos(pi / slices)), at most a quarter of a pixel.
+  const float slices = 3.14159265f / std::acos(std::max(1.0f - 0.25f / radius_px, -1.0f));
+  return std::clamp(2 * int(std::ceil(slices * 0.5f)), 8, 64);
+}
+
 void debug_shape_system(SystemContext& sc) {
   Registry& reg = sc.world.registry();
   auto& rc = sc.world.resource<RenderContext>();
@@ -87,13 +100,16 @@ void debug_shape_system(SystemContext& sc) {
     for (const DebugShape& s : shapes) {
       // Camera-relative in double, then to float: precision independent of distance from the origin.
       glm::vec3 rel = glm::vec3(s.position_m - rc.view.camera_position_m);
+      const int slices = s.shape == ShapeKind::sphere ? sphere_slices(rc.view, rel, s.size_m.x) : 0;
+      if (slices < 0) continue;  // wholly behind the camera
       p.set("u_center", rel);
       p.set("u_size", s.size_m);
       p.set("u_albedo", s.albedo);
       p.set("u_shape", int(s.shape));
       glBindVertexArray(rc.empty_vao.id());
-      // Spheres: a 64x32 latitude-longitude grid; boxes: 36 vertices. Both generated in the shader.
-      glDrawArrays(GL_TRIANGLES, 0, s.shape == ShapeKind::sphere ? 64 * 32 * 6 : 36);
+      p.set("u_slices", slices);
+      // Spheres: a latitude-longitude grid; boxes: 36 vertices. Both generated in the shader.
+      glDrawArrays(GL_TRIANGLES, 0, s.shape == ShapeKind::sphere ? slices * (slices / 2) * 6 : 36);
     }
     glDisable(GL_CULL_FACE);
   });

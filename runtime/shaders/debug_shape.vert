@@ -2,12 +2,13 @@
 uniform mat4 u_view_projection;
 uniform vec3 u_center;  // camera-relative
 uniform vec3 u_size;
-uniform int u_shape;    // 0 sphere (64x32 grid), 1 box
+uniform int u_shape;    // 0 sphere (a u_slices x u_slices / 2 grid), 1 box
+uniform int u_slices;
 out vec3 v_normal;
 out vec3 v_position;
 
 vec3 sphere_vertex(int id, out vec3 n) {
-  const int slices = 64, stacks = 32;
+  int slices = u_slices, stacks = u_slices / 2;
   int quad = id / 6, corner = id % 6;
   int i = quad % slices, j = quad / slices;
   // Two counter-clockwise triangles per quad (seen from outside).

@@ -31,7 +31,12 @@ vec3 tonemap_agx(vec3 c) {
   return clamp(pow(max(agx_out * c, vec3(0.0)), vec3(2.2)), 0.0, 1.0);
 }
 
+// The sRGB curve's power segment as a fit in square roots (Taylor's, within 0.0015 of 1.055 c^(1/2.4)
+// - 0.055 over [0.0031308, 1]: under half an 8-bit step): llvmpipe evaluates pow as exp2(log2) per
+// channel, a third of the cost of tone mapping a frame; three square roots are native instructions.
 vec3 linear_to_srgb(vec3 c) {
   c = clamp(c, 0.0, 1.0);
-  return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
+  vec3 s1 = sqrt(c), s2 = sqrt(s1), s3 = sqrt(s2);
+  vec3 curve = 0.662002687 * s1 + 0.684122060 * s2 - 0.323583601 * s3 - 0.0225411470 * c;
+  return mix(12.92 * c, curve, step(vec3(0.0031308), c));
 }
