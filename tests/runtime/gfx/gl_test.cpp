@@ -103,6 +103,35 @@ TEST_F(Gl, ExrRoundTripPreservesHdrValues) {
   for (size_t i = 0; i < img.rgba.size(); ++i) EXPECT_NEAR(back.rgba[i], img.rgba[i], std::abs(img.rgba[i]) * 1e-3);
 }
 
+// The shader's sRGB encode is a fit in square roots (tonemap.glsl): over 4096 linear values it rounds
+// to the exact curve's 8-bit value or the next one, and to the same one for nearly all.
+TEST_F(Gl, ShaderSrgbEncodeRoundsLikeTheExactCurve) {
+  ShaderLibrary lib;
+  lib.add_search_dir(kTestShaders);
+  lib.add_search_dir(runtime_shader_dir());
+  const int width = 4096;
+  const Program& p = lib.graphics("fullscreen.vert", "srgb_ramp.frag");
+  Texture target(TextureDesc{.width = width, .height = 1, .format = TextureFormat::rgba8});
+  Framebuffer fb(&target, nullptr);
+  fb.bind();
+  p.use();
+  p.set("u_width", width);
+  GLuint vao;
+  glCreateVertexArrays(1, &vao);
+  glBindVertexArray(vao);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDeleteVertexArrays(1, &vao);
+  const ImageU8 img = read_texture_rgba8(target);
+  int off_by_one = 0;
+  for (int x = 0; x < width; ++x) {
+    const float c = float(x) / float(width - 1);
+    const int exact = linear_to_srgb8(c), got = img.pixel(x, 0)[0];
+    ASSERT_LE(std::abs(got - exact), 1) << "linear " << c;
+    off_by_one += got != exact;
+  }
+  EXPECT_LT(off_by_one, width / 50) << "values that round to the neighbouring step";
+}
+
 TEST(Srgb, TransferFunctionMatchesTheStandard) {
   EXPECT_EQ(linear_to_srgb8(0.0f), 0);
   EXPECT_EQ(linear_to_srgb8(1.0f), 255);
