@@ -43,11 +43,12 @@ PlanetView planet_view(const MapFrame& planet, const glm::dvec3& camera_m) {
   return {glm::vec3(from_centre / r), glm::vec2(float(planet.planet_radius_m), float(r - planet.planet_radius_m))};
 }
 
-// Whether any air within reach of the camera's rays can see the sun: the highest point a ray reaches
-// (the camera's height plus the distance the shafts look) has the horizon this far below it.
-bool sun_lights_air(const MapFrame& planet, const glm::vec3& sun, const glm::dvec3& camera_m, float max_distance_m) {
+// Whether the sun stands above the horizon of a point `reach_m` above the camera (the planet's
+// dip below the level there). With the shafts' reach: whether any air a ray reaches can see the sun
+// (the highest point is the camera's height plus that distance); with 0: the camera's own horizon.
+bool sun_lights_air(const MapFrame& planet, const glm::vec3& sun, const glm::dvec3& camera_m, float reach_m) {
   const glm::dvec3 from_centre = camera_m - planet.planet_center_m;
-  const double r = glm::length(from_centre) + double(max_distance_m);
+  const double r = glm::length(from_centre) + double(reach_m);
   const double dip = std::acos(std::clamp(planet.planet_radius_m / r, -1.0, 1.0));
   const double elevation = std::asin(std::clamp(double(glm::dot(glm::dvec3(sun), from_centre / glm::length(from_centre))), -1.0, 1.0));
   return elevation > -dip;
@@ -65,13 +66,13 @@ void shafts_system(SystemContext& sc) {
   const std::optional<glm::vec3> sun = scene_sun_direction(world);
   const MapFrame planet = scene_map_frame(world, 1.0);
   const PlanetView ground = planet_view(planet, view.camera_position_m);
-  // The shafts run where some air within their reach sees the sun, and in screen space only with the
-  // sun's image on the screen.
+  // The shafts run where some air within their reach sees the sun.
   bool shafts = rays && sun && sun_lights_air(planet, *sun, view.camera_position_m, rays->max_distance_m);
   std::optional<glm::vec2> sun_uv;
   if (shafts && rays->method == ShaftMethod::screen_space) {
+    // The screen-space estimate needs the sun's image, on the screen and above the camera's horizon.
     sun_uv = sun_on_screen(view.view_projection, *sun);
-    shafts = sun_uv.has_value();
+    shafts = sun_uv.has_value() && sun_lights_air(planet, *sun, view.camera_position_m, 0.0f);
   }
   if (!shafts && !haze) return;
   const glm::vec4 haze_block = haze ? glm::vec4(haze->density_per_m, 1.0f / haze->scale_height_m, haze->scattering, haze->absorption)

@@ -209,7 +209,9 @@ TEST(GodRays, StiffCasesStayFiniteNonNegativeAndBounded) {
   check({{"azimuth_deg", 30}, {"elevation_deg", 0}}, {{"steps", 8}}, true);   // on the horizon, in front
   check({{"azimuth_deg", 30}, {"elevation_deg", -30}}, {{"steps", 8}}, false);  // no sunlit air within reach
   check({{"azimuth_deg", 210}, {"elevation_deg", 5}}, {{"method", "screen_space"}}, false);  // behind the camera
-  check({{"azimuth_deg", 30}, {"elevation_deg", -1}}, {{"method", "screen_space"}, {"screen_samples", 1}}, true);
+  check({{"azimuth_deg", 30}, {"elevation_deg", 1}}, {{"method", "screen_space"}, {"screen_samples", 1}}, true);
+  // On the screen but below the camera's horizon (its dip at 300 m is 0.56 degrees): no sun image.
+  check({{"azimuth_deg", 30}, {"elevation_deg", -1}}, {{"method", "screen_space"}}, false);
 }
 
 }  // namespace
