@@ -24,6 +24,7 @@
 #include "welkin/core/error.h"
 #include "welkin/gfx/gl_context.h"
 #include "welkin/gfx/image.h"
+#include "welkin/scene/json_fields.h"
 #include "welkin/scene/scene_file.h"
 
 
@@ -43,7 +44,8 @@ struct AccuracyOptions {
   std::string ghosting_scene = "assets/scenes/clouds-peer.json", scene = "assets/scenes/godrays-sunset.json";
   std::vector<std::string> methods{"lut", "raymarch"}, qualities{"low", "medium", "high", "ultra"};
   int frames = 7, threads = 2;
-  bool quick = false, json = false;
+  bool quick = false, json = false, check = false;
+  std::string tolerances;  // --check's table; default: the atmosphere module's validation/accuracy-tolerances.json
 };
 
 // Rays are grouped by the sun's elevation: where the LUT method's approximations differ most.
@@ -155,8 +157,82 @@ std::string steps_of(const atmosphere::Atmosphere& a) {
   return buf;
 }
 
+// One committed limit (validation/accuracy-tolerances.json): the relative RMSE and worst error a method
+// and quality may reach, for all scattering orders against the path tracer or single scattering
+// against the quadrature, in one band of sun elevations, over the whole ray set or the quick tenth.
+struct Tolerance {
+  std::string method, quality, orders, band, rays;
+  double rmse = 0.0, max = 0.0;
+};
+
+std::vector<Tolerance> read_tolerances(const std::string& file) {
+  const nlohmann::json doc = read_json_file(file);
+  auto fail = [&](const std::string& path, const std::string& expected, const nlohmann::json& found) {
+    return Error(ErrorInfo{.file = file, .path = path, .expected = expected, .found = found.dump()});
+  };
+  if (!doc.is_object() || !doc.contains("welkin_accuracy_tolerances") || doc["welkin_accuracy_tolerances"] != 1)
+    throw fail("/welkin_accuracy_tolerances", "1", doc.is_object() && doc.contains("welkin_accuracy_tolerances") ? doc["welkin_accuracy_tolerances"] : nlohmann::json());
+  if (!doc.contains("limits") || !doc["limits"].is_array()) throw fail("/limits", "an array of limits", doc.value("limits", nlohmann::json()));
+  const std::vector<std::pair<std::string, std::vector<std::string>>> names{
+      {"method", {"lut", "raymarch"}}, {"quality", {"low", "medium", "high", "ultra"}}, {"orders", {"all", "1"}},
+      {"band", {"sun>=3", "sun=0", "sun=-6"}}, {"rays", {"quick", "all"}}};
+  std::vector<Tolerance> out;
+  for (size_t i = 0; i < doc["limits"].size(); ++i) {
+    const nlohmann::json& e = doc["limits"][i];
+    const std::string at = "/limits/" + std::to_string(i);
+    if (!e.is_object()) throw fail(at, "an object", e);
+    Tolerance t;
+    for (const auto& [field, allowed] : names) {
+      const nlohmann::json v = e.value(field, nlohmann::json());
+      if (!v.is_string() || std::find(allowed.begin(), allowed.end(), v.get<std::string>()) == allowed.end()) {
+        std::string list;
+        for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        throw fail(at + "/" + field, "one of " + list, v);
+      }
+    }
+    t.method = e["method"], t.quality = e["quality"], t.orders = e["orders"], t.band = e["band"], t.rays = e["rays"];
+    for (const char* field : {"rmse", "max"}) {
+      const nlohmann::json v = e.value(field, nlohmann::json());
+      if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0.0)
+        throw fail(at + "/" + field, "a relative error >= 0", v);
+    }
+    t.rmse = e["rmse"], t.max = e["max"];
+    out.push_back(t);
+  }
+  return out;
+}
+
+// Every limit of the run's ray set that names a measured configuration, against the measurement;
+// prints each one exceeded and returns their count (and how many were checked).
+std::pair<int, int> check_tolerances(const std::vector<Tolerance>& limits, const std::vector<ConfigResult>& results,
+                                     bool quick) {
+  int exceeded = 0, checked = 0;
+  const std::map<std::string, Band> bands{{"sun>=3", Band::day}, {"sun=0", Band::horizon}, {"sun=-6", Band::twilight}};
+  for (const Tolerance& t : limits) {
+    if (t.rays != (quick ? "quick" : "all")) continue;
+    for (const ConfigResult& r : results) {
+      if (t.method != method_name(r.config.method) || t.quality != quality_name(r.config.quality)) continue;
+      const auto& set = t.orders == "all" ? r.all_orders : r.single;
+      const auto it = set.find(bands.at(t.band));
+      if (it == set.end() || it->second.n == 0) continue;
+      ++checked;
+      const double rmse = it->second.rmse(), max = it->second.max;
+      if (rmse > t.rmse || max > t.max) {
+        ++exceeded;
+        std::fprintf(stderr, "accuracy check: %s %s, orders %s, %s: RMSE %.2f%% (limit %.2f%%), worst %.2f%% (limit %.2f%%)\n",
+                     t.method.c_str(), t.quality.c_str(), t.orders.c_str(), t.band.c_str(), 100 * rmse, 100 * t.rmse,
+                     100 * max, 100 * t.max);
+      }
+    }
+  }
+  return {exceeded, checked};
+}
+
 int run_accuracy(const AccuracyOptions& options) {
   AccuracyOptions o = options;
+  if ((o.check || !o.tolerances.empty()) && o.technique != "atmosphere")
+    throw Error(ErrorInfo{.path = "--check", .expected = "the atmosphere technique (the only one with a tolerance table)",
+                          .found = "'" + o.technique + "'"});
   if (o.technique == "godrays")
     return run_god_ray_accuracy({.out = o.out, .size = o.size.empty() ? "320x180" : o.size, .scene = o.scene,
                                  .frames = o.frames, .quick = o.quick, .json = o.json});
@@ -188,6 +264,9 @@ int run_accuracy(const AccuracyOptions& options) {
   // The default atmosphere (Earth), exactly as the module gives it to the GPU.
   auto world = make_world();
   world->modules().require_component("atmosphere.Atmosphere");
+  const fs::path validation = world->modules().manifest("atmosphere")->data_dir / "validation";
+  std::vector<Tolerance> limits;
+  if (o.check) limits = read_tolerances(o.tolerances.empty() ? (validation / "accuracy-tolerances.json").string() : o.tolerances);
   const atmosphere::Atmosphere earth;
   const ref::AtmosphereModel model = atmosphere::to_reference(earth);
   std::vector<ref::ProbeGeometry> rays = atmosphere::accuracy_rays();
@@ -201,8 +280,7 @@ int run_accuracy(const AccuracyOptions& options) {
   // Path-traced references: the cache beside the module's sources when there is one.
   std::string cache_path = o.cache;
   if (cache_path.empty()) {
-    const fs::path beside =
-        world->modules().manifest("atmosphere")->data_dir / "validation/accuracy-references.json";
+    const fs::path beside = validation / "accuracy-references.json";
     cache_path =
         fs::exists(beside) ? beside.string() : (fs::path(o.out) / "accuracy-references.json").string();
   }
@@ -272,6 +350,16 @@ int run_accuracy(const AccuracyOptions& options) {
   std::fprintf(stderr, "\n");
 
   write_file_atomically((fs::path(o.out) / "accuracy-atmosphere-rays.csv").string(), rays_csv.str());
+  int status = kOk;
+  if (o.check) {
+    const auto [exceeded, checked] = check_tolerances(limits, results, o.quick);
+    std::fprintf(stderr, "accuracy check: %d of %d limits exceeded (%s rays)\n", exceeded, checked, o.quick ? "quick" : "all");
+    if (checked == 0) {
+      std::fprintf(stderr, "accuracy check: no limit names what was measured\n");
+      status = kFailure;
+    }
+    if (exceeded > 0) status = kFailure;
+  }
   std::ostringstream csv;
   csv << "method,quality,steps,frame_size,atmosphere_ms,sky_pass_ms,frame_ms,copy_ms,all_orders_rel_rmse_sun_"
          "ge_0,"
@@ -325,7 +413,7 @@ int run_accuracy(const AccuracyOptions& options) {
                                        {"plot", png}}
                             .dump(2)
                             .c_str());
-    return kOk;
+    return status;
   }
   std::printf("%zu rays; reference: path tracing, %llu paths per ray, %llu with the sun below the horizon "
               "(seed %llu), cached in %s\n",
@@ -353,7 +441,7 @@ int run_accuracy(const AccuracyOptions& options) {
                 pair(r.single[Band::day]).c_str(), pair(r.single[Band::horizon]).c_str());
   std::printf("\nwrote %s, %s and %s\n", (fs::path(o.out) / "accuracy-atmosphere.csv").string().c_str(),
               (fs::path(o.out) / "accuracy-atmosphere-rays.csv").string().c_str(), png.c_str());
-  return kOk;
+  return status;
 }
 
 }  // namespace
@@ -382,6 +470,8 @@ void add_accuracy_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1, 1024))
       ->capture_default_str();
   cmd->add_flag("--quick", o->quick, "Every tenth ray only (a smoke test)");
+  cmd->add_flag("--check", o->check, "atmosphere: exit 1 when an error exceeds its limit in the tolerance table");
+  cmd->add_option("--tolerances", o->tolerances, "atmosphere --check: the table (default: the module's validation/accuracy-tolerances.json)");
   cmd->add_flag("--json", o->json, "Machine-readable summary");
   cmd->callback([o, &exit_code] { exit_code = run_accuracy(*o); });
 }

@@ -133,4 +133,28 @@ TEST(AtmosphereCli, AccuracyWritesItsReport) {
   EXPECT_NE(r.out.find("| lut | low |"), std::string::npos) << r.out;
 }
 
+// `--check` holds the run to the committed tolerance table: the table passes at CI's quick size (every
+// method and quality), a limit tighter than what is measured fails with its name, and a malformed table
+// is one error naming the file and the path inside it before anything is measured.
+TEST(AtmosphereCli, AccuracyCheckHoldsTheCommittedTolerances) {
+  const std::string quick = "accuracy atmosphere --quick --size 16x9 --frames 1 --check --out ";
+  CliRun ok = run(quick + tmp("check-ok").string());
+  ASSERT_EQ(ok.code, 0) << ok.out;
+  EXPECT_NE(ok.out.find("0 of 48 limits exceeded (quick rays)"), std::string::npos) << ok.out;
+
+  const fs::path tight = tmp("tight.json");
+  std::ofstream(tight) << R"({"welkin_accuracy_tolerances": 1, "limits": [)"
+                       << R"({"method": "lut", "quality": "high", "orders": "all", "band": "sun>=3", "rays": "quick", "rmse": 0.001, "max": 1.0}]})";
+  CliRun fail = run("accuracy atmosphere --quick --methods lut --qualities high --size 16x9 --frames 1 --check --tolerances " +
+                    tight.string() + " --out " + tmp("check-tight").string());
+  EXPECT_EQ(fail.code, 1) << fail.out;
+  EXPECT_NE(fail.out.find("lut high, orders all, sun>=3"), std::string::npos) << fail.out;
+  EXPECT_NE(fail.out.find("1 of 1 limits exceeded"), std::string::npos) << fail.out;
+
+  const fs::path bad = tmp("bad.json");
+  std::ofstream(bad) << R"({"welkin_accuracy_tolerances": 1, "limits": [{"method": "lut", "quality": "best"}]})";
+  expect_one_line_error(run("accuracy atmosphere --quick --check --tolerances " + bad.string() + " --out " + tmp("check-bad").string()),
+                        bad.string(), "/limits/0/quality");
+}
+
 }  // namespace
