@@ -1,6 +1,7 @@
 #include "welkin/clouds/components.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "welkin/core/error.h"
@@ -112,6 +113,40 @@ void describe(TypeBuilder<VolumetricClouds>& t) {
       .tooltip("Grey PNG of painted coverage around the scene's origin (128: unchanged, 255: overcast, 0: clear); the editor paints it");
   t.field("coverage_map_size_m", &VolumetricClouds::coverage_map_size_m).unit("m").range(1000, 2e7).tooltip("Side of the square the coverage map covers");
   t.field("layers", &VolumetricClouds::layers).max_count(256);
+}
+
+void describe(TypeBuilder<CloudClusters>& t) {
+  t.tooltip("Mid-range clouds: one volumetric layer drawn as clusters of lit puffs, handed over from the raymarch by distance");
+  t.validate(validate);
+  t.field("layer", &CloudClusters::layer).range(0, 255).tooltip("Index of the clouds.VolumetricClouds layer the clusters draw");
+  t.field("clusters", &CloudClusters::clusters).range(0, 4096).tooltip("At most this many, nearest first");
+  t.field("puffs_per_cluster", &CloudClusters::puffs_per_cluster).range(0, 256);
+  t.field("cell_m", &CloudClusters::cell_m).unit("m").range(100, 100000).tooltip("At most one cluster per cell of this side");
+  t.field("near_m", &CloudClusters::near_m).unit("m").range(0, 1e6).tooltip("The raymarch draws the layer nearer than this");
+  t.field("crossfade_m", &CloudClusters::crossfade_m).unit("m").range(0, 1e5).tooltip("Width of the hand-over between the two paths");
+  t.field("far_m", &CloudClusters::far_m).unit("m").range(100, 1e6).tooltip("No cluster beyond this distance");
+  t.field("puff_size", &CloudClusters::puff_size).range(0.1, 4).tooltip("Scales the genus's puff radii");
+  t.field("density_scale", &CloudClusters::density_scale).range(0, 100).tooltip("Peak extinction per unit of the field's extinction at the puff's centre");
+  t.field("samples", &CloudClusters::samples).range(1, 16).tooltip("Light samples along each puff's chord");
+  t.field("compositing", &CloudClusters::compositing).values({{"sorted", 0}, {"unsorted", 1}})
+      .tooltip("Back to front (sorted on the GPU), or in placement order (shows what sorting fixes)");
+  t.field("subdivision_level", &CloudClusters::subdivision_level).range(1, 4).tooltip("The puff proxy mesh's OpenSubdiv level");
+  t.field("seed", &CloudClusters::seed).range(0, 1 << 30);
+}
+
+void validate(const CloudClusters& c) {
+  if (int64_t(c.clusters) * c.puffs_per_cluster > kMaxClusterPuffs)
+    throw Error(ErrorInfo{.path = "/puffs_per_cluster",
+                          .expected = "clusters x puffs_per_cluster at most " + std::to_string(kMaxClusterPuffs) + " (at most " +
+                                      std::to_string(kMaxClusterPuffs / std::max(c.clusters, 1)) + " with " + std::to_string(c.clusters) + " clusters)",
+                          .found = std::to_string(c.puffs_per_cluster)});
+  if (!(c.far_m > c.near_m))
+    throw Error(ErrorInfo{.path = "/far_m", .expected = "more than near_m (" + std::to_string(c.near_m) + ")", .found = std::to_string(c.far_m)});
+  if (2.0 * std::ceil(double(c.far_m) / c.cell_m) > kMaxClusterGrid)
+    throw Error(ErrorInfo{.path = "/cell_m",
+                          .expected = "at least far_m / " + std::to_string(kMaxClusterGrid / 2) + " (" + std::to_string(c.far_m / float(kMaxClusterGrid / 2)) +
+                                      " m): at most " + std::to_string(kMaxClusterGrid) + " cells across",
+                          .found = std::to_string(c.cell_m)});
 }
 
 ResolvedQuality resolve_quality(const VolumetricClouds& c) {

@@ -141,6 +141,8 @@ std::vector<uint8_t> weather_maximum(const std::vector<uint8_t>& weather, int si
   return out;
 }
 
+}  // namespace
+
 void bind_field(const CloudsGpu& gpu) {
   glBindBufferBase(GL_UNIFORM_BUFFER, 0, gpu.frame_buffer->id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, gpu.layer_buffer->id());
@@ -158,6 +160,7 @@ void bind_field(const CloudsGpu& gpu) {
 ShaderDefines field_defines(const CloudsGpu& gpu) {
   constexpr int kLocalLayers = 4;
   ShaderDefines d = {{"CLOUDS_TURBULENCE", gpu.block.noise_mix.x > 0.0f ? "1" : "0"}};
+  if (gpu.clusters_layer >= 0) d["CLOUDS_HANDOVER"] = "1";
   const std::vector<LayerBlock>& layers = gpu.layers;
   if (layers.empty() || layers.size() > size_t(kLocalLayers)) return d;
   const bool detail = gpu.block.frame.y > 0.5f, map = gpu.block.map_up.w > 0.5f;
@@ -181,6 +184,8 @@ ShaderDefines field_defines(const CloudsGpu& gpu) {
   d["CLOUDS_SHADOW_MASK"] = std::to_string(shadow_mask);
   return d;
 }
+
+namespace {
 
 // The painted coverage map (the editor's brush), uploaded again only when a stroke changed it; a
 // 1 x 1 neutral texel stands for none.
@@ -233,7 +238,19 @@ bool upload_frame(World& world, const SystemContext& sc, const VolumetricClouds&
   const FrameView& view = world.resource<RenderContext>().view;
   CloudsContext ctx = read_context(world, sc.frame);
   upload_coverage_map(world, clouds, gpu, ctx);
-  const PackedLayers layers = pack_layers(clouds, ctx, view.camera_position_m);
+  PackedLayers layers = pack_layers(clouds, ctx, view.camera_position_m);
+  // The layer the mesh clusters draw beyond their near distance is handed over to them there.
+  gpu.clusters_layer = -1;
+  const Entity cluster_entity = world.registry().first<CloudClusters>();
+  if (!cluster_entity.is_null()) {
+    const CloudClusters& c = *world.registry().get<CloudClusters>(cluster_entity);
+    for (size_t i = 0; i < layers.layers.size(); ++i)
+      if (layers.source_index[i] == c.layer && c.clusters > 0 && c.puffs_per_cluster > 0) {
+        layers.layers[i].handover = {std::max(c.near_m, 1e-3f), c.crossfade_m, 0.0f, 0.0f};
+        gpu.clusters_layer = int(i);
+      }
+  }
+  gpu.context = ctx;
   const ResolvedQuality q = resolve_quality(clouds);
   const int w = std::max(1, int(std::ceil(view.width * q.resolution_scale)));
   const int h = std::max(1, int(std::ceil(view.height * q.resolution_scale)));
@@ -434,6 +451,14 @@ void clouds_system(SystemContext& sc) {
   // The field's layers and what each uses are compiled in, turbulence only where it displaces anything.
   ShaderDefines defines = field_defines(gpu);
   defines["CLOUDS_AP_MODE"] = ap_mode;
+  // The mesh clusters drawn just before: the march ends where they turn opaque.
+  const bool cluster_front = gpu.clusters.front_valid;
+  const GLuint front_unit = world.resource<LightEnvironment>().free_unit();
+  if (cluster_front) {
+    defines["CLOUDS_CLUSTER_FRONT"] = "1";
+    defines["CLOUDS_UNIT_CLUSTER_FRONT"] = std::to_string(front_unit);
+  }
+  const ResourceHandle front = cluster_front ? sc.graph->import("clouds.cluster_front", *gpu.clusters.front) : ResourceHandle{};
   // A frame rendered alone marches every pixel (the history is another moment's).
   const bool temporal = clouds->temporal_upscaling && !sc.frame.alone && w >= 2 && h >= 2;
   if (temporal)
@@ -462,11 +487,12 @@ void clouds_system(SystemContext& sc) {
       "clouds.march",
       [&](PassBuilder& b) {
         b.read(t.depth);
+        if (cluster_front) b.read(front);
         (*current)[0] = b.create("clouds.march", TextureDesc{.width = qw, .height = qh, .format = TextureFormat::rgba16f});
         (*current)[1] = b.create("clouds.march_distance",
                                  TextureDesc{.width = qw, .height = qh, .format = TextureFormat::rg32f, .linear_filter = false});
       },
-      [gp, &rc, &world, t, current, defines, stride_offset](PassContext& pc) {
+      [gp, &rc, &world, t, current, defines, stride_offset, cluster_front, front, front_unit](PassContext& pc) {
         Framebuffer fb({&pc.texture((*current)[0]), &pc.texture((*current)[1])}, nullptr);
         fb.bind();
         glDisable(GL_DEPTH_TEST);
@@ -478,6 +504,7 @@ void clouds_system(SystemContext& sc) {
         bind_field(*gp);
         glBindTextureUnit(3, pc.texture(t.depth).id());
         glBindTextureUnit(4, gp->blue_noise->id());
+        if (cluster_front) glBindTextureUnit(front_unit, pc.texture(front).id());
         const Program& p = rc.shaders.graphics("fullscreen.vert", "clouds/march.frag", defines);
         p.use();
         glProgramUniform3i(p.id(), p.location("u_stride_offset"), stride_offset.x, stride_offset.y, stride_offset.z);

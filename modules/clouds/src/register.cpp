@@ -1,4 +1,4 @@
-// Entry point of the clouds module: its component, its light term and its two render systems.
+// Entry point of the clouds module: its components, its light term and its render systems.
 #include "welkin/clouds/components.h"
 #include "welkin/clouds/gpu.h"
 #include "welkin/core/module.h"
@@ -9,11 +9,16 @@ namespace welkin::modules {
 void register_clouds(ModuleContext& ctx) {
   using namespace welkin::clouds;
   ctx.component<VolumetricClouds>();
+  ctx.component<CloudClusters>();
   add_light_term(ctx.world());
   // The shadow map before any material draws; the march after the geometry and the atmosphere's
   // aerial perspective on it (order 100), so clouds cover both and carry the air in front of them.
   ctx.system({.name = "clouds.shadows", .phase = Phase::render, .order = -50,
               .reads = {type_id<VolumetricClouds>()}, .run = shadow_system});
+  // The mesh clusters after the god rays (140) and before the march, which stops where they turn
+  // opaque and composites the nearer volumetric clouds over them.
+  ctx.system({.name = "clouds.clusters", .phase = Phase::render, .order = 145,
+              .reads = {type_id<CloudClusters>()}, .optional_reads = {type_id<VolumetricClouds>()}, .run = clusters_system});
   ctx.system({.name = "clouds.march", .phase = Phase::render, .order = 150,
               .reads = {type_id<VolumetricClouds>()}, .run = clouds_system});
 }

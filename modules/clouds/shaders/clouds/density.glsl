@@ -60,6 +60,7 @@ struct CloudLayerGpu {
   vec4 profile;   // exp term, exponent, linear term, constant term
   vec4 weather;   // camera in weather periods (fraction, drift applied), xyz; w: 1 / period
   vec4 model;     // dome (0 sheet .. 1 dome), weather channel, casts shadow, follows the coverage map
+  vec4 handover;  // x: view distance m beyond which the mesh clusters draw the layer (0: never); y: cross-fade m
 };
 layout(std430, binding = 0) readonly buffer CloudLayers { CloudLayerGpu cl_layers[]; };
 // Up to four layers are copied into private variables too; more are read from the buffer.
@@ -131,6 +132,12 @@ float clouds_detail_displacement = 0.0;
 // weighted by their density there (the light reflected up from it).
 float clouds_depth_below_m = 0.0;
 float clouds_painted_sample = 2.0;  // > 1: not read yet at this point
+// CLOUDS_HANDOVER: some layer is handed over to the mesh clusters beyond a distance; the march sets
+// this while it samples what the camera sees (not toward the light).
+#ifndef CLOUDS_HANDOVER
+#define CLOUDS_HANDOVER 0
+#endif
+bool clouds_view_sample = false;
 
 // The weather systems' signal where the caller marches: it changes over hundreds of kilometres, so
 // the caller looks it up at the ends of each stretch it marches and interpolates (like the light),
@@ -223,6 +230,12 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
     float e = mix(n, 1.0 - n, clamp(t * 4.0, 0.0, 1.0)) * L.shape.z * 0.35 * (1.0 - d);
     d = clamp((d - e) / max(1.0 - e, 1e-3), 0.0, 1.0);
   }
+#if CLOUDS_HANDOVER
+  // Seen from the camera, a layer the mesh clusters take over fades out across the hand-over; its
+  // light and shadow samples keep the whole layer (the clusters' clouds still shade what is near).
+  if (clouds_view_sample && L.handover.x > 0.0)
+    d *= 1.0 - smoothstep(L.handover.x - 0.5 * L.handover.y, L.handover.x + 0.5 * L.handover.y + 1e-3, length(x));
+#endif
   clouds_depth_below_m += d * L.altitude.w * t * L.altitude.y;
   return d * L.altitude.w;
 }

@@ -10,6 +10,7 @@
 //                  2: once at the first cloud sample (the camera in space: the froxels cover no vacuum)
 #include "clouds/density.glsl"
 #include "clouds/phase.glsl"
+#include "clouds/light_model.glsl"
 #include "welkin/lighting.glsl"
 #include "welkin/view.glsl"
 
@@ -21,6 +22,11 @@ layout(location = 1) out vec2 o_distance;  // the clouds' opacity-weighted mean 
 uniform ivec3 u_stride_offset;
 layout(binding = 3) uniform sampler2D u_depth;       // the scene's depth (reversed Z; 0 = nothing)
 layout(binding = 4) uniform sampler2D u_blue_noise;  // 64 x 64, void-and-cluster
+#if CLOUDS_CLUSTER_FRONT
+// Where the mesh clusters drawn before the march turn opaque (m, full resolution): the march ends
+// there as at the scene's geometry.
+layout(binding = CLOUDS_UNIT_CLUSTER_FRONT) uniform sampler2D u_cluster_front;
+#endif
 
 // Distance to the scene's geometry along this pixel's ray (infinite where there is none).
 float scene_distance(vec2 ndc) {
@@ -60,9 +66,7 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
   bool detail = true;  // for the layers that use it (density.glsl)
   vec3 l = cl_phase.w > 0.5 ? welkin_moon_direction() : welkin_sun_direction();
   float mu = dot(dir, l);
-  int octaves = int(cl_light.y);
   float extinction_per_density = cl_medium.x + cl_medium.y;
-  float albedo = cl_medium.x / max(extinction_per_density, 1e-9);
   float t = segment.x;
   bool first = true;
   // The light reaching the clouds and the air in front of them change over kilometres, not metres:
@@ -99,7 +103,9 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
       continue;
     }
     bool empty;
+    clouds_view_sample = true;
     float density = clouds_density(x, detail, false, empty);
+    clouds_view_sample = false;
     if (density <= 0.0) {
       // Empty space: skip ahead by up to a quarter of the weather's texel (the weather cannot rise
       // from nothing to cloud much faster); where the noise eroded the cloud, the usual step.
@@ -113,33 +119,7 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
       vec3 up = normalize(mix(up0, up1, along));
       vec3 e_light = mix(e_light0, e_light1, along), e_sky = mix(e_sky0, e_sky1, along);
       float tau = light_optical_depth(x, l, extinction_per_density) * extinction_per_density;
-      float scattered = 0.0;
-      if (cl_light_model.x < 0.5) {
-        // Wrenninge 2015: octave k scatters b^k of the light, sees a^k of the optical depth, and a
-        // phase whose anisotropy is scaled by c^k (a = b = c = 1/2).
-        float weight = 1.0;
-        for (int k = 0; k < octaves; ++k) {
-          scattered += weight * clouds_phase(mu, weight) * exp(-weight * tau);
-          weight *= 0.5;
-        }
-      } else {
-        // Single scattering, and the diffuse light of a conservative slab: what the two-stream
-        // transmittance lets through beyond the direct beam, spread over the sphere of directions.
-        // The cloud below reflects part of that light back up (the two-stream reflectance of a
-        // conservative slab, 0.15 tau / (1 + 0.15 tau), of the depth below at this density).
-        float direct = exp(-tau);
-        float tau_below = sigma_t * depth_below_m;
-        float reflected = 0.15 * tau_below / (1.0 + 0.15 * tau_below);
-        scattered = phase_single * direct +
-                    max(1.0 / (1.0 + 0.15 * tau) - 0.25 * direct, 0.0) * (1.0 + 0.5 * reflected) / (2.0 * CLOUDS_PI);
-      }
-      scattered *= 1.0 - cl_light.z * exp(-2.0 * sigma_t * cl_light.x);  // powder (0: off)
-      // Sky from above and the lit ground from below, diffused through the cloud: the two-stream
-      // transmittance 1 / (1 + 0.75 (1 - g) tau) with g = 0.8, tau the optical depth toward the light
-      // (no extra samples: on software rasterisers each density sample is most of a step's cost).
-      vec3 e_ground = cl_light.w * (e_light * max(dot(l, up), 0.0) * exp(-tau) + e_sky);
-      vec3 ambient = (e_sky + e_ground) / (2.0 * CLOUDS_PI * (1.0 + 0.15 * tau));
-      vec3 source = albedo * (e_light * scattered + ambient);  // per unit extinction
+      vec3 source = clouds_sample_source(mu, phase_single, tau, sigma_t, depth_below_m, l, up, e_light, e_sky);
       // Energy-conserving step (Hillaire 2015): integrate the source over the step's own attenuation.
       float step_transmittance = exp(-sigma_t * step_m);
       vec3 step_light = source * (1.0 - step_transmittance);
@@ -169,6 +149,12 @@ void main() {
   vec2 ndc = (vec2(pixel) + 0.5) / cl_frame.zw * 2.0 - 1.0;
   vec3 dir = view_ray_direction(cl_inverse_view_projection, ndc);
   float t_max = scene_distance(ndc);
+#if CLOUDS_CLUSTER_FRONT
+  // The farthest of the texels this march pixel covers: behind a cluster's edge the march goes on
+  // (what it adds there is seen through the edge) instead of stepping in blocks.
+  vec4 fronts = textureGather(u_cluster_front, ndc * 0.5 + 0.5, 0);
+  t_max = min(t_max, max(max(fronts.x, fronts.y), max(fronts.z, fronts.w)));
+#endif
   vec2 ground = clouds_sphere(dir, 0.0);
   if (ground.x <= ground.y && ground.x > 0.0) t_max = min(t_max, ground.x);
   Accumulated acc = Accumulated(vec3(0.0), 1.0, 0.0, 0.0, cl_up.w, false, vec3(0.0), vec3(1.0), 0);

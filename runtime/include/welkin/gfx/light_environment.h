@@ -74,6 +74,9 @@ class LightEnvironment {
   // The composed welkin/lighting.glsl, and the #defines of every assigned unit and binding.
   std::string composed_source() const;
   ShaderDefines binding_defines() const;
+  // The first texture unit the environment has not handed out: a material needing more than units
+  // 0..7 takes units from here (they stay free until a term is added).
+  GLuint free_unit() const { return next_unit_; }
   // Bumped whenever the composed source or the bindings change.
   uint64_t version() const { return version_; }
 

@@ -139,6 +139,38 @@ struct VolumetricClouds {
 };
 void describe(TypeBuilder<VolumetricClouds>& t);
 
+// How overlapping puffs are composited: drawn back to front by their centres' distance (sorted on
+// the GPU each frame), or in the order they were placed (kept to show what sorting fixes).
+enum class ClusterCompositing : int { sorted = 0, unsorted = 1 };
+
+// Mesh-cluster clouds: one layer of the VolumetricClouds drawn at mid range as clusters of soft
+// ellipsoidal puffs (instanced, one draw), placed where that layer's weather and shape noise hold
+// cloud, so a cluster stands where the volumetric cloud would be and drifts with it. The volumetric
+// path draws the layer nearer than near_m and fades it out over crossfade_m while the puffs fade in.
+struct CloudClusters {
+  static constexpr std::string_view kTypeName = "clouds.CloudClusters";
+  int layer = 0;                 // index in clouds.VolumetricClouds/layers
+  int clusters = 40;             // at most this many, nearest first, where the layer's weather holds cloud
+  int puffs_per_cluster = 25;
+  float cell_m = 4000.0f;        // at most one cluster per cell of this side (cells drift with the layer's wind)
+  float near_m = 8000.0f;        // the volumetric path draws the layer nearer than this
+  float crossfade_m = 2000.0f;   // over which the two paths hand over
+  float far_m = 60000.0f;        // no cluster beyond this distance
+  float puff_size = 1.0f;        // scales the genus's puff radii
+  float density_scale = 1.0f;    // a puff's peak extinction per unit of the field's extinction at its centre
+  int samples = 3;               // light samples along each puff's chord (stratified by opacity)
+  ClusterCompositing compositing = ClusterCompositing::sorted;
+  int subdivision_level = 2;     // of the puff's proxy mesh (OpenSubdiv, Catmull-Clark from a cube)
+  int seed = 7;
+};
+void describe(TypeBuilder<CloudClusters>& t);
+// The most puffs one frame may draw (clusters x puffs_per_cluster), and the most candidate cells
+// (far_m / cell_m per side): work and memory bounded before they are spent.
+inline constexpr int64_t kMaxClusterPuffs = 131072;
+inline constexpr int kMaxClusterGrid = 256;
+// Throws Error naming the field for values that fail together.
+void validate(const CloudClusters& clusters);
+
 // The marching parameters a quality preset stands for (custom: the component's own).
 struct ResolvedQuality {
   int max_steps;

@@ -10,6 +10,7 @@
 #include "welkin/clouds/components.h"
 #include "welkin/gfx/camera.h"
 #include "welkin/gfx/gl_objects.h"
+#include "welkin/gfx/shader.h"
 
 namespace welkin {
 class World;
@@ -51,6 +52,9 @@ struct LayerBlock {
   glm::vec4 profile{0.0f};   // exp term, exponent, linear term, constant term
   glm::vec4 weather{0.0f};   // camera in weather periods (fraction); w: 1 / period
   glm::vec4 model{0.0f};     // dome, weather channel, casts shadow, follows the coverage map
+  // Hand-over to the mesh clusters (clouds.CloudClusters): x the view distance (m) beyond which the
+  // march leaves the layer to them (0: never), y the width of the cross-fade (m).
+  glm::vec4 handover{0.0f};
 };
 
 // Where the planet is and when it is: what the clouds read of other modules (through reflection).
@@ -140,6 +144,34 @@ inline constexpr int kShapeNoiseSize = 128, kDetailNoiseSize = 32, kWeatherNoise
 inline constexpr int kSystemsNoiseSize = 32;
 inline constexpr int kWeatherOccupancySize = 16;  // blocks of 4^3 weather texels
 
+// std430 mirror of ClusterPuff (shaders/clouds/clusters.glsl): one puff, written by the placement
+// compute each frame, read by the puffs' draw.
+struct ClusterPuffGpu {
+  glm::vec4 centre;            // camera-relative m; w: peak extinction 1/m (0: no puff)
+  glm::vec4 radii;             // along the clusters' axes (wind, across, up) m; w: optical depth toward the light through the cluster's other puffs
+  glm::vec4 light;             // irradiance of the marched light at the centre; w: distance from the camera m
+  glm::vec4 sky;               // sky irradiance on a horizontal plane at the centre; w: the centre's height above the cluster's base m
+  glm::vec4 ap_inscattering;   // the air between the camera and the centre
+  glm::vec4 ap_transmittance;
+  glm::vec4 light_gradient;    // how that optical depth changes across the puff: per unit of its normalised axes
+};
+static_assert(sizeof(ClusterPuffGpu) == 112, "ClusterPuffGpu must match the std430 ClusterPuff struct");
+
+// The mesh clusters' GPU state (src/clusters.cpp).
+struct ClustersGpu {
+  std::unique_ptr<Buffer> proxy;       // the puff's proxy mesh as a triangle list of vec4 (pulled by gl_VertexID)
+  int proxy_vertices = 0, proxy_level = -1;
+  std::unique_ptr<Buffer> cells, chosen, puffs, order, cell_order_buffer;
+  size_t cell_capacity = 0, chosen_capacity = 0, puff_capacity = 0, order_capacity = 0;
+  std::vector<int32_t> cell_order;     // grid cells nearest first (for the grid size it was made for)
+  int cell_order_grid = -1;
+  std::unique_ptr<Texture> front;      // distance to where the clusters turn opaque (m; the march stops there)
+  bool front_valid = false;            // written this frame (the march reads it then)
+  GLuint vao = 0;
+  int puff_count = 0;                  // instances drawn last frame (clusters x puffs)
+  ~ClustersGpu();
+};
+
 struct CloudsGpu {
   static constexpr std::string_view kTypeName = "clouds.Gpu";
   // shape: RGBA8, r the Perlin-Worley shape, gba the curl field c as 0.5 + 0.5 c (longest vector 1),
@@ -171,6 +203,9 @@ struct CloudsGpu {
   glm::dvec3 previous_camera_m{0.0};
   uint64_t temporal_frame = 0;
   bool has_layers = false;  // some layer can hold cloud this frame
+  CloudsContext context;    // this frame's
+  int clusters_layer = -1;  // the packed layer the mesh clusters draw (-1: none)
+  ClustersGpu clusters;
 };
 
 // Declares the cloud shadows and sky occlusion as a term of the world's light environment.
@@ -181,6 +216,16 @@ void shadow_system(SystemContext& sc);
 // Render phase, after the atmosphere's aerial perspective (order 150): the march at the quality's
 // resolution and the composite over the frame.
 void clouds_system(SystemContext& sc);
+// Render phase, after the god rays and before the march (order 145): the mesh clusters, placed from
+// the field, lit, sorted and drawn over the frame; the march then stops where they turn opaque.
+void clusters_system(SystemContext& sc);
+// The proxy mesh of one puff: a cube refined by Catmull-Clark (OpenSubdiv) onto the unit sphere and
+// pushed out until it encloses it, as a triangle list (counter-clockwise from outside).
+std::vector<glm::vec4> puff_proxy_mesh(int level);
+// Binds the density field's block, layers and noise (shaders/clouds/density.glsl's bindings).
+void bind_field(const CloudsGpu& gpu);
+// The field's compile-time description for a shader that includes density.glsl.
+ShaderDefines field_defines(const CloudsGpu& gpu);
 // Noise generation alone (also used by the CPU reference's field, which reads the volumes back).
 void ensure_noise(World& world, int seed);
 

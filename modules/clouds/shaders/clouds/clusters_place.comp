@@ -1,0 +1,193 @@
+// The mesh clusters' placement, in stages (CLUSTERS_STAGE), each frame from the layer's own weather
+// and noise (clouds/density.glsl), so that a cluster stands where the volumetric cloud would:
+//   0 cells:  how much cloud each candidate cell's columns hold (cells drift with the layer's wind);
+//   1 choose: the nearest cells that hold any, up to the cluster budget (one invocation);
+//   2 puffs:  each puff at a place drawn from its cell and index by the genus's profile, with the
+//             field's extinction there as its own;
+//   3 light:  each puff's optical depth toward the light through its cluster's other puffs, the
+//             light, sky and air at its centre, and its sort key (distance).
+#include "clouds/density.glsl"
+#include "clouds/clusters.glsl"
+#if CLUSTERS_STAGE == 3
+#include "welkin/lighting.glsl"
+#endif
+
+layout(local_size_x = 64) in;
+
+layout(std430, binding = 1) buffer ClusterPuffs { ClusterPuff cp_puffs[]; };
+layout(std430, binding = 2) buffer ClusterCells { float cp_cells[]; };      // each cell's cloud (mean extinction, 1/m)
+layout(std430, binding = 3) buffer ClusterChosen { int cp_chosen[]; };      // the cell of each cluster (-1: none)
+layout(std430, binding = 4) readonly buffer ClusterCellOrder { int cp_cell_order[]; };  // cells nearest first
+layout(std430, binding = 5) buffer ClusterOrder { uvec2 cp_order[]; };      // (sort key bits, puff) per instance
+
+uniform int u_grid;               // cells per side
+uniform float u_cell_m;
+uniform ivec2 u_first_cell;       // the global index (in the drifting grid) of cell (0, 0)
+uniform vec2 u_first_corner;      // its corner, camera-relative (east, north) m
+uniform vec3 u_east, u_north;     // the camera's tangent plane (camera-relative axes)
+uniform vec2 u_wind_en;           // the wind's direction in (east, north)
+uniform int u_layer;              // the packed layer the clusters draw
+uniform int u_clusters, u_puffs;  // budget, puffs per cluster
+uniform uint u_seed;
+uniform vec4 u_range;             // near m, cross-fade m, far m, puff size
+uniform vec4 u_genus;             // dome (0 sheet .. 1 dome), form (0 heaps, 1 sheets, 2 streaks), density scale
+uniform int u_order_size;         // the sort's power-of-two size
+uniform vec3 u_light_dir;         // toward the marched light
+uniform int u_light;              // 0 sun, 1 moon
+
+// A point at altitude h above the surface at camera-relative (east, north): the planet's curvature
+// taken exactly, written so that float keeps it to a metre at 100 km.
+vec3 layer_point(vec2 en, float h) {
+  float r_c = cl_planet.z, R = cl_planet.x + h, rho2 = dot(en, en);
+  float z = ((h - cl_planet.y) * (R + r_c) - rho2) / (sqrt(max(R * R - rho2, 0.0)) + r_c);
+  return en.x * u_east + en.y * u_north + z * cl_up.xyz;
+}
+
+// Hash (Jarzynski & Olano 2020, PCG) of a cell, an index and the seed into [0, 1)^4.
+uvec4 pcg4d(uvec4 v) {
+  v = v * 1664525u + 1013904223u;
+  v.x += v.y * v.w; v.y += v.z * v.x; v.z += v.x * v.y; v.w += v.y * v.z;
+  v ^= v >> 16u;
+  v.x += v.y * v.w; v.y += v.z * v.x; v.z += v.x * v.y; v.w += v.y * v.z;
+  return v;
+}
+vec4 random4(ivec2 cell, int index, uint salt) {
+  return vec4(pcg4d(uvec4(uvec2(cell), uint(index), u_seed * 4u + salt)) >> 8u) / 16777216.0;
+}
+
+vec2 cell_centre_en(int cell) { return u_first_corner + (vec2(cell % u_grid, cell / u_grid) + 0.5) * u_cell_m; }
+
+float field_at(vec3 x) {
+  clouds_system_g = clouds_weather_system_at(x);
+  return clouds_density(x, false, false);
+}
+
+void main() {
+  clouds_load();
+  int id = int(gl_GlobalInvocationID.x);
+  CloudLayerGpu L = cl_layers[u_layer];
+  float base = L.altitude.x, thickness = L.altitude.y;
+  float cluster_radius = 0.42 * u_cell_m;
+#if CLUSTERS_STAGE == 0
+  if (id >= u_grid * u_grid) return;
+  vec2 en = cell_centre_en(id);
+  float rho = length(en);
+  float score = 0.0;
+  if (rho > u_range.x - 0.5 * u_range.y - u_cell_m && rho < u_range.z + u_cell_m) {
+    // Five columns (the centre and four at half the cluster's radius), two heights each.
+    const vec2 columns[5] = vec2[5](vec2(0.0), vec2(0.5, 0.0), vec2(-0.5, 0.0), vec2(0.0, 0.5), vec2(0.0, -0.5));
+    for (int c = 0; c < 5; ++c)
+      for (int k = 0; k < 2; ++k) score += field_at(layer_point(en + columns[c] * cluster_radius, base + thickness * (0.3 + 0.3 * float(k))));
+    score *= 0.1;
+  }
+  cp_cells[id] = score;
+#elif CLUSTERS_STAGE == 1
+  if (id != 0) return;
+  int k = 0;
+  for (int j = 0; j < u_grid * u_grid && k < u_clusters; ++j) {
+    int cell = cp_cell_order[j];
+    if (cp_cells[cell] > 0.0) cp_chosen[k++] = cell;
+  }
+  for (; k < u_clusters; ++k) cp_chosen[k] = -1;
+#elif CLUSTERS_STAGE == 2
+  if (id >= u_clusters * u_puffs) return;
+  int cluster = id / u_puffs, index = id % u_puffs;
+  int cell = cp_chosen[cluster];
+  ClusterPuff puff;
+  puff.centre = vec4(0.0);
+  puff.radii = vec4(1.0, 1.0, 1.0, 0.0);
+  puff.light = puff.sky = puff.ap_inscattering = vec4(0.0);
+  puff.ap_transmittance = vec4(1.0);
+  puff.light_gradient = vec4(0.0);
+  if (cell >= 0) {
+    ivec2 global_cell = u_first_cell + ivec2(cell % u_grid, cell / u_grid);
+    vec4 u = random4(global_cell, index, 0u), v = random4(global_cell, index, 1u);
+    vec2 centre_en = cell_centre_en(cell);
+    vec2 across_en = vec2(-u_wind_en.y, u_wind_en.x);
+    float size = u_range.w;
+    vec3 radii;
+    vec2 offset;  // along the wind, across it (m)
+    float height;  // of the centre above the base (m)
+    int form = int(u_genus.y);
+    if (form == 2) {
+      // Streaks: long along the wind, narrow across, thin.
+      radii = vec3(0.5, 0.12, 0.0) * cluster_radius * size;
+      radii.z = min(0.4 * thickness, radii.y);
+      offset = vec2((u.x - 0.5) * 2.0 * cluster_radius, (u.y - 0.5) * 0.5 * cluster_radius);
+      height = radii.z + u.z * max(thickness - 2.0 * radii.z, 0.0);
+    } else {
+      // Heaps (a dome over a flat base, higher in the middle) or sheets (flattened puffs filling the layer).
+      float r = cluster_radius * sqrt(u.x), angle = 6.2831853 * u.y;
+      offset = r * vec2(cos(angle), sin(angle));
+      float horizontal = (form == 1 ? 0.45 : 0.38) * cluster_radius * size * (0.75 + 0.5 * v.x);
+      float vertical = min(form == 1 ? 0.4 * horizontal : horizontal, 0.45 * thickness);
+      radii = vec3(horizontal, horizontal, vertical);
+      float top = thickness * mix(1.0, 1.0 - (r * r) / (cluster_radius * cluster_radius), u_genus.x);
+      // Centres from a third of a radius above the base (the draw cuts each puff at the base).
+      height = 0.35 * vertical + u.z * max(top - 1.35 * vertical, 0.0);
+    }
+    vec2 puff_en = centre_en + offset.x * u_wind_en + offset.y * across_en;
+    // The base rises and falls with the weather, as in the field: read once at the cluster's centre.
+    vec3 at_centre = layer_point(centre_en, base);
+    float weather_base = base + L.altitude.z * (clouds_weather_fetch(L, at_centre).a - 0.5) * 2.0;
+    vec3 x = layer_point(puff_en, weather_base + height);
+    float rho = length(x);
+    // The volumetric path hands the layer over across [near - w/2, near + w/2]; the puffs fade out
+    // over the last cross-fade before far.
+    float fade = smoothstep(u_range.x - 0.5 * u_range.y, u_range.x + 0.5 * u_range.y + 1e-3, rho) *
+                 (1.0 - smoothstep(u_range.z - u_range.y - 1e-3, u_range.z, rho));
+    // The field's extinction where the puff stands: the largest of its centre and two points half
+    // its radius to either side along the wind (one point alone is often where the noise erodes).
+    float field = field_at(x);
+    field = max(field, field_at(layer_point(puff_en + 0.5 * radii.x * u_wind_en, weather_base + height)));
+    field = max(field, field_at(layer_point(puff_en - 0.5 * radii.x * u_wind_en, weather_base + height)));
+    float sigma = field * (cl_medium.x + cl_medium.y) * u_genus.z * fade;
+    if (sigma > 0.0) {
+      puff.centre = vec4(x, sigma);
+      puff.radii = vec4(radii, 0.0);
+      puff.sky.w = height;  // above the cluster's base, where the draw cuts it
+    }
+  }
+  cp_puffs[id] = puff;
+#elif CLUSTERS_STAGE == 3
+  if (id >= u_order_size) return;
+  int count = u_clusters * u_puffs;
+  if (id >= count) {
+    cp_order[id] = uvec2(floatBitsToUint(-2.0), uint(id));  // padding: sorts after every puff
+    return;
+  }
+  ClusterPuff puff = cp_puffs[id];
+  float key = -1.0;
+  if (puff.centre.w > 0.0) {
+    vec3 c = puff.centre.xyz;
+    int first = (id / u_puffs) * u_puffs;
+    // At the centre and half a radius to either side along each axis (the draw interpolates, so
+    // the shade does not jump from puff to puff).
+    vec3 axes[3] = vec3[3](u_axis_wind * puff.radii.x, u_axis_across * puff.radii.y, u_axis_up * puff.radii.z);
+    float tau[7] = float[7](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    for (int q = first; q < first + u_puffs; ++q) {
+      if (q == id) continue;
+      vec4 other = cp_puffs[q].centre;
+      if (other.w <= 0.0) continue;
+      vec3 other_radii = cp_puffs[q].radii.xyz;
+      tau[0] += other.w * puff_optical_depth(puff_chord(c, u_light_dir, other.xyz, other_radii), 0.0, 3.4e38);
+      for (int a = 0; a < 3; ++a)
+        for (int side = 0; side < 2; ++side) {
+          vec3 x = c + axes[a] * (side == 0 ? 0.5 : -0.5);
+          tau[1 + 2 * a + side] += other.w * puff_optical_depth(puff_chord(x, u_light_dir, other.xyz, other_radii), 0.0, 3.4e38);
+        }
+    }
+    // Only this stage's fields are written: the other invocations read the centres and radii.
+    cp_puffs[id].radii.w = tau[0];
+    cp_puffs[id].light_gradient = vec4(tau[1] - tau[2], tau[3] - tau[4], tau[5] - tau[6], 0.0);
+    vec3 up = normalize(cl_up.xyz * cl_planet.z + c);
+    cp_puffs[id].light = vec4(u_light == 1 ? welkin_moon_irradiance(c) : welkin_sun_irradiance(c), length(c));
+    cp_puffs[id].sky.rgb = welkin_sky_irradiance(up);
+    vec3 t;
+    cp_puffs[id].ap_inscattering = vec4(welkin_aerial_perspective(c, t), 0.0);
+    cp_puffs[id].ap_transmittance = vec4(t, 0.0);
+    key = length(c);
+  }
+  cp_order[id] = uvec2(floatBitsToUint(key), uint(id));
+#endif
+}

@@ -1,0 +1,40 @@
+#pragma once
+// The light a cloud sample scatters toward the camera, per unit extinction (the albedo included):
+// shared by the march and the mesh clusters' puffs, so that both paths light one cloud alike.
+//   mu: cosine between the view ray and the direction toward the light; phase_single: the phase at mu;
+//   tau: optical depth toward the light; sigma_t: extinction at the sample (1/m);
+//   depth_below_m: the cloud's depth under the sample (its light reflected back up); l: toward the
+//   light; up: the local vertical; e_light, e_sky: the light's and the sky's irradiance there.
+// Needs clouds/density.glsl (the block) and clouds/phase.glsl.
+vec3 clouds_sample_source(float mu, float phase_single, float tau, float sigma_t, float depth_below_m, vec3 l, vec3 up,
+                          vec3 e_light, vec3 e_sky) {
+  float scattered = 0.0;
+  if (cl_light_model.x < 0.5) {
+    // Wrenninge 2015: octave k scatters b^k of the light, sees a^k of the optical depth, and a
+    // phase whose anisotropy is scaled by c^k (a = b = c = 1/2).
+    int octaves = int(cl_light.y);
+    float weight = 1.0;
+    for (int k = 0; k < octaves; ++k) {
+      scattered += weight * clouds_phase(mu, weight) * exp(-weight * tau);
+      weight *= 0.5;
+    }
+  } else {
+    // Single scattering, and the diffuse light of a conservative slab: what the two-stream
+    // transmittance lets through beyond the direct beam, spread over the sphere of directions.
+    // The cloud below reflects part of that light back up (the two-stream reflectance of a
+    // conservative slab, 0.15 tau / (1 + 0.15 tau), of the depth below at this density).
+    float direct = exp(-tau);
+    float tau_below = sigma_t * depth_below_m;
+    float reflected = 0.15 * tau_below / (1.0 + 0.15 * tau_below);
+    scattered = phase_single * direct +
+                max(1.0 / (1.0 + 0.15 * tau) - 0.25 * direct, 0.0) * (1.0 + 0.5 * reflected) / (2.0 * CLOUDS_PI);
+  }
+  scattered *= 1.0 - cl_light.z * exp(-2.0 * sigma_t * cl_light.x);  // powder (0: off)
+  // Sky from above and the lit ground from below, diffused through the cloud: the two-stream
+  // transmittance 1 / (1 + 0.75 (1 - g) tau) with g = 0.8, tau the optical depth toward the light
+  // (no extra samples: on software rasterisers each density sample is most of a step's cost).
+  vec3 e_ground = cl_light.w * (e_light * max(dot(l, up), 0.0) * exp(-tau) + e_sky);
+  vec3 ambient = (e_sky + e_ground) / (2.0 * CLOUDS_PI * (1.0 + 0.15 * tau));
+  float albedo = cl_medium.x / max(cl_medium.x + cl_medium.y, 1e-9);
+  return albedo * (e_light * scattered + ambient);
+}
