@@ -33,6 +33,9 @@ void main() {
     vec4 q = u_inverse_view_projection * vec4(gl_FragCoord.xy / u_viewport * 2.0 - 1.0, depth, 1.0);
     scene = length(q.xyz / q.w);
   }
+  // The planet hides what lies beyond its surface (a cluster past the horizon).
+  vec2 ground = clouds_sphere(dir, 0.0);
+  if (ground.x <= ground.y && ground.x > 0.0) scene = min(scene, ground.x);
   float t0 = 0.0, t1 = scene;
   // Cut at the cluster's base (a plane across the local vertical): flat bases, as the field's.
   vec3 up = normalize(cl_up.xyz * cl_planet.z + p.centre.xyz);

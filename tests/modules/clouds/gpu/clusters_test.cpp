@@ -1,0 +1,356 @@
+// The mesh clusters (clouds.CloudClusters): the puffs' closed forms against quadrature in double
+// precision, the proxy mesh, placement from the very field the march reads, the far-to-near order,
+// the light's quadrature converging, stiff cases, bad input and golden images.
+#include <glm/gtc/matrix_transform.hpp>
+#include <numeric>
+#include <random>
+
+#include "clouds_test_support.h"
+#include "golden.h"
+#include "validation/cloud_field.h"
+#include "welkin/core/error.h"
+#include "welkin/gfx/shader.h"
+
+namespace welkin::clouds::test {
+namespace {
+
+using nlohmann::json;
+
+// ---- The closed forms against quadrature ----
+
+struct ProbeRay {
+  glm::vec4 origin, dir, centre, radii;  // origin.w t0, dir.w t1, centre.w target depth
+};
+
+struct Axes {
+  glm::dvec3 wind, across, up;
+};
+
+// The squared normalised radius at o + t d, from the definition (no simplification).
+double q_at(const ProbeRay& r, const Axes& a, double t) {
+  const glm::dvec3 x = glm::dvec3(r.origin) + t * glm::dvec3(r.dir) - glm::dvec3(r.centre);
+  const glm::dvec3 local{glm::dot(x, a.wind) / r.radii.x, glm::dot(x, a.across) / r.radii.y, glm::dot(x, a.up) / r.radii.z};
+  return glm::dot(local, local);
+}
+
+// Unit-extinction optical depth over [t0, t1] by the midpoint rule on max(1 - q, 0), 400 000 steps.
+double depth_by_quadrature(const ProbeRay& r, const Axes& a, double t0, double t1) {
+  const int n = 400000;
+  const double h = (t1 - t0) / n;
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i) sum += std::max(1.0 - q_at(r, a, t0 + (i + 0.5) * h), 0.0);
+  return sum * h;
+}
+
+TEST(CloudClusters, PuffOpticalDepthAndItsInverseMatchQuadrature) {
+  gl_context().make_current();
+  ShaderLibrary lib;
+  lib.add_search_dir(WELKIN_SOURCE_DIR "/tests/modules/clouds/gpu/shaders");
+  lib.add_search_dir(WELKIN_SOURCE_DIR "/modules/clouds/shaders");
+  const Program& p = lib.compute("puff_probe.comp");
+  // A frame turned away from the world's axes.
+  const glm::dmat3 rot = glm::dmat3(glm::rotate(glm::dmat4(1.0), 0.7, glm::normalize(glm::dvec3(0.3, -0.5, 0.8))));
+  const Axes axes{rot[0], rot[1], rot[2]};
+  std::vector<ProbeRay> rays;
+  std::vector<const char*> what;
+  auto add = [&](const char* name, glm::dvec3 o, glm::dvec3 d, glm::dvec3 c, glm::dvec3 radii, double t0, double t1) {
+    rays.push_back({glm::vec4(glm::vec3(o), float(t0)), glm::vec4(glm::vec3(glm::normalize(d)), float(t1)), glm::vec4(glm::vec3(c), 0.0f),
+                    glm::vec4(glm::vec3(radii), 0.0f)});
+    what.push_back(name);
+  };
+  const glm::dvec3 sphere(500.0), flat(800.0, 200.0, 150.0);
+  const double far = 1e30;
+  add("through the centre", {0, 0, 0}, {0, 1, 0}, {0, 2000, 0}, sphere, 0, far);
+  add("half a radius off", {0, 0, 0}, {0, 1, 0}, {250, 2000, 0}, sphere, 0, far);
+  add("grazing", {0, 0, 0}, {0, 1, 0}, {495, 2000, 0}, sphere, 0, far);
+  add("missing", {0, 0, 0}, {0, 1, 0}, {505, 2000, 0}, sphere, 0, far);
+  add("50 km away", {0, 0, 0}, {0.1, 1, 0.02}, {5000, 50000, 1000}, sphere, 0, far);
+  add("50 km away, off centre", {0, 0, 0}, {0.1, 1, 0.02}, {5300, 50000, 1200}, sphere, 0, far);
+  add("from inside", {0, 0, 0}, {1, 0.3, 0.2}, {100, -50, 30}, sphere, 0, far);
+  add("clipped by terrain", {0, 0, 0}, {0, 1, 0}, {0, 2000, 0}, sphere, 0, 1800);
+  add("a metre wide", {0, 0, 0}, {0, 1, 0.001}, {0.2, 30, 0}, glm::dvec3(1.0), 0, far);
+  add("20 km wide", {0, 0, 0}, {0, 1, 0}, {3000, 30000, 0}, glm::dvec3(20000.0), 0, far);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < 40; ++i) {
+    const glm::dvec3 c(u(rng) * 3000.0, 6000.0 + u(rng) * 3000.0, u(rng) * 1000.0);
+    const glm::dvec3 aim = c + glm::dvec3(u(rng), u(rng), u(rng)) * 700.0;
+    add("flattened, random", {0, 0, 0}, aim, c, flat, 0, far);
+  }
+  // Where each should reach: 30% of the depth its stretch holds (computed on the GPU's own total).
+  Buffer in(rays.size() * sizeof(ProbeRay), rays.data()), out(rays.size() * sizeof(glm::vec4));
+  auto run = [&] {
+    in.upload(rays.data(), rays.size() * sizeof(ProbeRay));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.id());
+    p.set("u_count", int(rays.size()));
+    p.set("u_axis_wind", glm::vec3(axes.wind));
+    p.set("u_axis_across", glm::vec3(axes.across));
+    p.set("u_axis_up", glm::vec3(axes.up));
+    p.use();
+    glDispatchCompute(GLuint((rays.size() + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<glm::vec4> results(rays.size());
+    glGetNamedBufferSubData(out.id(), 0, GLsizeiptr(results.size() * sizeof(glm::vec4)), results.data());
+    return results;
+  };
+  std::vector<glm::vec4> first = run();
+  for (size_t i = 0; i < rays.size(); ++i) rays[i].centre.w = 0.3f * first[i].x;
+  const std::vector<glm::vec4> results = run();
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const ProbeRay& r = rays[i];
+    const double scale = glm::length(glm::dvec3(r.radii)) / std::sqrt(3.0);
+    const double t0 = r.origin.w, t1 = std::min<double>(r.dir.w, glm::length(glm::dvec3(r.centre)) + 3.0 * scale * 2.0);
+    const double exact = depth_by_quadrature(r, axes, t0, t1);
+    // Relative to the depth of a chord through the middle (4/3 of a radius), and 1e-6 of it absolute.
+    const double tolerance = 2e-4 * (4.0 / 3.0) * scale;
+    EXPECT_NEAR(results[i].x, exact, tolerance) << what[i] << " (ray " << i << ")";
+    if (exact > 1e-3 * scale) {
+      const double reached = depth_by_quadrature(r, axes, t0, results[i].y);
+      EXPECT_NEAR(reached, 0.3 * exact, 2.0 * tolerance) << what[i] << ": the inverse (ray " << i << ")";
+    }
+  }
+  EXPECT_LT(results[3].z, 0.0f) << "the missing ray has no chord";
+  EXPECT_GT(results[2].z, 0.0f) << "the grazing ray has one";
+}
+
+TEST(CloudClusters, ProxyMeshEnclosesTheUnitSphereAndFacesOutward) {
+  for (int level = 1; level <= 4; ++level) {
+    const std::vector<glm::vec4> mesh = puff_proxy_mesh(level);
+    ASSERT_EQ(mesh.size() % 3, 0u);
+    ASSERT_GE(mesh.size(), size_t(6 * 4 * 2 * 3)) << "level " << level;
+    double nearest = 1e9, farthest = 0.0;
+    for (size_t t = 0; t < mesh.size(); t += 3) {
+      const glm::dvec3 a(mesh[t]), b(mesh[t + 1]), c(mesh[t + 2]);
+      const glm::dvec3 n = glm::normalize(glm::cross(b - a, c - a));
+      EXPECT_GT(glm::dot(n, a + b + c), 0.0) << "counter-clockwise seen from outside";
+      nearest = std::min(nearest, glm::dot(n, a));
+      farthest = std::max({farthest, glm::length(a), glm::length(b), glm::length(c)});
+    }
+    EXPECT_GE(nearest, 1.0 - 1e-5) << "every face's plane clears the unit sphere, level " << level;
+    // And hugs it: the corners stick out less as the level rises.
+    EXPECT_LT(farthest, level == 1 ? 1.6 : level == 2 ? 1.15 : 1.05) << "level " << level;
+  }
+}
+
+// ---- In a world ----
+
+// A camera on the ground looking along the horizon, cumulus in the default layers, the clusters
+// taking the cumulus over beyond `near_m`.
+json cluster_scene(const json& clusters, double sun_elevation_deg = 40.0, const json& clouds = json::object()) {
+  json doc = scene({{"core.Camera", {{"position_m", {0, 0, 100}}, {"heading_deg", 200}, {"pitch_deg", 3}, {"ev100", 14}}},
+                    {"atmosphere.Atmosphere", json::object()},
+                    {"atmosphere.Sun", {{"azimuth_deg", 230}, {"elevation_deg", sun_elevation_deg}}},
+                    {"clouds.VolumetricClouds", clouds},
+                    {"clouds.CloudClusters", clusters}});
+  return doc;
+}
+
+// The scene's entity holding `component` (scene() orders them by name).
+json& entity_with(json& doc, const std::string& component) {
+  for (json& e : doc["entities"])
+    if (e["components"].contains(component)) return e;
+  throw Error("test scene without " + component);
+}
+void remove_entity_with(json& doc, const std::string& component) {
+  json& entities = doc["entities"];
+  for (size_t i = 0; i < entities.size(); ++i)
+    if (entities[i]["components"].contains(component)) return entities.erase(i);
+}
+
+const json kClusters = {{"near_m", 3000}, {"crossfade_m", 1000}, {"far_m", 30000}, {"cell_m", 3000}};
+
+// kClusters with some fields changed.
+json clusters_with(const json& changes) {
+  json c = kClusters;
+  c.update(changes);
+  return c;
+}
+
+std::vector<ClusterPuffGpu> read_puffs(Rendered& r) {
+  const ClustersGpu& c = r.world->resource<CloudsGpu>().clusters;
+  std::vector<ClusterPuffGpu> puffs(size_t(c.puff_count));
+  if (!puffs.empty()) glGetNamedBufferSubData(c.puffs->id(), 0, GLsizeiptr(puffs.size() * sizeof(ClusterPuffGpu)), puffs.data());
+  return puffs;
+}
+
+std::vector<glm::uvec2> read_order(Rendered& r) {
+  const ClustersGpu& c = r.world->resource<CloudsGpu>().clusters;
+  std::vector<glm::uvec2> order(size_t(c.puff_count));
+  if (!order.empty()) glGetNamedBufferSubData(c.order->id(), 0, GLsizeiptr(order.size() * sizeof(glm::uvec2)), order.data());
+  return order;
+}
+
+size_t live_puffs(const std::vector<ClusterPuffGpu>& puffs) {
+  return size_t(std::count_if(puffs.begin(), puffs.end(), [](const ClusterPuffGpu& p) { return p.centre.w > 0.0f; }));
+}
+
+TEST(CloudClusters, PuffsStandWhereTheLayersFieldHoldsCloudAndAreDrawnFarToNear) {
+  Rendered r = render(cluster_scene(kClusters), 160, 90);
+  ASSERT_TRUE(r.ran("clouds.clusters_place"));
+  ASSERT_TRUE(r.ran("clouds.clusters_draw"));
+  const std::vector<ClusterPuffGpu> puffs = read_puffs(r);
+  ASSERT_EQ(puffs.size(), size_t(40 * 25));
+  const size_t live = live_puffs(puffs);
+  EXPECT_GT(live, puffs.size() / 4) << "the default cumulus (coverage 0.45) fills most clusters";
+  // Against the CPU's copy of the field (double precision over the same noise): a puff's
+  // extinction is the field's largest at three points of it, so at least the field's at its centre,
+  // faded in across the hand-over and out before far.
+  const CloudsGpu& gpu = r.world->resource<CloudsGpu>();
+  const CloudField field(read_noise(gpu), gpu.block, gpu.layers);
+  const VolumetricClouds& clouds = r.clouds();
+  const double per_density = clouds.scattering_coefficient + clouds.absorption_coefficient;
+  const CloudLayer& cumulus = clouds.layers[0];
+  int checked = 0, below = 0;
+  for (const ClusterPuffGpu& p : puffs) {
+    if (p.centre.w <= 0.0f) continue;
+    const glm::dvec3 c(p.centre);
+    const double rho = glm::length(c);
+    EXPECT_GE(rho, 3000.0 - 500.0 - 1.0);
+    EXPECT_LE(rho, 30000.0 + 1.0);
+    const double h = field.altitude(c);
+    EXPECT_GE(h, cumulus.base_altitude_m - cumulus.base_variation_m - 1.0);
+    EXPECT_LE(h, cumulus.base_altitude_m + cumulus.thickness_m + cumulus.base_variation_m + 1.0);
+    auto smooth = [](double a, double b, double x) {
+      const double t = std::clamp((x - a) / (b - a), 0.0, 1.0);
+      return t * t * (3.0 - 2.0 * t);
+    };
+    const double fade = smooth(2500.0, 3500.0 + 1e-3, rho) * (1.0 - smooth(29000.0 - 1e-3, 30000.0, rho));
+    const double at_centre = field.extinction(c, false) * per_density * fade;
+    ++checked;
+    below += double(p.centre.w) < 0.97 * at_centre - 1e-4;
+  }
+  EXPECT_GT(checked, 0);
+  EXPECT_LE(below, checked / 50) << "puffs thinner than the field at their centre";
+
+  // The draw order: every slot once, live puffs far to near.
+  const std::vector<glm::uvec2> order = read_order(r);
+  std::vector<int> seen(puffs.size(), 0);
+  double previous = 1e30;
+  for (const glm::uvec2& o : order) {
+    ASSERT_LT(o.y, puffs.size());
+    ++seen[o.y];
+    const ClusterPuffGpu& p = puffs[o.y];
+    const double d = p.centre.w > 0.0f ? glm::length(glm::dvec3(p.centre)) : -1.0;
+    EXPECT_LE(d, previous + 1e-6 * std::abs(previous)) << "far to near";
+    previous = d;
+  }
+  EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int n) { return n == 1; })) << "a permutation";
+}
+
+TEST(CloudClusters, OrderIsSortedAcrossSeveralBlocksOfTheSort) {
+  // 48 x 50 = 2400 puffs: a sort of 4096 slots, merged across blocks of 1024.
+  json c = kClusters;
+  c["clusters"] = 48, c["puffs_per_cluster"] = 50, c["subdivision_level"] = 1;
+  Rendered r = render(cluster_scene(c, 40.0, {{"coverage", 1.0}}), 32, 18);
+  const std::vector<ClusterPuffGpu> puffs = read_puffs(r);
+  const std::vector<glm::uvec2> order = read_order(r);
+  ASSERT_EQ(order.size(), size_t(2400));
+  EXPECT_GT(live_puffs(puffs), size_t(1024));
+  std::vector<double> keys;
+  for (const glm::uvec2& o : order) keys.push_back(puffs[o.y].centre.w > 0.0f ? glm::length(glm::dvec3(puffs[o.y].centre)) : -1.0);
+  EXPECT_TRUE(std::is_sorted(keys.rbegin(), keys.rend()));
+}
+
+TEST(CloudClusters, TheLightsQuadratureConvergesAsSamplesGrow) {
+  auto frame = [](int samples) {
+    json c = kClusters;
+    c["samples"] = samples;
+    Rendered r = render(cluster_scene(c, 15.0), 160, 90);
+    return r.renderer->read_hdr();
+  };
+  const ImageF reference = frame(16);
+  std::vector<double> errors;
+  for (int samples : {1, 2, 4}) {
+    const ImageF img = frame(samples);
+    double sum = 0.0;
+    for (size_t i = 0; i < img.rgba.size(); ++i)
+      if (i % 4 != 3) sum += (double(img.rgba[i]) - reference.rgba[i]) * (double(img.rgba[i]) - reference.rgba[i]);
+    errors.push_back(std::sqrt(sum / double(img.rgba.size())));
+  }
+  EXPECT_GT(errors[0], 0.0);
+  EXPECT_LT(errors[1], errors[0]);
+  EXPECT_LT(errors[2], errors[1]);
+}
+
+TEST(CloudClusters, NoPuffsLeaveTheFrameAsWithoutTheComponent) {
+  json none = kClusters;
+  none["clusters"] = 0;
+  Rendered with = render(cluster_scene(none), 64, 36);
+  EXPECT_FALSE(with.ran("clouds.clusters_draw"));
+  json doc = cluster_scene(kClusters);
+  remove_entity_with(doc, "clouds.CloudClusters");
+  Rendered without = render(doc, 64, 36);
+  EXPECT_EQ(with.renderer->read_hdr().rgba, without.renderer->read_hdr().rgba);
+}
+
+TEST(CloudClusters, StiffCasesStayFiniteAndNonNegative) {
+  struct Case {
+    const char* name;
+    json clusters, clouds;
+    double sun_deg = 40.0;
+    glm::dvec3 camera{0, 0, 100};
+  };
+  json many = {{"clusters", 4000}, {"puffs_per_cluster", 25}, {"cell_m", 1000}, {"far_m", 60000}, {"near_m", 0}, {"subdivision_level", 1}};
+  json inside = {{"near_m", 0}, {"crossfade_m", 0}, {"far_m", 20000}, {"cell_m", 2000}};
+  const Case cases[] = {
+      {"100 000 puffs, overcast", many, {{"coverage", 1.0}}},
+      {"coverage 0", kClusters, {{"coverage", 0.0}}},
+      {"coverage 1", kClusters, {{"coverage", 1.0}}},
+      {"the camera among the puffs", inside, {{"coverage", 1.0}}, 40.0, {0, 0, 2200}},
+      {"sun on the horizon", kClusters, json::object(), 0.0},
+      {"sun far below (the moon's light)", kClusters, json::object(), -30.0},
+      {"puffs 4 times their size, 100 times as dense", clusters_with({{"puff_size", 4.0}, {"density_scale", 100.0}}), json::object()},
+      {"one light sample", clusters_with({{"samples", 1}}), json::object()},
+  };
+  for (const Case& c : cases) {
+    json doc = cluster_scene(c.clusters, c.sun_deg, c.clouds);
+    entity_with(doc, "core.Camera")["components"]["core.Camera"]["position_m"] = {c.camera.x, c.camera.y, c.camera.z};
+    Rendered r = render(doc, 48, 27);
+    const ImageStats s = stats(r.renderer->read_hdr());
+    EXPECT_TRUE(s.finite) << c.name;
+    EXPECT_GE(s.min, 0.0f) << c.name;
+    const std::vector<ClusterPuffGpu> puffs = read_puffs(r);
+    for (const ClusterPuffGpu& p : puffs)
+      if (p.centre.w > 0.0f) {
+        ASSERT_TRUE(std::isfinite(p.radii.w) && p.radii.w >= 0.0f) << c.name;
+        ASSERT_TRUE(std::isfinite(p.light.x) && p.light.x >= 0.0f) << c.name;
+      }
+    if (std::string(c.name) == "coverage 0") EXPECT_EQ(live_puffs(puffs), 0u);
+    if (std::string(c.name) == "coverage 1") EXPECT_GT(live_puffs(puffs), puffs.size() / 2);
+    if (std::string(c.name) == "100 000 puffs, overcast") EXPECT_EQ(puffs.size(), size_t(100000));
+  }
+}
+
+TEST(CloudClusters, BadSettingsAreOneErrorNamingTheField) {
+  auto message = [](const json& doc) -> std::string {
+    try {
+      Rendered r = render(doc, 16, 9);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  json doc = cluster_scene(kClusters);
+  remove_entity_with(doc, "clouds.VolumetricClouds");
+  EXPECT_NE(message(doc).find("clouds.VolumetricClouds"), std::string::npos);
+  EXPECT_NE(message(cluster_scene(clusters_with({{"layer", 7}}))).find("/layer"), std::string::npos);
+  EXPECT_NE(message(cluster_scene(clusters_with({{"clusters", 4096}, {"puffs_per_cluster", 256}}))).find("/puffs_per_cluster"),
+            std::string::npos);
+  EXPECT_NE(message(cluster_scene(clusters_with({{"far_m", 1000}}))).find("/far_m"), std::string::npos);
+  EXPECT_NE(message(cluster_scene(clusters_with({{"cell_m", 100}, {"far_m", 1e6}}))).find("/cell_m"), std::string::npos);
+}
+
+// Clusters at noon and at sunset, looked at before they were committed.
+TEST(CloudClustersGolden, NoonAndSunset) {
+  const welkin::testing::GoldenTolerance tolerance{.max_channel_difference = 10, .max_failing_fraction = 0.02};
+  for (const auto& [sun, name] : {std::pair{40.0, "clouds/clusters_noon"}, std::pair{4.0, "clouds/clusters_sunset"}}) {
+    Rendered r = render(cluster_scene(kClusters, sun), 160, 90);
+    r.renderer->render_frame({.index = 1, .alone = true}, 160, 90);
+    const auto res = welkin::testing::compare_with_golden(r.renderer->read_output(), name, tolerance);
+    EXPECT_TRUE(res.passed) << name << ": " << res.message;
+  }
+}
+
+}  // namespace
+}  // namespace welkin::clouds::test
