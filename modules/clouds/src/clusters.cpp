@@ -2,7 +2,8 @@
 // range as instanced puffs. Each frame, compute passes place the clusters where the layer's weather
 // and noise hold cloud (nearest first, up to the budget), give each puff the field's extinction,
 // its light and the air in front of it, and sort the puffs far to near; one instanced draw then
-// composites them over the frame and records where they turn opaque, so the march stops there.
+// draws them at a fraction of the frame's size and records where they turn opaque, so that the march
+// stops there; the march's composite lays both over the frame.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -131,8 +132,9 @@ void clusters_system(SystemContext& sc) {
   auto& rc = world.resource<RenderContext>();
   const FrameView& view = rc.view;
 
+  const bool mesh = clusters->proxy == PuffProxy::mesh;
   // The proxy mesh, the grid's order and the buffers, made when their sizes change.
-  if (cg.proxy_level != clusters->subdivision_level) {
+  if (mesh && cg.proxy_level != clusters->subdivision_level) {
     const std::vector<glm::vec4> mesh = puff_proxy_mesh(clusters->subdivision_level);
     cg.proxy = std::make_unique<Buffer>(mesh.size() * sizeof(glm::vec4), mesh.data());
     cg.proxy_vertices = int(mesh.size());
@@ -149,7 +151,9 @@ void clusters_system(SystemContext& sc) {
   ensure_buffer(cg.chosen, cg.chosen_capacity, size_t(clusters->clusters) * sizeof(int32_t));
   ensure_buffer(cg.puffs, cg.puff_capacity, size_t(count) * sizeof(ClusterPuffGpu));
   ensure_buffer(cg.order, cg.order_capacity, size_t(order_size) * 2 * sizeof(uint32_t));
-  ensure_texture(cg.front, {.width = view.width, .height = view.height, .format = TextureFormat::r32f, .linear_filter = false});
+  const int width = std::max(1, int(std::ceil(view.width * clusters->resolution_scale)));
+  const int height = std::max(1, int(std::ceil(view.height * clusters->resolution_scale)));
+  ensure_texture(cg.front, {.width = width, .height = height, .format = TextureFormat::r32f, .linear_filter = false});
 
   // The camera's tangent plane, the wind's direction in it, and the drifting grid's cell under the camera.
   const CloudsContext& ctx = gpu.context;
@@ -218,10 +222,8 @@ void clusters_system(SystemContext& sc) {
           p.set("u_axis_wind", axis_wind);
           p.set("u_axis_across", axis_across);
           p.set("u_axis_up", axis_up);
-          check_gl("DBG before stage");
           dispatch_compute(p, group_count(invocations[stage], 64), 1);
           glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-          check_gl("DBG stage");
         }
         if (!sorted) return;
         // Far first: blocks of 1024 in shared memory, then each larger merge's wide steps across
@@ -244,23 +246,23 @@ void clusters_system(SystemContext& sc) {
 
   const FrameTargets t = *sc.targets;
   const ResourceHandle front = g.import("clouds.cluster_front", *cg.front);
-  const float layer_base = layer.base_altitude_m;
   const int samples = clusters->samples;
+  auto color = std::make_shared<ResourceHandle>();
   g.add_pass(
       "clouds.clusters_draw",
       [&](PassBuilder& b) {
         b.read(t.depth);
-        b.read(t.color);
-        b.write(t.color);
+        *color = b.create("clouds.clusters", TextureDesc{.width = width, .height = height, .format = TextureFormat::rgba16f});
         b.write(front);
       },
-      [gp, &rc, t, front, count, axis_wind, axis_across, axis_up, light_dir, samples, layer_base](PassContext& pc) {
+      [gp, &rc, t, front, color, count, axis_wind, axis_across, axis_up, light_dir, samples, mesh, width,
+       height](PassContext& pc) {
         ClustersGpu& c = gp->clusters;
-        Framebuffer fb({&pc.texture(t.color), &pc.texture(front)}, nullptr);
-        check_gl("DBG fb0");
+        Framebuffer fb({&pc.texture(*color), &pc.texture(front)}, nullptr);
         fb.bind();
-        check_gl("DBG fb");
-        const float far_away = 3.4e38f;
+        glViewport(0, 0, width, height);
+        const float nothing[4] = {0.0f, 0.0f, 0.0f, 0.0f}, far_away = 3.4e38f;
+        glClearTexImage(pc.texture(*color).id(), 0, GL_RGBA, GL_FLOAT, nothing);
         glClearTexImage(pc.texture(front).id(), 0, GL_RED, GL_FLOAT, &far_away);
         glDisable(GL_DEPTH_TEST);
         glEnable(GL_BLEND);
@@ -269,34 +271,37 @@ void clusters_system(SystemContext& sc) {
         glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
         glBlendFunci(1, GL_ONE, GL_ONE);
         glBlendEquationi(1, GL_MIN);
-        glEnable(GL_CULL_FACE);
-        glCullFace(GL_FRONT);  // the far side: one fragment per pixel per puff, also from inside
+        if (mesh) {
+          glEnable(GL_CULL_FACE);
+          glCullFace(GL_FRONT);  // the far side: one fragment per pixel per puff, also from inside
+        }
         if (!c.vao) glCreateVertexArrays(1, &c.vao);
         glBindVertexArray(c.vao);
         glBindBufferBase(GL_UNIFORM_BUFFER, 0, gp->frame_buffer->id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, c.puffs->id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, c.order->id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, c.proxy->id());
+        if (mesh) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, c.proxy->id());
         glBindTextureUnit(3, pc.texture(t.depth).id());
-        const Program& p = rc.shaders.graphics("clouds/puff.vert", "clouds/puff.frag");
+        const Program& p = rc.shaders.graphics("clouds/puff.vert", "clouds/puff.frag", {{"PUFF_PROXY_MESH", mesh ? "1" : "0"}});
         p.use();
         p.set("u_view_projection", rc.view.view_projection);
         p.set("u_inverse_view_projection", rc.view.inverse_view_projection);
-        p.set("u_viewport", glm::vec2(rc.view.width, rc.view.height));
+        p.set("u_viewport", glm::vec2(width, height));
         p.set("u_light_dir", light_dir);
         p.set("u_samples", samples);
-        p.set("u_layer_base_m", layer_base);
+        p.set("u_up_radius", glm::vec4(glm::vec3(gp->block.up), gp->block.planet.z));
         p.set("u_axis_wind", axis_wind);
         p.set("u_axis_across", axis_across);
         p.set("u_axis_up", axis_up);
-        check_gl("DBG before draw");
-        glDrawArraysInstanced(GL_TRIANGLES, 0, c.proxy_vertices, count);
-        check_gl("DBG draw");
+        glDrawArraysInstanced(GL_TRIANGLES, 0, mesh ? c.proxy_vertices : 6, count);
         glCullFace(GL_BACK);
         glDisable(GL_CULL_FACE);
         glBlendEquationi(1, GL_FUNC_ADD);
         glDisable(GL_BLEND);
+        glViewport(0, 0, rc.view.width, rc.view.height);
       });
+  // The march's composite lays them over the frame, under the nearer volumetric clouds.
+  cg.color = *color;
   cg.front_valid = true;
 }
 

@@ -130,7 +130,10 @@ void describe(TypeBuilder<CloudClusters>& t) {
   t.field("samples", &CloudClusters::samples).range(1, 16).tooltip("Light samples along each puff's chord");
   t.field("compositing", &CloudClusters::compositing).values({{"sorted", 0}, {"unsorted", 1}})
       .tooltip("Back to front (sorted on the GPU), or in placement order (shows what sorting fixes)");
+  t.field("proxy", &CloudClusters::proxy).values({{"quad", 0}, {"mesh", 1}})
+      .tooltip("What each puff rasterises: a screen-facing quad, or the OpenSubdiv-refined mesh (the surface is exact either way)");
   t.field("subdivision_level", &CloudClusters::subdivision_level).range(1, 4).tooltip("The puff proxy mesh's OpenSubdiv level");
+  t.field("resolution_scale", &CloudClusters::resolution_scale).range(0.25, 1).tooltip("Fraction of the frame's width and height the puffs are drawn at");
   t.field("seed", &CloudClusters::seed).range(0, 1 << 30);
 }
 

@@ -559,21 +559,26 @@ void clouds_system(SystemContext& sc) {
   gpu.previous_view_projection = view.view_projection;
   gpu.previous_camera_m = view.camera_position_m;
 
+  // The mesh clusters drawn before the march lie behind it: laid over the frame in the same pass.
+  const ResourceHandle clusters = cluster_front ? gpu.clusters.color : ResourceHandle{};
   g.add_pass(
       "clouds.composite",
       [&](PassBuilder& b) {
         b.read(result);
+        if (clusters.valid()) b.read(clusters);
         b.read(t.color);
         b.write(t.color);
       },
-      [&rc, t, result](PassContext& pc) {
+      [&rc, t, result, clusters](PassContext& pc) {
         Framebuffer fb(&pc.texture(t.color), nullptr);
         fb.bind();
         glDisable(GL_DEPTH_TEST);
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_SRC_ALPHA);  // clouds + transmittance x what lies behind
         glBindTextureUnit(0, pc.texture(result).id());
-        const Program& p = rc.shaders.graphics("fullscreen.vert", "clouds/composite.frag");
+        if (clusters.valid()) glBindTextureUnit(1, pc.texture(clusters).id());
+        const Program& p = rc.shaders.graphics("fullscreen.vert", "clouds/composite.frag",
+                                               {{"CLOUDS_WITH_CLUSTERS", clusters.valid() ? "1" : "0"}});
         p.use();
         rc.draw_fullscreen_triangle();
         glDisable(GL_BLEND);

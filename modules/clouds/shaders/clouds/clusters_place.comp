@@ -1,6 +1,6 @@
 // The mesh clusters' placement, in stages (CLUSTERS_STAGE), each frame from the layer's own weather
 // and noise (clouds/density.glsl), so that a cluster stands where the volumetric cloud would:
-//   0 cells:  how much cloud each candidate cell's columns hold (cells drift with the layer's wind);
+//   0 cells:  how much cloud the weather allows in each candidate cell (cells drift with the layer's wind);
 //   1 choose: the nearest cells that hold any, up to the cluster budget (one invocation);
 //   2 puffs:  each puff at a place drawn from its cell and index by the genus's profile, with the
 //             field's extinction there as its own;
@@ -74,11 +74,16 @@ void main() {
   float rho = length(en);
   float score = 0.0;
   if (rho > u_range.x - 0.5 * u_range.y - u_cell_m && rho < u_range.z + u_cell_m) {
-    // Five columns (the centre and four at half the cluster's radius), two heights each.
+    // What the weather allows (before the noise erodes it) in five columns, at a third of the
+    // layer's height: the centre and four at half the cluster's radius. One weather fetch each.
     const vec2 columns[5] = vec2[5](vec2(0.0), vec2(0.5, 0.0), vec2(-0.5, 0.0), vec2(0.0, 0.5), vec2(0.0, -0.5));
-    for (int c = 0; c < 5; ++c)
-      for (int k = 0; k < 2; ++k) score += field_at(layer_point(en + columns[c] * cluster_radius, base + thickness * (0.3 + 0.3 * float(k))));
-    score *= 0.1;
+    for (int c = 0; c < 5; ++c) {
+      vec3 x = layer_point(en + columns[c] * cluster_radius, base + thickness * 0.33);
+      clouds_system_g = clouds_weather_system_at(x);
+      clouds_painted_sample = 2.0;
+      float t, d0;
+      score += clouds_layer_envelope(L, clouds_weather_fetch(L, x), L.model.w > 0.5, x, clouds_altitude(x), t, d0);
+    }
   }
   cp_cells[id] = score;
 #elif CLUSTERS_STAGE == 1

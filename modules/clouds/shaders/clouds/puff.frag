@@ -1,9 +1,11 @@
-// One puff of the mesh clusters, drawn from its far side (so a camera inside it still sees it): the
-// view ray's chord through the ellipsoid, clipped to the camera and the scene's depth (soft where it
-// meets terrain, exact where the camera enters) and cut flat at the cluster's base, its transmittance in closed form, and its light at
-// samples stratified by opacity (each stands for an equal share of what the puff hides), lit like a
-// sample of the march (clouds/light_model.glsl) with the optical depth toward the light through the
-// puff itself and through the cluster's other puffs (found at its centre and across it, interpolated).
+// One puff of the mesh clusters, once per pixel its proxy covers (the mesh from its far side, so a
+// camera inside it still sees it). The view ray's chord through the ellipsoid is clipped to the
+// camera, the scene's depth and the planet (soft where it meets terrain, exact where the camera
+// enters) and cut flat at the cluster's base; its transmittance has a closed form. Its light is
+// taken at samples stratified by opacity (each stands for an equal share of what the puff hides),
+// each lit like a sample of the march (clouds/light_model.glsl) with the optical depth toward the
+// light through the puff itself and through the cluster's other puffs (found at its centre and
+// across it, interpolated).
 #include "clouds/density.glsl"
 #include "clouds/phase.glsl"
 #include "clouds/light_model.glsl"
@@ -14,9 +16,9 @@ uniform mat4 u_inverse_view_projection;         // camera-relative
 uniform vec2 u_viewport;
 uniform vec3 u_light_dir;
 uniform int u_samples;
-uniform float u_layer_base_m;  // the light reflected up from the cloud below is the march's: from the layer's base
 in vec3 v_position;
 flat in int v_puff;
+flat in vec4 v_base_plane;  // up at the puff; w: the camera's height above the cluster's base (m)
 layout(location = 0) out vec4 o_color;  // premultiplied: light reaching the camera, opacity
 layout(location = 1) out float o_front;  // where the puff turns opaque (m; blended by minimum)
 
@@ -24,22 +26,15 @@ void main() {
   // What the light model reads of the block.
   cl_phase = clb_phase, cl_medium = clb_medium, cl_light = clb_light, cl_light_model = clb_light_model;
   cl_planet = clb_planet, cl_up = clb_up;
-  ClusterPuff p = cp_puffs[v_puff];
+  // The puff's fields are loaded as they are needed: most of a quad's pixels stop at the chord.
+  vec4 centre = cp_puffs[v_puff].centre, radii = cp_puffs[v_puff].radii;
   vec3 dir = normalize(v_position);
-  vec4 chord = puff_chord(vec3(0.0), dir, p.centre.xyz, p.radii.xyz);
-  float depth = texelFetch(u_depth, ivec2(gl_FragCoord.xy), 0).r;
-  float scene = 3.4e38;
-  if (depth > 0.0) {
-    vec4 q = u_inverse_view_projection * vec4(gl_FragCoord.xy / u_viewport * 2.0 - 1.0, depth, 1.0);
-    scene = length(q.xyz / q.w);
-  }
-  // The planet hides what lies beyond its surface (a cluster past the horizon).
-  vec2 ground = clouds_sphere(dir, 0.0);
-  if (ground.x <= ground.y && ground.x > 0.0) scene = min(scene, ground.x);
-  float t0 = 0.0, t1 = scene;
+  vec3 camera_local = puff_local(vec3(0.0), centre.xyz, radii.xyz), dir_local = puff_direction(dir, radii.xyz);
+  vec4 chord = puff_chord_local(camera_local, dir_local);
+  if (chord.w <= 0.0) discard;
   // Cut at the cluster's base (a plane across the local vertical): flat bases, as the field's.
-  vec3 up = normalize(cl_up.xyz * cl_planet.z + p.centre.xyz);
-  float rate = dot(dir, up), above = p.sky.w - dot(p.centre.xyz, up);  // height above the base: rate t + above
+  float t0 = 0.0, t1 = 3.4e38;
+  float rate = dot(dir, v_base_plane.xyz), above = v_base_plane.w;  // height above the base: rate t + above
   if (abs(rate) > 1e-6) {
     float t_base = -above / rate;
     if (rate > 0.0) t0 = max(t0, t_base);
@@ -47,27 +42,46 @@ void main() {
   } else if (above < 0.0) {
     discard;
   }
+  if (chord.x + chord.w <= t0 || chord.x - chord.w >= t1) discard;
+  vec2 uv = gl_FragCoord.xy / u_viewport;  // the puffs may be drawn at a fraction of the frame's size
+  float depth = textureLod(u_depth, uv, 0.0).r;
+  if (depth > 0.0) {
+    vec4 q = u_inverse_view_projection * vec4(uv * 2.0 - 1.0, depth, 1.0);
+    t1 = min(t1, length(q.xyz / q.w));
+  }
+  // The planet hides what lies beyond its surface (a cluster past the horizon).
+  vec2 ground = clouds_sphere(dir, 0.0);
+  if (ground.x <= ground.y && ground.x > 0.0) t1 = min(t1, ground.x);
   float s0 = clamp(t0 - chord.x, -chord.w, chord.w), s1 = clamp(t1 - chord.x, -chord.w, chord.w);
-  if (chord.w <= 0.0 || s1 <= s0) discard;
-  float sigma = p.centre.w;
+  if (s1 <= s0) discard;
+  float sigma = centre.w;
   float depth_total = sigma * (puff_depth_at(chord, s1) - puff_depth_at(chord, s0));
   float opacity = 1.0 - exp(-depth_total);
   if (opacity < 1e-5) discard;
+  ClusterPuff p = cp_puffs[v_puff];
+  vec3 up = v_base_plane.xyz;
   float mu = dot(dir, u_light_dir);
   float phase_single = clouds_phase(mu, 1.0);
+  // Toward the light, in the puff's normalised frame (the same for every sample).
+  vec3 light_local = puff_direction(u_light_dir, radii.xyz);
+  float light_a = max(dot(light_local, light_local), 1e-30);
   vec3 source = vec3(0.0);
   int n = u_samples;
   for (int k = 0; k < n; ++k) {
     // The sample that hides the k-th equal share of the puff's opacity.
     float share = (float(k) + 0.5) / float(n) * opacity;
     float s = puff_invert_depth(chord, s0, s1, -log(1.0 - share) / sigma);
-    vec3 x = dir * (chord.x + s);
-    float q = chord.z + chord.y * s * s;  // squared normalised radius at x
-    vec4 toward_light = puff_chord(x, u_light_dir, p.centre.xyz, p.radii.xyz);
-    // Through the cluster's other puffs: linear across this one, never below zero.
-    vec3 local = vec3(dot(x - p.centre.xyz, u_axis_wind), dot(x - p.centre.xyz, u_axis_across), dot(x - p.centre.xyz, u_axis_up)) / p.radii.xyz;
+    vec3 local = camera_local + dir_local * (chord.x + s);
+    float q = chord.z + chord.y * s * s;  // squared normalised radius there
+    // Through the puff to the light: from the sample (t = 0) to where the light's ray leaves it.
+    float t_mid = -dot(local, light_local) / light_a;
+    vec3 closest = local + light_local * t_mid;
+    vec4 toward_light = vec4(t_mid, light_a, dot(closest, closest), 0.0);
+    toward_light.w = toward_light.z < 1.0 ? sqrt((1.0 - toward_light.z) / light_a) : -1.0;
+    // And through the cluster's other puffs: linear across this one, never below zero.
     float tau = sigma * puff_optical_depth(toward_light, 0.0, 3.4e38) + max(p.radii.w + dot(p.light_gradient.xyz, local), 0.0);
-    float depth_below_m = max(clouds_altitude(x) - u_layer_base_m, 0.0);
+    // The cloud under the sample, from the cluster's base (the march's depth in its layer).
+    float depth_below_m = max(p.sky.w + local.z * radii.z, 0.0);
     source += clouds_sample_source(mu, phase_single, tau, sigma * max(1.0 - q, 0.0), depth_below_m, u_light_dir, up,
                                    p.light.rgb, p.sky.rgb);
   }

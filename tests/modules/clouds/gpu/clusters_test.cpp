@@ -273,6 +273,23 @@ TEST(CloudClusters, TheLightsQuadratureConvergesAsSamplesGrow) {
   EXPECT_LT(errors[2], errors[1]);
 }
 
+TEST(CloudClusters, TheProxyDecidesOnlyWhichPixelsAreTried) {
+  // The camera-facing quad and the OpenSubdiv mesh (from its far side) both cover every pixel of
+  // every puff, and each pixel's puff is computed exactly: the frames agree.
+  auto frame = [](const char* proxy) {
+    Rendered r = render(cluster_scene(clusters_with({{"proxy", proxy}})), 96, 54);
+    return r.renderer->read_hdr();
+  };
+  const ImageF quad = frame("quad"), mesh = frame("mesh");
+  ASSERT_EQ(quad.rgba.size(), mesh.rgba.size());
+  double largest = 0.0, worst = 0.0;
+  for (size_t i = 0; i < quad.rgba.size(); ++i) {
+    largest = std::max(largest, double(quad.rgba[i]));
+    worst = std::max(worst, std::abs(double(quad.rgba[i]) - mesh.rgba[i]));
+  }
+  EXPECT_LT(worst, 2e-3 * largest);
+}
+
 TEST(CloudClusters, NoPuffsLeaveTheFrameAsWithoutTheComponent) {
   json none = kClusters;
   none["clusters"] = 0;

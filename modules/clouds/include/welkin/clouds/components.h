@@ -142,6 +142,10 @@ void describe(TypeBuilder<VolumetricClouds>& t);
 // How overlapping puffs are composited: drawn back to front by their centres' distance (sorted on
 // the GPU each frame), or in the order they were placed (kept to show what sorting fixes).
 enum class ClusterCompositing : int { sorted = 0, unsorted = 1 };
+// What each puff rasterises: a screen-facing quad around its bounding sphere (4 vertices), or the
+// OpenSubdiv-refined closed mesh around the ellipsoid (its far side). The surface itself is exact
+// per pixel either way; the proxy only decides which pixels are tried, and what that costs.
+enum class PuffProxy : int { quad = 0, mesh = 1 };
 
 // Mesh-cluster clouds: one layer of the VolumetricClouds drawn at mid range as clusters of soft
 // ellipsoidal puffs (instanced, one draw), placed where that layer's weather and shape noise hold
@@ -160,7 +164,9 @@ struct CloudClusters {
   float density_scale = 1.0f;    // a puff's peak extinction per unit of the field's extinction at its centre
   int samples = 3;               // light samples along each puff's chord (stratified by opacity)
   ClusterCompositing compositing = ClusterCompositing::sorted;
+  PuffProxy proxy = PuffProxy::quad;
   int subdivision_level = 2;     // of the puff's proxy mesh (OpenSubdiv, Catmull-Clark from a cube)
+  float resolution_scale = 0.5f; // the puffs are drawn at this fraction of the frame's width and height
   int seed = 7;
 };
 void describe(TypeBuilder<CloudClusters>& t);

@@ -10,6 +10,7 @@
 #include "welkin/clouds/components.h"
 #include "welkin/gfx/camera.h"
 #include "welkin/gfx/gl_objects.h"
+#include "welkin/gfx/render_graph.h"
 #include "welkin/gfx/shader.h"
 
 namespace welkin {
@@ -167,6 +168,7 @@ struct ClustersGpu {
   int cell_order_grid = -1;
   std::unique_ptr<Texture> front;      // distance to where the clusters turn opaque (m; the march stops there)
   bool front_valid = false;            // written this frame (the march reads it then)
+  ResourceHandle color;                // this frame's puffs (premultiplied, opacity in alpha), when front_valid
   GLuint vao = 0;
   int puff_count = 0;                  // instances drawn last frame (clusters x puffs)
   ~ClustersGpu();
