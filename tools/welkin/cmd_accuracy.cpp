@@ -41,7 +41,8 @@ using atmosphere::SkyMethod;
 
 struct AccuracyOptions {
   std::string technique, out = "out/accuracy", cache, size;  // size: each technique's own default when empty
-  std::string ghosting_scene = "assets/scenes/clouds-peer.json", scene = "assets/scenes/godrays-sunset.json";
+  std::string ghosting_scene = "assets/scenes/clouds-peer.json";
+  std::string scene;  // godrays, clusters: the scene measured (each has its own default)
   std::vector<std::string> methods{"lut", "raymarch"}, qualities{"low", "medium", "high", "ultra"};
   int frames = 7, threads = 2;
   bool quick = false, json = false, check = false;
@@ -234,14 +235,18 @@ int run_accuracy(const AccuracyOptions& options) {
     throw Error(ErrorInfo{.path = "--check", .expected = "the atmosphere technique (the only one with a tolerance table)",
                           .found = "'" + o.technique + "'"});
   if (o.technique == "godrays")
-    return run_god_ray_accuracy({.out = o.out, .size = o.size.empty() ? "320x180" : o.size, .scene = o.scene,
+    return run_god_ray_accuracy({.out = o.out, .size = o.size.empty() ? "320x180" : o.size,
+                                 .scene = o.scene.empty() ? GodRayAccuracyOptions{}.scene : o.scene,
                                  .frames = o.frames, .quick = o.quick, .json = o.json});
+  if (o.technique == "clusters")
+    return run_cluster_accuracy({.out = o.out, .size = o.size.empty() ? "320x180" : o.size,
+                                 .scene = o.scene.empty() ? ClusterAccuracyOptions{}.scene : o.scene, .frames = o.frames, .json = o.json});
   if (o.size.empty()) o.size = "640x360";
   if (o.technique == "clouds")
     return run_cloud_accuracy({.out = o.out, .size = o.size, .ghosting_scene = o.ghosting_scene,
                                .qualities = o.qualities, .frames = o.frames, .quick = o.quick, .json = o.json});
   if (o.technique != "atmosphere")
-    throw Error(ErrorInfo{.path = "technique", .expected = "atmosphere, clouds or godrays", .found = "'" + o.technique + "'"});
+    throw Error(ErrorInfo{.path = "technique", .expected = "atmosphere, clouds, clusters or godrays", .found = "'" + o.technique + "'"});
   int width = 0, height = 0;
   parse_size(o.size, width, height);
   std::vector<Config> configs;
@@ -450,7 +455,7 @@ void add_accuracy_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<AccuracyOptions>();
   CLI::App* cmd = app.add_subcommand(
       "accuracy", "Error against run time of every method and quality preset of a technique (CSV and plot)");
-  cmd->add_option("technique", o->technique, "The technique to measure: atmosphere, clouds, godrays")->required();
+  cmd->add_option("technique", o->technique, "The technique to measure: atmosphere, clouds, clusters, godrays")->required();
   cmd->add_option("--out", o->out, "Folder for the CSVs and the plot")->capture_default_str();
   cmd->add_option(
       "--cache", o->cache,
@@ -458,7 +463,8 @@ void add_accuracy_command(CLI::App& app, int& exit_code) {
   cmd->add_option("-s,--size", o->size, "Frame size WxH for GPU time (godrays: also of the measured frame; default 320x180, else 640x360)");
   cmd->add_option("--ghosting-scene", o->ghosting_scene, "clouds: the scene the temporal upscaling flies through")
       ->capture_default_str();
-  cmd->add_option("--scene", o->scene, "godrays: the scene whose frame is measured")->check(CLI::ExistingFile)->capture_default_str();
+  cmd->add_option("--scene", o->scene, "godrays, clusters: the scene whose frame is measured (default assets/scenes/godrays-sunset.json, clouds-clusters.json)")
+      ->check(CLI::ExistingFile);
   cmd->add_option("-n,--frames", o->frames, "Frames per GPU time (median)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();

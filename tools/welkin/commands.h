@@ -42,6 +42,15 @@ struct GodRayAccuracyOptions {
   bool quick = false, json = false;
 };
 int run_god_ray_accuracy(const GodRayAccuracyOptions& options);
+// `welkin accuracy clusters`: the mesh clusters' light quadrature against 16 samples with their GPU
+// time, and their consistency with the volumetric path at the switch distance; writes a CSV.
+struct ClusterAccuracyOptions {
+  std::string out = "out/accuracy", size = "320x180";
+  std::string scene = "assets/scenes/clouds-clusters.json";
+  int frames = 5;
+  bool json = false;
+};
+int run_cluster_accuracy(const ClusterAccuracyOptions& options);
 // Prints nodes, meshes, counts, materials, extensions and bounds of a glTF; throws welkin::Error.
 void print_asset_info(const std::string& file, bool json);
 // Parses WIDTHxHEIGHT (1..kMaxImageSide per side, at most kMaxImagePixels); throws Error naming --size.

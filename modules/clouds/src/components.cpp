@@ -124,7 +124,7 @@ void describe(TypeBuilder<CloudClusters>& t) {
   t.field("cell_m", &CloudClusters::cell_m).unit("m").range(100, 100000).tooltip("At most one cluster per cell of this side");
   t.field("near_m", &CloudClusters::near_m).unit("m").range(0, 1e6).tooltip("The raymarch draws the layer nearer than this");
   t.field("crossfade_m", &CloudClusters::crossfade_m).unit("m").range(0, 1e5).tooltip("Width of the hand-over between the two paths");
-  t.field("far_m", &CloudClusters::far_m).unit("m").range(100, 1e6).tooltip("No cluster beyond this distance");
+  t.field("far_m", &CloudClusters::far_m).unit("m").range(100, 1e6).tooltip("The raymarch draws the layer again beyond this");
   t.field("puff_size", &CloudClusters::puff_size).range(0.1, 4).tooltip("Scales the genus's puff radii");
   t.field("density_scale", &CloudClusters::density_scale).range(0, 100).tooltip("Peak extinction per unit of the field's extinction at the puff's centre");
   t.field("samples", &CloudClusters::samples).range(1, 16).tooltip("Light samples along each puff's chord");

@@ -138,9 +138,12 @@ FrameBlock make_frame_block(const VolumetricClouds& clouds, const CloudsContext&
   // The most the signal changes per metre (a linear filter's gradient is at most sqrt(3) x the
   // largest step between neighbouring texels per texel): a bound for the empty-space skipping.
   f.noise_mix.z = float(1.75 * noise.weather_step * kSystemsNoiseSize / system_period);
-  // Every layer handed over to the mesh clusters: the march need not reach past the hand-over.
+  // Every layer handed over to the mesh clusters as far as the march reaches: it need not reach
+  // past the hand-over.
   float handed_over_m = 0.0f;
-  for (const LayerBlock& b : layers.layers) handed_over_m = b.handover.x > 0.0f ? std::max(handed_over_m, b.handover.x + 0.5f * b.handover.y) : 3.4e38f;
+  for (const LayerBlock& b : layers.layers)
+    handed_over_m = b.handover.x > 0.0f && b.handover.z >= clouds.max_distance_m ? std::max(handed_over_m, b.handover.x + 0.5f * b.handover.y)
+                                                                               : 3.4e38f;
   if (!layers.layers.empty()) f.up.w = std::min(f.up.w, handed_over_m);
   f.inverse_view_projection = view.inverse_view_projection;
   return f;

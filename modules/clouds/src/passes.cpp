@@ -239,14 +239,14 @@ bool upload_frame(World& world, const SystemContext& sc, const VolumetricClouds&
   CloudsContext ctx = read_context(world, sc.frame);
   upload_coverage_map(world, clouds, gpu, ctx);
   PackedLayers layers = pack_layers(clouds, ctx, view.camera_position_m);
-  // The layer the mesh clusters draw beyond their near distance is handed over to them there.
+  // The layer the mesh clusters draw between their near and far distances is handed over to them there.
   gpu.clusters_layer = -1;
   const Entity cluster_entity = world.registry().first<CloudClusters>();
   if (!cluster_entity.is_null()) {
     const CloudClusters& c = *world.registry().get<CloudClusters>(cluster_entity);
     for (size_t i = 0; i < layers.layers.size(); ++i)
       if (layers.source_index[i] == c.layer && c.clusters > 0 && c.puffs_per_cluster > 0) {
-        layers.layers[i].handover = {std::max(c.near_m, 1e-3f), c.crossfade_m, 0.0f, 0.0f};
+        layers.layers[i].handover = {std::max(c.near_m, 1e-3f), c.crossfade_m, c.far_m, 0.0f};
         gpu.clusters_layer = int(i);
       }
   }

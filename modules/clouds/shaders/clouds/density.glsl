@@ -60,7 +60,7 @@ struct CloudLayerGpu {
   vec4 profile;   // exp term, exponent, linear term, constant term
   vec4 weather;   // camera in weather periods (fraction, drift applied), xyz; w: 1 / period
   vec4 model;     // dome (0 sheet .. 1 dome), weather channel, casts shadow, follows the coverage map
-  vec4 handover;  // x: view distance m beyond which the mesh clusters draw the layer (0: never); y: cross-fade m
+  vec4 handover;  // the mesh clusters draw the layer from x to z (view distance m; x = 0: never); y: cross-fade m
 };
 layout(std430, binding = 0) readonly buffer CloudLayers { CloudLayerGpu cl_layers[]; };
 // Up to four layers are copied into private variables too; more are read from the buffer.
@@ -233,8 +233,13 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
 #if CLOUDS_HANDOVER
   // Seen from the camera, a layer the mesh clusters take over fades out across the hand-over; its
   // light and shadow samples keep the whole layer (the clusters' clouds still shade what is near).
-  if (clouds_view_sample && L.handover.x > 0.0)
-    d *= 1.0 - smoothstep(L.handover.x - 0.5 * L.handover.y, L.handover.x + 0.5 * L.handover.y + 1e-3, length(x));
+  if (clouds_view_sample && L.handover.x > 0.0) {
+    // The complement of the puffs' fade (clusters_place.comp): in across [near - w/2, near + w/2],
+    // out across [far - w, far]; the two paths' densities add up to the field's.
+    float r = length(x);
+    d *= 1.0 - smoothstep(L.handover.x - 0.5 * L.handover.y, L.handover.x + 0.5 * L.handover.y + 1e-3, r) *
+                   (1.0 - smoothstep(L.handover.z - L.handover.y - 1e-3, L.handover.z, r));
+  }
 #endif
   clouds_depth_below_m += d * L.altitude.w * t * L.altitude.y;
   return d * L.altitude.w;

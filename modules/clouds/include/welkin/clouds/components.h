@@ -150,7 +150,9 @@ enum class PuffProxy : int { quad = 0, mesh = 1 };
 // Mesh-cluster clouds: one layer of the VolumetricClouds drawn at mid range as clusters of soft
 // ellipsoidal puffs (instanced, one draw), placed where that layer's weather and shape noise hold
 // cloud, so a cluster stands where the volumetric cloud would be and drifts with it. The volumetric
-// path draws the layer nearer than near_m and fades it out over crossfade_m while the puffs fade in.
+// path draws the layer nearer than near_m and beyond far_m, and cross-fades with the puffs over
+// crossfade_m at both ends (their densities add up to the field's). Clusters fill the ring nearest
+// first: far_m should leave room for about clusters / coverage cells of cell_m.
 struct CloudClusters {
   static constexpr std::string_view kTypeName = "clouds.CloudClusters";
   int layer = 0;                 // index in clouds.VolumetricClouds/layers
@@ -159,7 +161,7 @@ struct CloudClusters {
   float cell_m = 4000.0f;        // at most one cluster per cell of this side (cells drift with the layer's wind)
   float near_m = 8000.0f;        // the volumetric path draws the layer nearer than this
   float crossfade_m = 2000.0f;   // over which the two paths hand over
-  float far_m = 60000.0f;        // no cluster beyond this distance
+  float far_m = 25000.0f;        // and beyond this
   float puff_size = 1.0f;        // scales the genus's puff radii
   float density_scale = 1.0f;    // a puff's peak extinction per unit of the field's extinction at its centre
   int samples = 3;               // light samples along each puff's chord (stratified by opacity)

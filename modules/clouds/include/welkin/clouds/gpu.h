@@ -53,8 +53,8 @@ struct LayerBlock {
   glm::vec4 profile{0.0f};   // exp term, exponent, linear term, constant term
   glm::vec4 weather{0.0f};   // camera in weather periods (fraction); w: 1 / period
   glm::vec4 model{0.0f};     // dome, weather channel, casts shadow, follows the coverage map
-  // Hand-over to the mesh clusters (clouds.CloudClusters): x the view distance (m) beyond which the
-  // march leaves the layer to them (0: never), y the width of the cross-fade (m).
+  // Hand-over to the mesh clusters (clouds.CloudClusters): the march leaves the layer to them from
+  // view distance x to z (m; x = 0: never), cross-fading over y (m).
   glm::vec4 handover{0.0f};
 };
 
