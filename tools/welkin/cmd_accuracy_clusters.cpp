@@ -19,7 +19,6 @@
 #include "welkin/core/files.h"
 #include "welkin/gfx/camera.h"
 #include "welkin/gfx/gl_context.h"
-#include "welkin/gfx/gpu_measure.h"
 #include "welkin/gfx/image.h"
 #include "welkin/gfx/renderer.h"
 #include "welkin/scene/json_fields.h"
@@ -60,29 +59,9 @@ SceneRender load(nlohmann::json doc, const std::string& file, const std::vector<
   return s;
 }
 
-ImageF still(SceneRender& s, int width, int height) {
-  s.renderer->render_frame(FrameInfo{.index = 7, .alone = true}, width, height);
-  return s.renderer->read_hdr();
-}
-
-// Median GPU milliseconds of the clusters' own passes, and of a copy measured between the frames.
+ImageF still(SceneRender& s, int width, int height) { return render_still(*s.renderer, width, height); }
 std::pair<double, double> cost(SceneRender& s, int width, int height, int frames) {
-  for (int i = 0; i < 2; ++i) s.renderer->render_frame(FrameInfo{.index = uint64_t(i)}, width, height);
-  CopyFloor copy(s.renderer->context().shaders, width, height);
-  std::vector<double> pass, floor;
-  for (int i = 0; i < frames; ++i) {
-    const FrameResult fr = s.renderer->render_frame(FrameInfo{.time_s = i / 30.0, .dt_s = 1 / 30.0, .index = uint64_t(i + 2)}, width, height);
-    double ms = 0.0;
-    for (const auto& t : fr.timings)
-      if (t.name.rfind("clouds.clusters_", 0) == 0) ms += t.gpu_ms;
-    pass.push_back(ms);
-    floor.push_back(copy.measure_ms(5));
-  }
-  auto median = [](std::vector<double> v) {
-    std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
-    return v[v.size() / 2];
-  };
-  return {median(pass), median(floor)};
+  return passes_cost(*s.renderer, "clouds.clusters_", width, height, frames);
 }
 
 }  // namespace

@@ -1,9 +1,12 @@
 #include "session.h"
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "welkin/core/error.h"
 #include "welkin/core/module_paths.h"
+#include "welkin/gfx/gpu_measure.h"
+#include "welkin/gfx/renderer.h"
 #include "welkin/scene/field_path.h"
 #include "welkin/scene/json_fields.h"
 
@@ -57,6 +60,30 @@ void apply_assignment(World& world, const std::string& assignment) {
   } catch (const Error& e) {
     throw e.with_path_prefix("--set " + component);
   }
+}
+
+ImageF render_still(Renderer& renderer, int width, int height) {
+  renderer.render_frame(FrameInfo{.index = 7, .alone = true}, width, height);
+  return renderer.read_hdr();
+}
+
+std::pair<double, double> passes_cost(Renderer& renderer, const std::string& prefix, int width, int height, int frames) {
+  for (int i = 0; i < 2; ++i) renderer.render_frame(FrameInfo{.index = uint64_t(i)}, width, height);
+  CopyFloor copy(renderer.context().shaders, width, height);
+  std::vector<double> pass, floor;
+  for (int i = 0; i < frames; ++i) {
+    const FrameResult fr = renderer.render_frame(FrameInfo{.time_s = i / 30.0, .dt_s = 1 / 30.0, .index = uint64_t(i + 2)}, width, height);
+    double ms = 0.0;
+    for (const auto& t : fr.timings)
+      if (t.name.rfind(prefix, 0) == 0) ms += t.gpu_ms;
+    pass.push_back(ms);
+    floor.push_back(copy.measure_ms(5));
+  }
+  auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  return {median(pass), median(floor)};
 }
 
 }  // namespace welkin::cli

@@ -71,15 +71,23 @@ namespace {
 // Every scene preset is a valid clouds.VolumetricClouds, every genus preset a valid layer of its genus.
 TEST(CloudsPresets, EveryPresetFileLoadsAndEachGenusHasOne) {
   const std::filesystem::path dir = WELKIN_SOURCE_DIR "/modules/clouds/presets";
-  int scenes = 0;
+  int scenes = 0, clusters = 0;
   for (const auto& e : std::filesystem::directory_iterator(dir)) {
     if (e.path().extension() != ".json") continue;
+    // The mesh clusters' presets (clusters-*.json) are of their own component.
+    if (e.path().filename().string().rfind("clusters-", 0) == 0) {
+      CloudClusters k;
+      EXPECT_NO_THROW(object_from_json(type_desc<CloudClusters>(), &k, read_json_file(e.path().string()))) << e.path();
+      ++clusters;
+      continue;
+    }
     VolumetricClouds c;
     EXPECT_NO_THROW(object_from_json(type_desc<VolumetricClouds>(), &c, read_json_file(e.path().string()))) << e.path();
     EXPECT_FALSE(c.layers.empty()) << e.path();
     ++scenes;
   }
   EXPECT_GE(scenes, 7);
+  EXPECT_GE(clusters, 3);
   for (int g = 0; g <= int(Genus::cirrocumulus); ++g) {
     const std::string name = genus_name(Genus(g));
     CloudLayer layer;
