@@ -32,6 +32,7 @@ std::vector<std::string> Scheduler::run(Phase phase, SystemContext& ctx) {
     std::vector<TypeId> query = s.reads;
     query.insert(query.end(), s.writes.begin(), s.writes.end());
     if (!ctx.world.registry().any_match(query)) continue;
+    if (ctx.entering_system) ctx.entering_system(s.name);
     s.run(ctx);
     ran.push_back(s.name);
   }

@@ -42,7 +42,7 @@ ResourceHandle RenderGraph::import(const std::string& name, Texture& texture) {
 }
 
 void RenderGraph::add_pass(const std::string& name, const SetupFn& setup, ExecuteFn execute) {
-  passes_.push_back({.name = name, .execute = std::move(execute)});
+  passes_.push_back({.name = name, .system = system_, .execute = std::move(execute)});
   PassBuilder b(*this, uint32_t(passes_.size() - 1));
   setup(b);
   compiled_ = false;
@@ -109,7 +109,7 @@ void RenderGraph::execute(GraphBackend& backend) {
     pass.execute(ctx);
     backend.end_pass();
     double cpu = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    timings_.push_back({pass.name, 0.0, cpu});
+    timings_.push_back({pass.name, pass.system, 0.0, cpu});
     for (auto& r : resources_)
       if (!r.imported && r.texture && r.last_use == p) {
         backend.release(r.texture);

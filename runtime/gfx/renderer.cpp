@@ -85,8 +85,10 @@ FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height
   graph.blackboard["scene_color"] = targets.color;
   graph.blackboard["scene_depth"] = targets.depth;
 
-  SystemContext sctx{.world = world_, .frame = frame, .graph = &graph, .targets = &targets};
+  SystemContext sctx{.world = world_, .frame = frame, .graph = &graph, .targets = &targets,
+                     .entering_system = [&graph](const std::string& name) { graph.set_system(name); }};
   auto rendered = world_.scheduler().run(Phase::render, sctx);
+  graph.set_system("");
   result.systems_run.insert(result.systems_run.end(), rendered.begin(), rendered.end());
 
   const FrameView& view = ctx_.view;
@@ -112,6 +114,7 @@ FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   check_gl("frame");
   result.timings = graph.timings();
+  ctx_.last_timings = result.timings;
   result.culled_passes = graph.culled_passes();
   return result;
 }

@@ -1,6 +1,7 @@
 // welkin bench SCENE [--size WxH] [--frames N] [--json]
 // Frame and per-pass cost of a scene, as ratios against a full-screen copy of the same size measured
-// in the same run (absolute times on shared machines are noise; ratios are what carry over).
+// in the same run (absolute times on shared machines are noise; ratios are what carry over), and the
+// cost of each system (each path: the volumetric clouds, the mesh clusters, the god rays...).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -46,17 +47,27 @@ int run_bench(const BenchOptions& o) {
   // hold while the machine's speed drifts during the run.
   CopyFloor copy(renderer.context().shaders, w, h);
   std::vector<double> frame_ms, copy_ms, frame_ratio;
-  std::vector<std::string> order;
+  std::vector<std::string> order, system_order;
   std::map<std::string, std::vector<double>> pass_ms, pass_ratio;
+  // Each path (volumetric clouds, mesh clusters, god rays, ...) is a system: the sum of its passes per frame.
+  std::map<std::string, std::vector<double>> system_ms, system_ratio;
   for (int i = 0; i < o.frames; ++i) {
     FrameResult fr;
     frame_ms.push_back(finished_ms([&] { fr = renderer.render_frame({.time_s = i / 30.0, .dt_s = 1 / 30.0, .index = uint64_t(i + 3)}, w, h); }));
     copy_ms.push_back(copy.measure_ms(5));
     frame_ratio.push_back(frame_ms.back() / copy_ms.back());
+    std::map<std::string, double> by_system;
     for (const auto& t : fr.timings) {
       if (!pass_ms.count(t.name)) order.push_back(t.name);
       pass_ms[t.name].push_back(t.gpu_ms);
       pass_ratio[t.name].push_back(t.gpu_ms / copy_ms.back());
+      const std::string system = t.system.empty() ? "(renderer)" : t.system;
+      if (!system_ms.count(system) && !by_system.count(system)) system_order.push_back(system);
+      by_system[system] += t.gpu_ms;
+    }
+    for (const auto& [system, ms] : by_system) {
+      system_ms[system].push_back(ms);
+      system_ratio[system].push_back(ms / copy_ms.back());
     }
     if (o.turn_deg != 0.0) {
       Registry& reg = world->registry();
@@ -76,6 +87,11 @@ int run_bench(const BenchOptions& o) {
     nlohmann::json j{{"scene", o.scene}, {"width", w}, {"height", h}, {"frames", o.frames}, {"renderer", info.renderer},
                      {"copy_floor_ms", floor}, {"frame_median_ms", frame}, {"frame_ratio_to_copy", ratio},
                      {"serial_pass_timing", renderer.context().backend.serial_timing()}, {"passes", passes}};
+    nlohmann::json systems = nlohmann::json::array();
+    for (const auto& n : system_order)
+      systems.push_back({{"name", n}, {"median_ms", median(system_ms[n])}, {"ratio_to_copy", median(system_ratio[n])},
+                         {"frames", system_ms[n].size()}});
+    j["systems"] = systems;
     std::printf("%s\n", j.dump(2).c_str());
     return kOk;
   }
@@ -84,6 +100,8 @@ int run_bench(const BenchOptions& o) {
   for (const auto& n : order) std::printf("%-30s %10.3f %10.2f\n", n.c_str(), median(pass_ms[n]), median(pass_ratio[n]));
   std::printf("%-30s %10.3f %10.2f\n", "frame (finished)", frame, ratio);
   std::printf("%-30s %10.3f %10.2f\n", "full-screen copy (floor)", floor, 1.0);
+  std::printf("\n%-30s %10s %10s\n", "system (its passes)", "median ms", "x copy");
+  for (const auto& n : system_order) std::printf("%-30s %10.3f %10.2f\n", n.c_str(), median(system_ms[n]), median(system_ratio[n]));
   return kOk;
 }
 

@@ -135,9 +135,9 @@ void clusters_system(SystemContext& sc) {
   const bool mesh = clusters->proxy == PuffProxy::mesh;
   // The proxy mesh, the grid's order and the buffers, made when their sizes change.
   if (mesh && cg.proxy_level != clusters->subdivision_level) {
-    const std::vector<glm::vec4> mesh = puff_proxy_mesh(clusters->subdivision_level);
-    cg.proxy = std::make_unique<Buffer>(mesh.size() * sizeof(glm::vec4), mesh.data());
-    cg.proxy_vertices = int(mesh.size());
+    const std::vector<glm::vec4> triangles = puff_proxy_mesh(clusters->subdivision_level);
+    cg.proxy = std::make_unique<Buffer>(triangles.size() * sizeof(glm::vec4), triangles.data());
+    cg.proxy_vertices = int(triangles.size());
     cg.proxy_level = clusters->subdivision_level;
   }
   const int grid = std::max(2, 2 * int(std::ceil(double(clusters->far_m) / clusters->cell_m)));
@@ -158,7 +158,9 @@ void clusters_system(SystemContext& sc) {
   // The camera's tangent plane, the wind's direction in it, and the drifting grid's cell under the camera.
   const CloudsContext& ctx = gpu.context;
   const glm::dvec3 up = glm::dvec3(gpu.block.up);
-  const glm::dvec3 east = glm::normalize(glm::dvec3(1, 0, 0) - up * up.x);
+  // East: the world's x axis in the camera's tangent plane (its y where up is nearly x, seen from orbit).
+  const glm::dvec3 x_axis = std::abs(up.x) < 0.99 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  const glm::dvec3 east = glm::normalize(x_axis - up * glm::dot(up, x_axis));
   const glm::dvec3 north = glm::cross(up, east);
   const CloudLayer& layer = clouds.layers[size_t(clusters->layer)];
   const glm::dvec2 wind = glm::dvec2(layer.wind_mps);
@@ -177,7 +179,7 @@ void clusters_system(SystemContext& sc) {
   const glm::vec3 light_dir = moon ? glm::vec3(0, 0, 1) : ctx.sun_direction;
   const glm::vec2 form = genus_form(layer.genus);
   const ShaderDefines field = field_defines(gpu);
-  const glm::vec4 range{clusters->near_m, clusters->crossfade_m, clusters->far_m, clusters->puff_size};
+  const glm::vec4 range{gpu.clusters_near_m, clusters->crossfade_m, clusters->far_m, clusters->puff_size};
   const glm::vec4 genus{form.x, form.y, clusters->density_scale, 0.0f};
   const int n_clusters = clusters->clusters, n_puffs = clusters->puffs_per_cluster;
   const bool sorted = clusters->compositing == ClusterCompositing::sorted;

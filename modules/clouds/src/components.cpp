@@ -152,6 +152,21 @@ void validate(const CloudClusters& c) {
                           .found = std::to_string(c.cell_m)});
 }
 
+void describe(TypeBuilder<CloudLod>& t) {
+  t.tooltip("Moves the raymarch's hand-over to the mesh clusters to keep the clouds within a GPU budget per frame");
+  t.validate(validate);
+  t.field("budget_ms", &CloudLod::budget_ms).unit("ms").range(0, 1000).tooltip("GPU time for the clouds' systems together; 0: the clusters' distances as set");
+  t.field("min_near_m", &CloudLod::min_near_m).unit("m").range(0, 1e6).tooltip("The hand-over comes no nearer than this");
+  t.field("max_near_m", &CloudLod::max_near_m).unit("m").range(0, 1e6).tooltip("and goes no farther");
+  t.field("rate", &CloudLod::rate).range(0.001, 0.5).tooltip("Fraction the hand-over moves per frame");
+}
+
+void validate(const CloudLod& c) {
+  if (!(c.max_near_m >= c.min_near_m))
+    throw Error(ErrorInfo{.path = "/max_near_m", .expected = "at least min_near_m (" + std::to_string(c.min_near_m) + ")",
+                          .found = std::to_string(c.max_near_m)});
+}
+
 ResolvedQuality resolve_quality(const VolumetricClouds& c) {
   switch (c.quality) {
     case Quality::low: return {64, 120.0f, 2000.0f, 2, 150.0f, false, 0.25f, 0.012f, 4, false};

@@ -220,6 +220,34 @@ void upload_coverage_map(World& world, const VolumetricClouds& clouds, CloudsGpu
   ctx.coverage_map_revision = map->revision;
 }
 
+// Where the march hands the clusters' layer over this frame: the clusters' near_m, or with a
+// clouds.CloudLod budget, last frame's distance moved by the clouds' measured GPU time.
+float handover_distance(World& world, const SystemContext& sc, const CloudClusters& clusters, CloudsGpu& gpu) {
+  Registry& reg = world.registry();
+  const Entity le = reg.first<CloudLod>();
+  const CloudLod* lod = le.is_null() ? nullptr : reg.get<CloudLod>(le);
+  if (!lod || !(lod->budget_ms > 0.0f) || sc.frame.alone) {
+    gpu.lod_near_m = -1.0f;
+    return clusters.near_m;
+  }
+  try {
+    check_object(type_desc<CloudLod>(), lod);
+  } catch (const Error& e) {
+    throw e.with_path_prefix(std::string(CloudLod::kTypeName));
+  }
+  const float lo = lod->min_near_m, hi = std::min(lod->max_near_m, std::max(clusters.far_m - clusters.crossfade_m, lo));
+  if (gpu.lod_near_m < 0.0f) gpu.lod_near_m = std::clamp(clusters.near_m, lo, hi);
+  double ms = 0.0;
+  bool measured = false;
+  for (const PassTiming& t : world.resource<RenderContext>().last_timings)
+    if (t.system.rfind("clouds.", 0) == 0) ms += t.gpu_ms, measured = true;
+  // Over budget: the clusters take over nearer; well under it (15% to spare): farther.
+  if (measured && ms > lod->budget_ms) gpu.lod_near_m *= 1.0f - lod->rate;
+  else if (measured && ms < 0.85 * lod->budget_ms) gpu.lod_near_m *= 1.0f + lod->rate;
+  gpu.lod_near_m = std::clamp(gpu.lod_near_m, lo, hi);
+  return gpu.lod_near_m;
+}
+
 bool camera_in_space(World& world, const FrameBlock& f) {
   auto top = scene_scalar(world, "atmosphere.Atmosphere", "top_radius_km");
   return top && double(f.planet.z) > *top * 1000.0;
@@ -244,10 +272,12 @@ bool upload_frame(World& world, const SystemContext& sc, const VolumetricClouds&
   const Entity cluster_entity = world.registry().first<CloudClusters>();
   if (!cluster_entity.is_null()) {
     const CloudClusters& c = *world.registry().get<CloudClusters>(cluster_entity);
+    const float near_m = handover_distance(world, sc, c, gpu);
     for (size_t i = 0; i < layers.layers.size(); ++i)
       if (layers.source_index[i] == c.layer && c.clusters > 0 && c.puffs_per_cluster > 0) {
-        layers.layers[i].handover = {std::max(c.near_m, 1e-3f), c.crossfade_m, c.far_m, 0.0f};
+        layers.layers[i].handover = {std::max(near_m, 1e-3f), c.crossfade_m, c.far_m, 0.0f};
         gpu.clusters_layer = int(i);
+        gpu.clusters_near_m = near_m;
       }
   }
   gpu.context = ctx;

@@ -10,6 +10,7 @@ void register_clouds(ModuleContext& ctx) {
   using namespace welkin::clouds;
   ctx.component<VolumetricClouds>();
   ctx.component<CloudClusters>();
+  ctx.component<CloudLod>();
   add_light_term(ctx.world());
   // The shadow map before any material draws; the march after the geometry and the atmosphere's
   // aerial perspective on it (order 100), so clouds cover both and carry the air in front of them.

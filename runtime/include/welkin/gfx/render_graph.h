@@ -65,6 +65,7 @@ class GraphBackend {
 
 struct PassTiming {
   std::string name;
+  std::string system;  // the system that added the pass ("" for the renderer's own)
   double gpu_ms = 0;  // from GL timer queries (0 where unsupported)
   double cpu_ms = 0;  // wall time of the execute callback
 };
@@ -76,6 +77,8 @@ class RenderGraph {
 
   ResourceHandle import(const std::string& name, Texture& texture);
   void add_pass(const std::string& name, const SetupFn& setup, ExecuteFn execute);
+  // The system whose passes follow (timings name it: the cost of each path); "" for the renderer's.
+  void set_system(std::string name) { system_ = std::move(name); }
   void present(ResourceHandle h);
 
   // Culling and lifetimes. Returns the names of the passes that will run.
@@ -101,7 +104,7 @@ class RenderGraph {
     int first_use = -1, last_use = -1;  // pass indices (alive passes only)
   };
   struct Pass {
-    std::string name;
+    std::string name, system;
     std::vector<uint32_t> reads, writes, creates;
     ExecuteFn execute;
     bool side_effect = false;
@@ -111,6 +114,7 @@ class RenderGraph {
   std::vector<Pass> passes_;
   std::vector<uint32_t> presented_;
   std::vector<PassTiming> timings_;
+  std::string system_;
   bool compiled_ = false;
 };
 

@@ -31,6 +31,8 @@ struct RenderContext {
   // keep between passes (sky tables, froxels) in 32-bit floats.
   bool full_precision = false;
   TextureFormat radiance_format() const { return full_precision ? TextureFormat::rgba32f : TextureFormat::rgba16f; }
+  // The last frame's pass timings (what a system that keeps to a frame budget reads).
+  std::vector<PassTiming> last_timings;
   void draw_fullscreen_triangle() const;
 };
 

@@ -333,9 +333,14 @@ TEST(CloudClusters, StiffCasesStayFiniteAndNonNegative) {
         ASSERT_TRUE(std::isfinite(p.radii.w) && p.radii.w >= 0.0f) << c.name;
         ASSERT_TRUE(std::isfinite(p.light.x) && p.light.x >= 0.0f) << c.name;
       }
-    if (std::string(c.name) == "coverage 0") EXPECT_EQ(live_puffs(puffs), 0u);
-    if (std::string(c.name) == "coverage 1") EXPECT_GT(live_puffs(puffs), puffs.size() / 2);
-    if (std::string(c.name) == "100 000 puffs, overcast") EXPECT_EQ(puffs.size(), size_t(100000));
+    const std::string name = c.name;
+    if (name == "coverage 0") {
+      EXPECT_EQ(live_puffs(puffs), 0u);
+    } else if (name == "coverage 1") {
+      EXPECT_GT(live_puffs(puffs), puffs.size() / 2);
+    } else if (name == "100 000 puffs, overcast") {
+      EXPECT_EQ(puffs.size(), size_t(100000));
+    }
   }
 }
 
@@ -355,7 +360,28 @@ TEST(CloudClusters, BadSettingsAreOneErrorNamingTheField) {
   EXPECT_NE(message(cluster_scene(clusters_with({{"clusters", 4096}, {"puffs_per_cluster", 256}}))).find("/puffs_per_cluster"),
             std::string::npos);
   EXPECT_NE(message(cluster_scene(clusters_with({{"far_m", 1000}}))).find("/far_m"), std::string::npos);
+  json lod = cluster_scene(kClusters);
+  lod["entities"].push_back({{"name", "lod"}, {"components", {{"clouds.CloudLod", {{"min_near_m", 5000}, {"max_near_m", 4000}}}}}});
+  EXPECT_NE(message(lod).find("/max_near_m"), std::string::npos);
   EXPECT_NE(message(cluster_scene(clusters_with({{"cell_m", 100}, {"far_m", 1e6}}))).find("/cell_m"), std::string::npos);
+}
+
+TEST(CloudLod, TheHandOverFollowsTheFramesBudget) {
+  // A budget no frame meets pulls the hand-over in to min_near_m; one every frame meets pushes it
+  // out to max_near_m; a frame rendered alone (a sequence's) keeps the clusters' own near_m.
+  for (const auto& [budget_ms, expected] : {std::pair{1e-4, 2000.0}, std::pair{1000.0, 20000.0}}) {
+    json doc = cluster_scene(kClusters);
+    doc["entities"].push_back({{"name", "lod"},
+                               {"components", {{"clouds.CloudLod", {{"budget_ms", budget_ms}, {"min_near_m", 2000}, {"max_near_m", 20000}, {"rate", 0.5}}}}}});
+    Rendered r = render(doc, 32, 18);
+    for (int i = 0; i < 8; ++i) r.frame(32, 18);
+    const CloudsGpu& gpu = r.world->resource<CloudsGpu>();
+    EXPECT_NEAR(gpu.clusters_near_m, expected, 1e-3 * expected) << "budget " << budget_ms << " ms";
+    ASSERT_GE(gpu.clusters_layer, 0);
+    EXPECT_NEAR(gpu.layers[size_t(gpu.clusters_layer)].handover.x, expected, 1e-3 * expected) << "the march's hand-over";
+    r.renderer->render_frame({.index = 50, .alone = true}, 32, 18);
+    EXPECT_EQ(gpu.clusters_near_m, 3000.0f) << "a frame rendered alone";
+  }
 }
 
 // Clusters at noon and at sunset, looked at before they were committed.

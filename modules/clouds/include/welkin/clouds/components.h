@@ -172,6 +172,21 @@ struct CloudClusters {
   int seed = 7;
 };
 void describe(TypeBuilder<CloudClusters>& t);
+// Which path draws what, by the frame's budget: with budget_ms > 0 the distance where the
+// volumetric path hands the clusters' layer over moves each frame, from the GPU time the clouds'
+// systems took in the last frame (the render graph's timers): nearer when over budget, farther when
+// well under it, within [min_near_m, max_near_m]. A frame rendered alone (a sequence's) keeps the
+// clusters' own near_m, so that any machine renders a sequence alike.
+struct CloudLod {
+  static constexpr std::string_view kTypeName = "clouds.CloudLod";
+  float budget_ms = 0.0f;        // GPU time for the clouds' systems together; 0: distances as set
+  float min_near_m = 2000.0f;
+  float max_near_m = 20000.0f;
+  float rate = 0.1f;             // fraction the hand-over moves per frame
+};
+void describe(TypeBuilder<CloudLod>& t);
+void validate(const CloudLod& lod);
+
 // The most puffs one frame may draw (clusters x puffs_per_cluster), and the most candidate cells
 // (far_m / cell_m per side): work and memory bounded before they are spent.
 inline constexpr int64_t kMaxClusterPuffs = 131072;

@@ -207,6 +207,8 @@ struct CloudsGpu {
   bool has_layers = false;  // some layer can hold cloud this frame
   CloudsContext context;    // this frame's
   int clusters_layer = -1;  // the packed layer the mesh clusters draw (-1: none)
+  float clusters_near_m = 0.0f;  // where the march hands it over this frame (clouds.CloudLod moves it)
+  float lod_near_m = -1.0f;      // the budget's hand-over, carried between frames (-1: not started)
   ClustersGpu clusters;
 };
 
