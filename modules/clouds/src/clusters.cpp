@@ -106,14 +106,9 @@ void clusters_system(SystemContext& sc) {
   World& world = sc.world;
   auto& gpu = world.resource<CloudsGpu>();
   ClustersGpu& cg = gpu.clusters;
-  cg.front_valid = false;
   const CloudClusters* clusters = first_clusters(world);
   if (!clusters) return;
-  try {
-    check_object(type_desc<CloudClusters>(), clusters);
-  } catch (const Error& e) {
-    throw e.with_path_prefix(std::string(CloudClusters::kTypeName));
-  }
+  check_component(*clusters);
   Registry& reg = world.registry();
   const Entity ce = reg.first<VolumetricClouds>();
   if (ce.is_null())
@@ -153,7 +148,6 @@ void clusters_system(SystemContext& sc) {
   ensure_buffer(cg.order, cg.order_capacity, size_t(order_size) * 2 * sizeof(uint32_t));
   const int width = std::max(1, int(std::ceil(view.width * clusters->resolution_scale)));
   const int height = std::max(1, int(std::ceil(view.height * clusters->resolution_scale)));
-  ensure_texture(cg.front, {.width = width, .height = height, .format = TextureFormat::r32f, .linear_filter = false});
 
   // The camera's tangent plane, the wind's direction in it, and the drifting grid's cell under the camera.
   const CloudsContext& ctx = gpu.context;
@@ -247,25 +241,25 @@ void clusters_system(SystemContext& sc) {
       });
 
   const FrameTargets t = *sc.targets;
-  const ResourceHandle front = g.import("clouds.cluster_front", *cg.front);
   const int samples = clusters->samples;
-  auto color = std::make_shared<ResourceHandle>();
+  auto color = std::make_shared<ResourceHandle>(), front = std::make_shared<ResourceHandle>();
   g.add_pass(
       "clouds.clusters_draw",
       [&](PassBuilder& b) {
         b.read(t.depth);
         *color = b.create("clouds.clusters", TextureDesc{.width = width, .height = height, .format = TextureFormat::rgba16f});
-        b.write(front);
+        *front = b.create("clouds.cluster_front",
+                          TextureDesc{.width = width, .height = height, .format = TextureFormat::r32f, .linear_filter = false});
       },
       [gp, &rc, t, front, color, count, axis_wind, axis_across, axis_up, light_dir, samples, mesh, width,
        height](PassContext& pc) {
         ClustersGpu& c = gp->clusters;
-        Framebuffer fb({&pc.texture(*color), &pc.texture(front)}, nullptr);
+        Framebuffer fb({&pc.texture(*color), &pc.texture(*front)}, nullptr);
         fb.bind();
         glViewport(0, 0, width, height);
         const float nothing[4] = {0.0f, 0.0f, 0.0f, 0.0f}, far_away = 3.4e38f;
         glClearTexImage(pc.texture(*color).id(), 0, GL_RGBA, GL_FLOAT, nothing);
-        glClearTexImage(pc.texture(front).id(), 0, GL_RED, GL_FLOAT, &far_away);
+        glClearTexImage(pc.texture(*front).id(), 0, GL_RED, GL_FLOAT, &far_away);
         glDisable(GL_DEPTH_TEST);
         glEnable(GL_BLEND);
         // Premultiplied: puff + (1 - opacity) x behind; the front by minimum. (Set for every buffer
@@ -302,9 +296,10 @@ void clusters_system(SystemContext& sc) {
         glDisable(GL_BLEND);
         glViewport(0, 0, rc.view.width, rc.view.height);
       });
-  // The march's composite lays them over the frame, under the nearer volumetric clouds.
-  cg.color = *color;
-  cg.front_valid = true;
+  // Published for the march (which stops at the front) and its composite (which lays the puffs
+  // over the frame, under the nearer volumetric clouds).
+  g.blackboard["clouds.clusters"] = *color;
+  g.blackboard["clouds.cluster_front"] = *front;
 }
 
 }  // namespace welkin::clouds

@@ -230,11 +230,7 @@ float handover_distance(World& world, const SystemContext& sc, const CloudCluste
     gpu.lod_near_m = -1.0f;
     return clusters.near_m;
   }
-  try {
-    check_object(type_desc<CloudLod>(), lod);
-  } catch (const Error& e) {
-    throw e.with_path_prefix(std::string(CloudLod::kTypeName));
-  }
+  check_component(*lod);
   const float lo = lod->min_near_m, hi = std::min(lod->max_near_m, std::max(clusters.far_m - clusters.crossfade_m, lo));
   if (gpu.lod_near_m < 0.0f) gpu.lod_near_m = std::clamp(clusters.near_m, lo, hi);
   double ms = 0.0;
@@ -255,13 +251,7 @@ bool camera_in_space(World& world, const FrameBlock& f) {
 
 // Uploads this frame's block and layers; false when no layer can hold cloud (nothing to draw).
 bool upload_frame(World& world, const SystemContext& sc, const VolumetricClouds& clouds, FrameBlock& block) {
-  // Values set in code or by sequences never passed the loaders' checks: a bad one is an error
-  // naming the field, not a black or hanging frame.
-  try {
-    check_object(type_desc<VolumetricClouds>(), &clouds);
-  } catch (const Error& e) {
-    throw e.with_path_prefix(std::string(VolumetricClouds::kTypeName));
-  }
+  check_component(clouds);
   auto& gpu = world.resource<CloudsGpu>();
   const FrameView& view = world.resource<RenderContext>().view;
   CloudsContext ctx = read_context(world, sc.frame);
@@ -482,13 +472,18 @@ void clouds_system(SystemContext& sc) {
   ShaderDefines defines = field_defines(gpu);
   defines["CLOUDS_AP_MODE"] = ap_mode;
   // The mesh clusters drawn just before: the march ends where they turn opaque.
-  const bool cluster_front = gpu.clusters.front_valid;
+  // (published on the graph's blackboard by clouds.clusters when it drew this frame).
+  const auto published = [&sc](const char* name) {
+    auto it = sc.graph->blackboard.find(name);
+    return it == sc.graph->blackboard.end() ? ResourceHandle{} : it->second;
+  };
+  const ResourceHandle front = published("clouds.cluster_front");
+  const bool cluster_front = front.valid();
   const GLuint front_unit = world.resource<LightEnvironment>().free_unit();
   if (cluster_front) {
     defines["CLOUDS_CLUSTER_FRONT"] = "1";
     defines["CLOUDS_UNIT_CLUSTER_FRONT"] = std::to_string(front_unit);
   }
-  const ResourceHandle front = cluster_front ? sc.graph->import("clouds.cluster_front", *gpu.clusters.front) : ResourceHandle{};
   // A frame rendered alone marches every pixel (the history is another moment's).
   const bool temporal = clouds->temporal_upscaling && !sc.frame.alone && w >= 2 && h >= 2;
   if (temporal)
@@ -590,7 +585,7 @@ void clouds_system(SystemContext& sc) {
   gpu.previous_camera_m = view.camera_position_m;
 
   // The mesh clusters drawn before the march lie behind it: laid over the frame in the same pass.
-  const ResourceHandle clusters = cluster_front ? gpu.clusters.color : ResourceHandle{};
+  const ResourceHandle clusters = published("clouds.clusters");
   g.add_pass(
       "clouds.composite",
       [&](PassBuilder& b) {

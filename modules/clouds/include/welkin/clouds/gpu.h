@@ -8,10 +8,11 @@
 #include <vector>
 
 #include "welkin/clouds/components.h"
+#include "welkin/core/error.h"
 #include "welkin/gfx/camera.h"
 #include "welkin/gfx/gl_objects.h"
-#include "welkin/gfx/render_graph.h"
 #include "welkin/gfx/shader.h"
+#include "welkin/scene/json_fields.h"
 
 namespace welkin {
 class World;
@@ -166,9 +167,6 @@ struct ClustersGpu {
   size_t cell_capacity = 0, chosen_capacity = 0, puff_capacity = 0, order_capacity = 0;
   std::vector<int32_t> cell_order;     // grid cells nearest first (for the grid size it was made for)
   int cell_order_grid = -1;
-  std::unique_ptr<Texture> front;      // distance to where the clusters turn opaque (m; the march stops there)
-  bool front_valid = false;            // written this frame (the march reads it then)
-  ResourceHandle color;                // this frame's puffs (premultiplied, opacity in alpha), when front_valid
   GLuint vao = 0;
   int puff_count = 0;                  // instances drawn last frame (clusters x puffs)
   ~ClustersGpu();
@@ -211,6 +209,17 @@ struct CloudsGpu {
   float lod_near_m = -1.0f;      // the budget's hand-over, carried between frames (-1: not started)
   ClustersGpu clusters;
 };
+
+// Values set in code or by sequences never passed the loaders' checks: one is checked here, and a
+// bad one is an error naming the component and field, not a black or hanging frame.
+template <class T>
+void check_component(const T& component) {
+  try {
+    check_object(type_desc<T>(), &component);
+  } catch (const Error& e) {
+    throw e.with_path_prefix(std::string(T::kTypeName));
+  }
+}
 
 // Declares the cloud shadows and sky occlusion as a term of the world's light environment.
 void add_light_term(World& world);
