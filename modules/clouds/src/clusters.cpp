@@ -73,33 +73,6 @@ glm::vec2 genus_form(Genus genus) {
   }
 }
 
-void ensure_buffer(std::unique_ptr<Buffer>& buffer, size_t& capacity, size_t bytes) {
-  bytes = std::max<size_t>(bytes, 16);
-  if (!buffer || capacity < bytes) {
-    buffer = std::make_unique<Buffer>(bytes);
-    capacity = bytes;
-  }
-}
-
-int next_power_of_two(int n) {
-  int m = 1;
-  while (m < n) m *= 2;
-  return m;
-}
-
-// Cells of a grid x grid square nearest its middle first (the camera lies in cell (grid/2, grid/2)).
-std::vector<int32_t> cells_nearest_first(int grid) {
-  std::vector<int32_t> cells(size_t(grid) * size_t(grid));
-  for (size_t i = 0; i < cells.size(); ++i) cells[i] = int32_t(i);
-  const double middle = 0.5 * grid;
-  auto distance2 = [&](int32_t c) {
-    const double x = c % grid + 0.5 - middle, y = c / grid + 0.5 - middle;
-    return x * x + y * y;
-  };
-  std::stable_sort(cells.begin(), cells.end(), [&](int32_t a, int32_t b) { return distance2(a) < distance2(b); });
-  return cells;
-}
-
 }  // namespace
 
 void clusters_system(SystemContext& sc) {
@@ -135,40 +108,16 @@ void clusters_system(SystemContext& sc) {
     cg.proxy_vertices = int(triangles.size());
     cg.proxy_level = clusters->subdivision_level;
   }
-  const int grid = std::max(2, 2 * int(std::ceil(double(clusters->far_m) / clusters->cell_m)));
-  if (cg.cell_order_grid != grid) {
-    cg.cell_order = cells_nearest_first(grid);
-    cg.cell_order_grid = grid;
-    cg.cell_order_buffer = std::make_unique<Buffer>(cg.cell_order.size() * sizeof(int32_t), cg.cell_order.data());
-  }
+  const CloudLayer& layer = clouds.layers[size_t(clusters->layer)];
+  const PlacementGrid grid = placement_grid(gpu, view, layer, clusters->cell_m, clusters->far_m);
   const int order_size = next_power_of_two(count);
-  ensure_buffer(cg.cells, cg.cell_capacity, size_t(grid) * size_t(grid) * sizeof(float));
-  ensure_buffer(cg.chosen, cg.chosen_capacity, size_t(clusters->clusters) * sizeof(int32_t));
+  cg.placement.ensure(grid.grid, clusters->clusters);
   ensure_buffer(cg.puffs, cg.puff_capacity, size_t(count) * sizeof(ClusterPuffGpu));
   ensure_buffer(cg.order, cg.order_capacity, size_t(order_size) * 2 * sizeof(uint32_t));
   const int width = std::max(1, int(std::ceil(view.width * clusters->resolution_scale)));
   const int height = std::max(1, int(std::ceil(view.height * clusters->resolution_scale)));
 
-  // The camera's tangent plane, the wind's direction in it, and the drifting grid's cell under the camera.
   const CloudsContext& ctx = gpu.context;
-  const glm::dvec3 up = glm::dvec3(gpu.block.up);
-  // East: the world's x axis in the camera's tangent plane (its y where up is nearly x, seen from orbit).
-  const glm::dvec3 x_axis = std::abs(up.x) < 0.99 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-  const glm::dvec3 east = glm::normalize(x_axis - up * glm::dot(up, x_axis));
-  const glm::dvec3 north = glm::cross(up, east);
-  const CloudLayer& layer = clouds.layers[size_t(clusters->layer)];
-  const glm::dvec2 wind = glm::dvec2(layer.wind_mps);
-  const glm::dvec2 drift = wind * ctx.time_s;
-  const glm::dvec2 camera_en{glm::dot(view.camera_position_m, east), glm::dot(view.camera_position_m, north)};
-  const double cell = clusters->cell_m;
-  const glm::dvec2 in_grid = (camera_en - drift) / cell;
-  const glm::dvec2 camera_cell = glm::floor(in_grid);
-  const glm::ivec2 first_cell = glm::ivec2(camera_cell) - glm::ivec2(grid / 2);
-  const glm::vec2 first_corner = glm::vec2((glm::dvec2(first_cell) - in_grid) * cell);
-  const glm::vec2 wind_en = glm::length(wind) > 1e-6 ? glm::vec2(glm::normalize(wind)) : glm::vec2(1.0f, 0.0f);
-  const glm::vec3 axis_wind = glm::vec3(east) * wind_en.x + glm::vec3(north) * wind_en.y;
-  const glm::vec3 axis_up = glm::vec3(up);
-  const glm::vec3 axis_across = glm::cross(axis_up, axis_wind);
   const bool moon = gpu.block.phase.w > 0.5f;
   const glm::vec3 light_dir = moon ? glm::vec3(0, 0, 1) : ctx.sun_direction;
   const glm::vec2 form = genus_form(layer.genus);
@@ -183,90 +132,50 @@ void clusters_system(SystemContext& sc) {
   RenderGraph& g = *sc.graph;
   g.add_pass(
       "clouds.clusters_place", [](PassBuilder& b) { b.side_effect(); },
-      [gp, &rc, &world, field, grid, first_cell, first_corner, east, north, wind_en, packed, n_clusters, n_puffs,
-       order_size, range, genus, light_dir, moon, axis_wind, axis_across, axis_up, sorted,
-       seed = uint32_t(clusters->seed), count, cell](PassContext&) {
+      [gp, &rc, &world, field, grid, packed, n_clusters, n_puffs, order_size, range, genus, light_dir, moon, sorted,
+       seed = uint32_t(clusters->seed), count](PassContext&) {
         ClustersGpu& c = gp->clusters;
         bind_field(*gp);
         world.resource<LightEnvironment>().bind();
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, c.puffs->id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, c.cells->id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, c.chosen->id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, c.cell_order_buffer->id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, c.order->id());
-        const int invocations[4] = {grid * grid, 1, count, order_size};
-        for (int stage = 0; stage < 4; ++stage) {
+        c.placement.choose(rc.shaders, field, grid, packed, n_clusters, range, seed);
+        const int invocations[2] = {count, order_size};
+        for (int stage = 2; stage < 4; ++stage) {
           ShaderDefines d = field;
           d["CLUSTERS_STAGE"] = std::to_string(stage);
           const Program& p = rc.shaders.compute("clouds/clusters_place.comp", d);
-          p.set("u_grid", grid);
-          p.set("u_cell_m", float(cell));
-          glProgramUniform2i(p.id(), p.location("u_first_cell"), first_cell.x, first_cell.y);
-          p.set("u_first_corner", first_corner);
-          p.set("u_east", glm::vec3(east));
-          p.set("u_north", glm::vec3(north));
-          p.set("u_wind_en", wind_en);
+          set_placement_uniforms(p, grid, seed);
+          p.set("u_wind_en", grid.wind_en);
           p.set("u_layer", packed);
           p.set("u_clusters", n_clusters);
           p.set("u_puffs", n_puffs);
-          glProgramUniform1ui(p.id(), p.location("u_seed"), seed);
           p.set("u_range", range);
           p.set("u_genus", genus);
           p.set("u_order_size", order_size);
           p.set("u_light_dir", light_dir);
           p.set("u_light", moon ? 1 : 0);
-          p.set("u_axis_wind", axis_wind);
-          p.set("u_axis_across", axis_across);
-          p.set("u_axis_up", axis_up);
-          dispatch_compute(p, group_count(invocations[stage], 64), 1);
+          p.set("u_axis_wind", grid.axis_wind);
+          p.set("u_axis_across", grid.axis_across);
+          p.set("u_axis_up", grid.axis_up);
+          dispatch_compute(p, group_count(invocations[stage - 2], 64), 1);
           glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         }
-        if (!sorted) return;
-        // Far first: blocks of 1024 in shared memory, then each larger merge's wide steps across
-        // the buffer and its narrow ones in shared memory again.
-        auto sort_pass = [&](int mode, int k, int j, int groups) {
-          const Program& p = rc.shaders.compute("clouds/clusters_sort.comp", {{"CLUSTERS_SORT_MODE", std::to_string(mode)}});
-          p.set("u_size", order_size);
-          p.set("u_k", k);
-          p.set("u_j", j);
-          dispatch_compute(p, groups, 1);
-          glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        };
-        const int blocks = std::max(order_size / 1024, 1);
-        sort_pass(0, 0, 0, blocks);
-        for (int k = 2048; k <= order_size; k *= 2) {
-          for (int j = k / 2; j >= 1024; j /= 2) sort_pass(2, k, j, group_count(order_size / 2, 512));
-          sort_pass(1, k, 0, blocks);
-        }
+        if (sorted) sort_far_to_near(rc.shaders, order_size);
       });
 
   const FrameTargets t = *sc.targets;
   const int samples = clusters->samples;
-  auto color = std::make_shared<ResourceHandle>(), front = std::make_shared<ResourceHandle>();
+  auto targets = std::make_shared<FarCloudTargets>();
   g.add_pass(
       "clouds.clusters_draw",
       [&](PassBuilder& b) {
         b.read(t.depth);
-        *color = b.create("clouds.clusters", TextureDesc{.width = width, .height = height, .format = TextureFormat::rgba16f});
-        *front = b.create("clouds.cluster_front",
-                          TextureDesc{.width = width, .height = height, .format = TextureFormat::r32f, .linear_filter = false});
+        *targets = far_cloud_targets(g, b, width, height);
       },
-      [gp, &rc, t, front, color, count, axis_wind, axis_across, axis_up, light_dir, samples, mesh, width,
-       height](PassContext& pc) {
+      [gp, &rc, t, targets, count, grid, light_dir, samples, mesh](PassContext& pc) {
         ClustersGpu& c = gp->clusters;
-        Framebuffer fb({&pc.texture(*color), &pc.texture(*front)}, nullptr);
-        fb.bind();
-        glViewport(0, 0, width, height);
-        const float nothing[4] = {0.0f, 0.0f, 0.0f, 0.0f}, far_away = 3.4e38f;
-        glClearTexImage(pc.texture(*color).id(), 0, GL_RGBA, GL_FLOAT, nothing);
-        glClearTexImage(pc.texture(*front).id(), 0, GL_RED, GL_FLOAT, &far_away);
-        glDisable(GL_DEPTH_TEST);
-        glEnable(GL_BLEND);
-        // Premultiplied: puff + (1 - opacity) x behind; the front by minimum. (Set for every buffer
-        // first: the atmosphere's pass leaves a second-source blend, which GL forbids with two.)
-        glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-        glBlendFunci(1, GL_ONE, GL_ONE);
-        glBlendEquationi(1, GL_MIN);
+        const Framebuffer fb = begin_far_cloud_draw(pc, *targets);
         if (mesh) {
           glEnable(GL_CULL_FACE);
           glCullFace(GL_FRONT);  // the far side: one fragment per pixel per puff, also from inside
@@ -282,24 +191,18 @@ void clusters_system(SystemContext& sc) {
         p.use();
         p.set("u_view_projection", rc.view.view_projection);
         p.set("u_inverse_view_projection", rc.view.inverse_view_projection);
-        p.set("u_viewport", glm::vec2(width, height));
+        p.set("u_viewport", glm::vec2(targets->width, targets->height));
         p.set("u_light_dir", light_dir);
         p.set("u_samples", samples);
         p.set("u_up_radius", glm::vec4(glm::vec3(gp->block.up), gp->block.planet.z));
-        p.set("u_axis_wind", axis_wind);
-        p.set("u_axis_across", axis_across);
-        p.set("u_axis_up", axis_up);
+        p.set("u_axis_wind", grid.axis_wind);
+        p.set("u_axis_across", grid.axis_across);
+        p.set("u_axis_up", grid.axis_up);
         glDrawArraysInstanced(GL_TRIANGLES, 0, mesh ? c.proxy_vertices : 6, count);
         glCullFace(GL_BACK);
         glDisable(GL_CULL_FACE);
-        glBlendEquationi(1, GL_FUNC_ADD);
-        glDisable(GL_BLEND);
-        glViewport(0, 0, rc.view.width, rc.view.height);
+        end_far_cloud_draw(rc.view.width, rc.view.height);
       });
-  // Published for the march (which stops at the front) and its composite (which lays the puffs
-  // over the frame, under the nearer volumetric clouds).
-  g.blackboard["clouds.clusters"] = *color;
-  g.blackboard["clouds.cluster_front"] = *front;
 }
 
 }  // namespace welkin::clouds

@@ -137,6 +137,16 @@ void describe(TypeBuilder<CloudClusters>& t) {
   t.field("seed", &CloudClusters::seed).range(0, 1 << 30);
 }
 
+// The placement grid reaches far_m on every side of the camera in cells of cell_m: at most
+// kMaxClusterGrid across.
+static void check_cell_grid(float far_m, float cell_m) {
+  if (2.0 * std::ceil(double(far_m) / cell_m) > kMaxClusterGrid)
+    throw Error(ErrorInfo{.path = "/cell_m",
+                          .expected = "at least far_m / " + std::to_string(kMaxClusterGrid / 2) + " (" + std::to_string(far_m / float(kMaxClusterGrid / 2)) +
+                                      " m): at most " + std::to_string(kMaxClusterGrid) + " cells across",
+                          .found = std::to_string(cell_m)});
+}
+
 void validate(const CloudClusters& c) {
   if (int64_t(c.clusters) * c.puffs_per_cluster > kMaxClusterPuffs)
     throw Error(ErrorInfo{.path = "/puffs_per_cluster",
@@ -145,11 +155,39 @@ void validate(const CloudClusters& c) {
                           .found = std::to_string(c.puffs_per_cluster)});
   if (!(c.far_m > c.near_m))
     throw Error(ErrorInfo{.path = "/far_m", .expected = "more than near_m (" + std::to_string(c.near_m) + ")", .found = std::to_string(c.far_m)});
-  if (2.0 * std::ceil(double(c.far_m) / c.cell_m) > kMaxClusterGrid)
-    throw Error(ErrorInfo{.path = "/cell_m",
-                          .expected = "at least far_m / " + std::to_string(kMaxClusterGrid / 2) + " (" + std::to_string(c.far_m / float(kMaxClusterGrid / 2)) +
-                                      " m): at most " + std::to_string(kMaxClusterGrid) + " cells across",
-                          .found = std::to_string(c.cell_m)});
+  check_cell_grid(c.far_m, c.cell_m);
+}
+
+void describe(TypeBuilder<CloudBillboards>& t) {
+  t.tooltip("Far clouds: one volumetric layer drawn as relightable impostors baked from its own field");
+  t.validate(validate);
+  t.field("layer", &CloudBillboards::layer).range(0, 255).tooltip("Index of the clouds.VolumetricClouds layer the billboards draw");
+  t.field("billboards", &CloudBillboards::billboards).range(0, kMaxBillboards).tooltip("At most this many, nearest first");
+  t.field("cell_m", &CloudBillboards::cell_m).unit("m").range(500, 100000).tooltip("One billboard per cell of this side; an archetype is as wide");
+  t.field("near_m", &CloudBillboards::near_m).unit("m").range(0, 1e7).tooltip("Without clusters on the layer, the raymarch draws it nearer than this");
+  t.field("crossfade_m", &CloudBillboards::crossfade_m).unit("m").range(0, 1e5).tooltip("Width of the hand-overs");
+  t.field("far_m", &CloudBillboards::far_m).unit("m").range(100, 1e7).tooltip("The raymarch draws the layer again beyond this");
+  t.field("density_scale", &CloudBillboards::density_scale).range(0, 100).tooltip("Scales the archetypes' optical depth");
+  t.field("archetypes", &CloudBillboards::archetypes).range(1, 16).tooltip("Clouds baked from the layer's field");
+  t.field("atlas_resolution", &CloudBillboards::atlas_resolution).range(4, 128).tooltip("Texels per side of each view");
+  t.field("view_azimuths", &CloudBillboards::view_azimuths).range(1, 32).tooltip("Views around each archetype");
+  t.field("view_elevations", &CloudBillboards::view_elevations).range(1, 8).tooltip("Rows of views, 37 degrees below the horizon to 37 above");
+  t.field("render", &CloudBillboards::render).values({{"impostor", 0}, {"volume", 1}})
+      .tooltip("The impostor, or the reference it is measured against (each pixel marched through the baked volume)");
+  t.field("resolution_scale", &CloudBillboards::resolution_scale).range(0.25, 1).tooltip("Fraction of the frame's width and height the billboards are drawn at");
+  t.field("seed", &CloudBillboards::seed).range(0, 1 << 30);
+}
+
+void validate(const CloudBillboards& b) {
+  const int64_t layers = int64_t(b.archetypes) * b.view_azimuths * b.view_elevations * 2;
+  if (layers > kMaxBillboardAtlasLayers)
+    throw Error(ErrorInfo{.path = "/view_azimuths",
+                          .expected = "archetypes x view_azimuths x view_elevations at most " + std::to_string(kMaxBillboardAtlasLayers / 2),
+                          .found = std::to_string(layers / 2)});
+  if (!(b.far_m > b.near_m))
+    throw Error(ErrorInfo{.path = "/far_m", .expected = "more than near_m (" + std::to_string(b.near_m) + ")",
+                          .found = std::to_string(b.far_m)});
+  check_cell_grid(b.far_m, b.cell_m);
 }
 
 void describe(TypeBuilder<CloudLod>& t) {

@@ -160,7 +160,7 @@ void bind_field(const CloudsGpu& gpu) {
 ShaderDefines field_defines(const CloudsGpu& gpu) {
   constexpr int kLocalLayers = 4;
   ShaderDefines d = {{"CLOUDS_TURBULENCE", gpu.block.noise_mix.x > 0.0f ? "1" : "0"}};
-  if (gpu.clusters_layer >= 0) d["CLOUDS_HANDOVER"] = "1";
+  if (gpu.clusters_layer >= 0 || gpu.billboards_layer >= 0) d["CLOUDS_HANDOVER"] = "1";
   const std::vector<LayerBlock>& layers = gpu.layers;
   if (layers.empty() || layers.size() > size_t(kLocalLayers)) return d;
   const bool detail = gpu.block.frame.y > 0.5f, map = gpu.block.map_up.w > 0.5f;
@@ -244,6 +244,46 @@ float handover_distance(World& world, const SystemContext& sc, const CloudCluste
   return gpu.lod_near_m;
 }
 
+// The layers the mesh clusters and the billboards draw are handed over to them: the clusters from
+// their near_m (or the budget's distance) to their far_m, the billboards from there (or from their
+// own near_m without clusters on the layer) to their far_m, beyond which the march resumes. Each
+// hand-over cross-fades: the march's density and the paths' add up to the field's.
+void hand_over_layers(World& world, const SystemContext& sc, CloudsGpu& gpu, PackedLayers& layers) {
+  gpu.clusters_layer = gpu.billboards_layer = -1;
+  Registry& reg = world.registry();
+  const Entity ce = reg.first<CloudClusters>(), be = reg.first<CloudBillboards>();
+  const CloudClusters* clusters = ce.is_null() ? nullptr : reg.get<CloudClusters>(ce);
+  const CloudBillboards* billboards = be.is_null() ? nullptr : reg.get<CloudBillboards>(be);
+  if (clusters && !(clusters->clusters > 0 && clusters->puffs_per_cluster > 0)) clusters = nullptr;
+  if (billboards && !(billboards->billboards > 0)) billboards = nullptr;
+  const float near_m = clusters ? handover_distance(world, sc, *clusters, gpu) : 0.0f;
+  for (size_t i = 0; i < layers.layers.size(); ++i) {
+    const int source = layers.source_index[i];
+    const bool clustered = clusters && source == clusters->layer;
+    const bool far = billboards && source == billboards->layer;
+    if (clustered) {
+      gpu.clusters_layer = int(i);
+      gpu.clusters_near_m = near_m;
+      layers.layers[i].handover = {std::max(near_m, 1e-3f), clusters->crossfade_m, clusters->far_m, 0.0f};
+    }
+    if (far) {
+      gpu.billboards_layer = int(i);
+      const float end = billboards->far_m;
+      if (clustered) {
+        // In where the puffs fade out (the last cross-fade before their far_m), out as the march
+        // comes back: over the clusters' cross-fade, the one width the layer's hand-over has.
+        const float w = clusters->crossfade_m;
+        gpu.billboards_fade = {clusters->far_m - w, clusters->far_m, std::max(end - w, clusters->far_m), std::max(end, clusters->far_m + 1.0f)};
+        layers.layers[i].handover.z = gpu.billboards_fade.w;
+      } else {
+        const float w = billboards->crossfade_m;
+        gpu.billboards_fade = {billboards->near_m - 0.5f * w, billboards->near_m + 0.5f * w, end - w, end};
+        layers.layers[i].handover = {std::max(billboards->near_m, 1e-3f), w, end, 0.0f};
+      }
+    }
+  }
+}
+
 bool camera_in_space(World& world, const FrameBlock& f) {
   auto top = scene_scalar(world, "atmosphere.Atmosphere", "top_radius_km");
   return top && double(f.planet.z) > *top * 1000.0;
@@ -257,19 +297,7 @@ bool upload_frame(World& world, const SystemContext& sc, const VolumetricClouds&
   CloudsContext ctx = read_context(world, sc.frame);
   upload_coverage_map(world, clouds, gpu, ctx);
   PackedLayers layers = pack_layers(clouds, ctx, view.camera_position_m);
-  // The layer the mesh clusters draw between their near and far distances is handed over to them there.
-  gpu.clusters_layer = -1;
-  const Entity cluster_entity = world.registry().first<CloudClusters>();
-  if (!cluster_entity.is_null()) {
-    const CloudClusters& c = *world.registry().get<CloudClusters>(cluster_entity);
-    const float near_m = handover_distance(world, sc, c, gpu);
-    for (size_t i = 0; i < layers.layers.size(); ++i)
-      if (layers.source_index[i] == c.layer && c.clusters > 0 && c.puffs_per_cluster > 0) {
-        layers.layers[i].handover = {std::max(near_m, 1e-3f), c.crossfade_m, c.far_m, 0.0f};
-        gpu.clusters_layer = int(i);
-        gpu.clusters_near_m = near_m;
-      }
-  }
+  hand_over_layers(world, sc, gpu, layers);
   gpu.context = ctx;
   const ResolvedQuality q = resolve_quality(clouds);
   const int w = std::max(1, int(std::ceil(view.width * q.resolution_scale)));

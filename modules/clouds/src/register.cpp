@@ -10,12 +10,16 @@ void register_clouds(ModuleContext& ctx) {
   using namespace welkin::clouds;
   ctx.component<VolumetricClouds>();
   ctx.component<CloudClusters>();
+  ctx.component<CloudBillboards>();
   ctx.component<CloudLod>();
   add_light_term(ctx.world());
   // The shadow map before any material draws; the march after the geometry and the atmosphere's
   // aerial perspective on it (order 100), so clouds cover both and carry the air in front of them.
   ctx.system({.name = "clouds.shadows", .phase = Phase::render, .order = -50,
               .reads = {type_id<VolumetricClouds>()}, .run = shadow_system});
+  // The billboards before the mesh clusters, which draw over them (the billboards lie beyond).
+  ctx.system({.name = "clouds.billboards", .phase = Phase::render, .order = 144,
+              .reads = {type_id<CloudBillboards>()}, .optional_reads = {type_id<VolumetricClouds>()}, .run = billboards_system});
   // The mesh clusters after the god rays (140) and before the march, which stops where they turn
   // opaque and composites the nearer volumetric clouds over them.
   ctx.system({.name = "clouds.clusters", .phase = Phase::render, .order = 145,

@@ -8,6 +8,7 @@
 //             light, sky and air at its centre, and its sort key (distance).
 #include "clouds/density.glsl"
 #include "clouds/clusters.glsl"
+#include "clouds/placement.glsl"
 #if CLUSTERS_STAGE == 3
 #include "welkin/lighting.glsl"
 #endif
@@ -20,42 +21,14 @@ layout(std430, binding = 3) buffer ClusterChosen { int cp_chosen[]; };      // t
 layout(std430, binding = 4) readonly buffer ClusterCellOrder { int cp_cell_order[]; };  // cells nearest first
 layout(std430, binding = 5) buffer ClusterOrder { uvec2 cp_order[]; };      // (sort key bits, puff) per instance
 
-uniform int u_grid;               // cells per side
-uniform float u_cell_m;
-uniform ivec2 u_first_cell;       // the global index (in the drifting grid) of cell (0, 0)
-uniform vec2 u_first_corner;      // its corner, camera-relative (east, north) m
-uniform vec3 u_east, u_north;     // the camera's tangent plane (camera-relative axes)
 uniform vec2 u_wind_en;           // the wind's direction in (east, north)
 uniform int u_layer;              // the packed layer the clusters draw
 uniform int u_clusters, u_puffs;  // budget, puffs per cluster
-uniform uint u_seed;
 uniform vec4 u_range;             // near m, cross-fade m, far m, puff size
 uniform vec4 u_genus;             // dome (0 sheet .. 1 dome), form (0 heaps, 1 sheets, 2 streaks), density scale
 uniform int u_order_size;         // the sort's power-of-two size
 uniform vec3 u_light_dir;         // toward the marched light
 uniform int u_light;              // 0 sun, 1 moon
-
-// A point at altitude h above the surface at camera-relative (east, north): the planet's curvature
-// taken exactly, written so that float keeps it to a metre at 100 km.
-vec3 layer_point(vec2 en, float h) {
-  float r_c = cl_planet.z, R = cl_planet.x + h, rho2 = dot(en, en);
-  float z = ((h - cl_planet.y) * (R + r_c) - rho2) / (sqrt(max(R * R - rho2, 0.0)) + r_c);
-  return en.x * u_east + en.y * u_north + z * cl_up.xyz;
-}
-
-// Hash (Jarzynski & Olano 2020, PCG) of a cell, an index and the seed into [0, 1)^4.
-uvec4 pcg4d(uvec4 v) {
-  v = v * 1664525u + 1013904223u;
-  v.x += v.y * v.w; v.y += v.z * v.x; v.z += v.x * v.y; v.w += v.y * v.z;
-  v ^= v >> 16u;
-  v.x += v.y * v.w; v.y += v.z * v.x; v.z += v.x * v.y; v.w += v.y * v.z;
-  return v;
-}
-vec4 random4(ivec2 cell, int index, uint salt) {
-  return vec4(pcg4d(uvec4(uvec2(cell), uint(index), u_seed * 4u + salt)) >> 8u) / 16777216.0;
-}
-
-vec2 cell_centre_en(int cell) { return u_first_corner + (vec2(cell % u_grid, cell / u_grid) + 0.5) * u_cell_m; }
 
 float field_at(vec3 x) {
   clouds_system_g = clouds_weather_system_at(x);
@@ -74,16 +47,7 @@ void main() {
   float rho = length(en);
   float score = 0.0;
   if (rho > u_range.x - 0.5 * u_range.y - u_cell_m && rho < u_range.z + u_cell_m) {
-    // What the weather allows (before the noise erodes it) in five columns, at a third of the
-    // layer's height: the centre and four at half the cluster's radius. One weather fetch each.
-    const vec2 columns[5] = vec2[5](vec2(0.0), vec2(0.5, 0.0), vec2(-0.5, 0.0), vec2(0.0, 0.5), vec2(0.0, -0.5));
-    for (int c = 0; c < 5; ++c) {
-      vec3 x = layer_point(en + columns[c] * cluster_radius, base + thickness * 0.33);
-      clouds_system_g = clouds_weather_system_at(x);
-      clouds_painted_sample = 2.0;
-      float t, d0;
-      score += clouds_layer_envelope(L, clouds_weather_fetch(L, x), L.model.w > 0.5, x, clouds_altitude(x), t, d0);
-    }
+    score = weather_score(L, en, cluster_radius);
   }
   cp_cells[id] = score;
 #elif CLUSTERS_STAGE == 1

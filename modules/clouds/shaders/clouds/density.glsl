@@ -171,6 +171,9 @@ vec4 clouds_weather_fetch(CloudLayerGpu L, vec3 x) {
   return textureLod(cl_weather_noise, L.weather.xyz + x * L.weather.w, clouds_lod(1.0 / (L.weather.w * 64.0)));
 }
 
+// Scales what the weather allows (the billboards' bake windows the field around each cloud it bakes).
+float clouds_weather_scale = 1.0;
+
 // `w4`: the layer's weather sample at x; `follows_map`: the painted map adds to its coverage.
 float clouds_layer_envelope(CloudLayerGpu L, vec4 w4, bool follows_map, vec3 x, float h, out float t, out float d0) {
   t = 0.0, d0 = 0.0;
@@ -186,7 +189,7 @@ float clouds_layer_envelope(CloudLayerGpu L, vec4 w4, bool follows_map, vec3 x, 
   // Coverage c covers a fraction c of the sky (the weather channels are equalised to uniform).
   float fw = L.shape.w;
   float lo = (1.0 - c) * (1.0 + fw) - fw;
-  d0 = clamp((w - lo) / fw, 0.0, 1.0);
+  d0 = clamp((w - lo) / fw, 0.0, 1.0) * clouds_weather_scale;
   if (d0 <= 0.0) return 0.0;
   // Domes: the top rises with the weather's strength; sheets fill the layer. Flat, soft bases.
   float top = mix(1.0, max(d0, 0.05), L.model.x);

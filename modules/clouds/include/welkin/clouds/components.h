@@ -172,6 +172,43 @@ struct CloudClusters {
   int seed = 7;
 };
 void describe(TypeBuilder<CloudClusters>& t);
+// What the billboards draw: the impostor (the atlas, relit), or the reference it is measured
+// against (each pixel marched through the archetype's baked volume and lit through a march).
+enum class BillboardRender : int { impostor = 0, volume = 1 };
+
+// Billboard clouds: one layer of the VolumetricClouds drawn far away as impostors. A few archetype
+// clouds are baked from the layer's own field (its genus, profile and noise, at its coverage) into
+// small extinction volumes, and from those into an atlas of views holding what relighting needs at
+// any time of day (optical depth, the depth and height of the point that hides half of the
+// opacity, and the diffuse transmittance toward every direction as spherical harmonics), never a
+// colour. Each frame a billboard stands in each of the nearest cells (of cell_m) whose weather
+// holds cloud, with an archetype drawn from the cell's hash, and is lit like the march. Beyond the
+// mesh clusters of the same layer they start where those end; without them at near_m. The raymarch
+// draws the layer again beyond far_m. The bake is remade when the layer's description, its
+// coverage (to 0.05) or these settings change.
+struct CloudBillboards {
+  static constexpr std::string_view kTypeName = "clouds.CloudBillboards";
+  int layer = 0;                  // index in clouds.VolumetricClouds/layers
+  int billboards = 64;            // at most this many, nearest first, where the layer's weather holds cloud
+  float cell_m = 8000.0f;         // one billboard per cell of this side; the archetypes' box is as wide
+  float near_m = 25000.0f;        // without clusters on the layer: the raymarch draws it nearer than this
+  float crossfade_m = 3000.0f;
+  float far_m = 120000.0f;        // the raymarch draws the layer again beyond this
+  float density_scale = 1.0f;     // scales the archetypes' optical depth
+  int archetypes = 4;
+  int atlas_resolution = 32;      // texels per side of a view (and voxels across an archetype's volume)
+  int view_azimuths = 8;
+  int view_elevations = 3;        // rows of views from 37 degrees below the horizon to 37 above
+  BillboardRender render = BillboardRender::impostor;
+  float resolution_scale = 0.5f;  // drawn at this fraction of the frame's width and height
+  int seed = 11;
+};
+void describe(TypeBuilder<CloudBillboards>& t);
+// The most billboards one frame may draw, and the most atlas layers (archetypes x views x 2).
+inline constexpr int kMaxBillboards = 16384;
+inline constexpr int kMaxBillboardAtlasLayers = 2048;
+void validate(const CloudBillboards& billboards);
+
 // Which path draws what, by the frame's budget: with budget_ms > 0 the distance where the
 // volumetric path hands the clusters' layer over moves each frame, from the GPU time the clouds'
 // systems took in the last frame (the render graph's timers): nearer when over budget, farther when

@@ -11,6 +11,7 @@
 #include "welkin/core/error.h"
 #include "welkin/gfx/camera.h"
 #include "welkin/gfx/gl_objects.h"
+#include "welkin/gfx/render_graph.h"
 #include "welkin/gfx/shader.h"
 #include "welkin/scene/json_fields.h"
 
@@ -159,17 +160,76 @@ struct ClusterPuffGpu {
 };
 static_assert(sizeof(ClusterPuffGpu) == 112, "ClusterPuffGpu must match the std430 ClusterPuff struct");
 
+struct CloudsGpu;
+// Where the clusters and the billboards stand: a grid of cells in the camera's tangent plane,
+// drifting with the layer's wind (shaders/clouds/placement.glsl), of which stages 0 and 1 of
+// clusters_place.comp score every cell and choose the nearest that hold cloud.
+struct PlacementGrid {
+  int grid = 2;                  // cells per side
+  double cell_m = 1.0;
+  glm::ivec2 first_cell{0};      // the global index of cell (0, 0)
+  glm::vec2 first_corner{0.0f};  // its corner, camera-relative (east, north) m
+  glm::dvec3 east{1, 0, 0}, north{0, 1, 0};
+  glm::vec2 wind_en{1.0f, 0.0f};  // the wind's direction in (east, north)
+  glm::vec3 axis_wind{1, 0, 0}, axis_across{0, 1, 0}, axis_up{0, 0, 1};  // camera-relative
+};
+PlacementGrid placement_grid(const CloudsGpu& gpu, const FrameView& view, const CloudLayer& layer, double cell_m, double far_m);
+void set_placement_uniforms(const Program& p, const PlacementGrid& g, uint32_t seed);
+// The buffers of the placement's stages 0 and 1, grown when needed.
+struct PlacementBuffers {
+  std::unique_ptr<Buffer> cells, chosen, cell_order;
+  size_t cell_capacity = 0, chosen_capacity = 0;
+  int cell_order_grid = -1;  // the grid the cells' order (nearest first) was made for
+  void ensure(int grid, int chosen_count);
+  // Binds them (2 cells, 3 chosen, 4 order) and runs stages 0 and 1 of clusters_place.comp over
+  // the ring range (near, cross-fade, far) for `choose` picks.
+  void choose(ShaderLibrary& shaders, const ShaderDefines& field, const PlacementGrid& g, int layer, int choose,
+              glm::vec4 range, uint32_t seed) const;
+};
+void ensure_buffer(std::unique_ptr<Buffer>& buffer, size_t& capacity, size_t bytes);
+int next_power_of_two(int n);
+
 // The mesh clusters' GPU state (src/clusters.cpp).
 struct ClustersGpu {
   std::unique_ptr<Buffer> proxy;       // the puff's proxy mesh as a triangle list of vec4 (pulled by gl_VertexID)
   int proxy_vertices = 0, proxy_level = -1;
-  std::unique_ptr<Buffer> cells, chosen, puffs, order, cell_order_buffer;
-  size_t cell_capacity = 0, chosen_capacity = 0, puff_capacity = 0, order_capacity = 0;
-  std::vector<int32_t> cell_order;     // grid cells nearest first (for the grid size it was made for)
-  int cell_order_grid = -1;
+  PlacementBuffers placement;
+  std::unique_ptr<Buffer> puffs, order;
+  size_t puff_capacity = 0, order_capacity = 0;
   GLuint vao = 0;
   int puff_count = 0;                  // instances drawn last frame (clusters x puffs)
   ~ClustersGpu();
+};
+
+// std430 mirror of Billboard (shaders/clouds/billboards.glsl): one billboard, written by the
+// placement each frame.
+struct BillboardGpu {
+  glm::vec4 centre;            // camera-relative m (the archetype box's centre); w: optical-depth scale (0: none)
+  glm::vec4 light;             // irradiance of the marched light at the centre; w: distance m
+  glm::vec4 sky;               // sky irradiance on a horizontal plane; w: archetype index
+  glm::vec4 ap_inscattering;
+  glm::vec4 ap_transmittance;
+};
+static_assert(sizeof(BillboardGpu) == 80, "BillboardGpu must match the std430 Billboard struct");
+
+// What an atlas was baked from: a frame whose key equals it reuses the atlas.
+struct BillboardBakeKey {
+  std::vector<float> values;
+  bool operator==(const BillboardBakeKey&) const = default;
+};
+
+// The billboards' GPU state (src/billboards.cpp).
+struct BillboardsGpu {
+  std::unique_ptr<Texture> volume, atlas;  // the archetypes' extinction, and their views
+  std::unique_ptr<Buffer> archetypes;      // each archetype's place in the noise and its weather's score
+  PlacementBuffers placement;
+  std::unique_ptr<Buffer> billboards, order;
+  size_t billboard_capacity = 0, order_capacity = 0;
+  BillboardBakeKey baked;  // what the atlas holds (empty: nothing yet)
+  int bakes = 0;           // how often it was baked (tests, stats)
+  GLuint vao = 0;
+  int drawn = 0;           // instance slots drawn last frame
+  ~BillboardsGpu();
 };
 
 struct CloudsGpu {
@@ -208,6 +268,9 @@ struct CloudsGpu {
   float clusters_near_m = 0.0f;  // where the march hands it over this frame (clouds.CloudLod moves it)
   float lod_near_m = -1.0f;      // the budget's hand-over, carried between frames (-1: not started)
   ClustersGpu clusters;
+  int billboards_layer = -1;  // the packed layer the billboards draw (-1: none)
+  glm::vec4 billboards_fade{0.0f};  // their cross-fades this frame: in from x to y, out from z to w (m)
+  BillboardsGpu billboards;
 };
 
 // Values set in code or by sequences never passed the loaders' checks: one is checked here, and a
@@ -232,6 +295,25 @@ void clouds_system(SystemContext& sc);
 // Render phase, after the god rays and before the march (order 145): the mesh clusters, placed from
 // the field, lit, sorted and drawn over the frame; the march then stops where they turn opaque.
 void clusters_system(SystemContext& sc);
+// Render phase, before the mesh clusters (order 144): the billboards, baked when their key changed,
+// placed, lit, sorted and drawn into the mid- and far-range clouds' targets.
+void billboards_system(SystemContext& sc);
+// The targets the mid- and far-range clouds (billboards, then clusters) draw into at a fraction of
+// the frame's size, published on the graph's blackboard for the march: premultiplied colour and
+// where they turn opaque. The first path to draw in a frame creates them (cleared), the next draws
+// over them. Call from a pass's setup.
+struct FarCloudTargets {
+  ResourceHandle color, front;
+  int width = 0, height = 0;
+  bool created = false;  // this pass must clear them
+};
+FarCloudTargets far_cloud_targets(RenderGraph& graph, PassBuilder& b, int width, int height);
+// Clears new targets, binds them (the framebuffer returned, kept while drawing) with the blending
+// both paths use, and the viewport; restored by end_far_cloud_draw.
+Framebuffer begin_far_cloud_draw(PassContext& pc, const FarCloudTargets& t);
+void end_far_cloud_draw(int frame_width, int frame_height);
+// Sorts a (key, index) buffer at binding 5 by key, far first (a power-of-two size).
+void sort_far_to_near(ShaderLibrary& shaders, int size);
 // The proxy mesh of one puff: a cube refined by Catmull-Clark (OpenSubdiv) onto the unit sphere and
 // pushed out until it encloses it, as a triangle list (counter-clockwise from outside).
 std::vector<glm::vec4> puff_proxy_mesh(int level);

@@ -1,0 +1,92 @@
+#pragma once
+// The billboard clouds (src/billboards.cpp): a few archetype clouds baked from the layer's own field
+// into small extinction volumes, and from those into an atlas of views that holds what relighting
+// needs, not a colour. Each archetype lives in its own frame: x along the wind, y across it, z up;
+// its box is [-hw, hw]^2 x [-hh, hh] about its centre, seen from the views of a grid of azimuths and
+// elevations (toward the viewer: (cos e cos a, cos e sin a, sin e)), each an orthographic square of
+// the box's bounding sphere. Per texel and view:
+//   layer 2v:     optical depth through the cloud; the depth (along the view, from the sphere's
+//                 centre plane, in bounding radii) and height above the layer's base (m) of the point
+//                 that hides half of its opacity; the extinction there (1/m);
+//   layer 2v + 1: the first four spherical-harmonic coefficients of the diffuse transmittance
+//                 1 / (1 + 0.15 tau(w)) from that point toward every direction w (the light model's
+//                 own term), from which the optical depth toward any light is recovered.
+
+// src/billboards.cpp mirrors it (BillboardGpu, std430).
+struct Billboard {
+  vec4 centre;            // camera-relative m (the archetype box's centre); w: optical-depth scale (0: none)
+  vec4 light;             // irradiance of the marched light at the centre; w: distance from the camera m
+  vec4 sky;               // sky irradiance on a horizontal plane at the centre; w: archetype index
+  vec4 ap_inscattering;   // the air between the camera and the centre
+  vec4 ap_transmittance;
+};
+
+uniform ivec4 u_atlas;  // view azimuths, view elevations, archetypes, texels per side
+uniform vec4 u_box;     // half width m, half height m, bounding radius m, volume slices per archetype
+uniform vec4 u_volume;  // texels per side of an archetype's volume, height of the box's centre above the layer's base m
+
+// The elevations' sines span [-kBillboardSinRange, kBillboardSinRange] (one row: the horizon).
+const float kBillboardSinRange = 0.6;
+
+// Toward the viewer of view (row, column), in the archetype's frame.
+vec3 billboard_view_direction(int row, int column) {
+  float s = u_atlas.y > 1 ? -kBillboardSinRange + 2.0 * kBillboardSinRange * float(row) / float(u_atlas.y - 1) : 0.0;
+  float a = 6.2831853 * float(column) / float(u_atlas.x);
+  float c = sqrt(1.0 - s * s);
+  return vec3(c * cos(a), c * sin(a), s);
+}
+// The orthographic view's image axes (right, up) for a view direction d (toward the viewer).
+void billboard_view_axes(vec3 d, out vec3 right, out vec3 up) {
+  right = normalize(cross(-d, vec3(0.0, 0.0, 1.0)));
+  up = cross(right, -d);
+}
+// The four views around a direction toward the viewer (the archetype's frame): (row, column) pairs
+// packed as row * azimuths + column, and their bilinear weights.
+void billboard_views(vec3 d, out ivec4 views, out vec4 weights) {
+  float a = atan(d.y, d.x) / 6.2831853;
+  float fa = fract(a) * float(u_atlas.x);
+  int c0 = int(floor(fa)) % u_atlas.x, c1 = (c0 + 1) % u_atlas.x;
+  float wa = fract(fa);
+  float fr = u_atlas.y > 1 ? clamp((d.z + kBillboardSinRange) / (2.0 * kBillboardSinRange), 0.0, 1.0) * float(u_atlas.y - 1) : 0.0;
+  int r0 = min(int(floor(fr)), max(u_atlas.y - 2, 0)), r1 = min(r0 + 1, u_atlas.y - 1);
+  float wr = u_atlas.y > 1 ? fr - float(r0) : 0.0;
+  views = ivec4(r0 * u_atlas.x + c0, r0 * u_atlas.x + c1, r1 * u_atlas.x + c0, r1 * u_atlas.x + c1);
+  weights = vec4((1.0 - wa) * (1.0 - wr), wa * (1.0 - wr), (1.0 - wa) * wr, wa * wr);
+}
+
+// Spherical harmonics to first order (real, orthonormal): Y00, Y1-1, Y10, Y11.
+vec4 billboard_sh(vec3 w) { return vec4(0.282095, 0.488603 * w.y, 0.488603 * w.z, 0.488603 * w.x); }
+// The optical depth toward w from the coefficients of the diffuse transmittance.
+float billboard_light_depth(vec4 sh, vec3 w) {
+  float diffuse = clamp(dot(sh, billboard_sh(w)), 0.02, 1.0);
+  return (1.0 / diffuse - 1.0) / 0.15;
+}
+
+// Where a segment p + t d (the archetype's frame, m) lies in the box: (t near, t far), near > far when missed.
+vec2 billboard_box_span(vec3 p, vec3 d) {
+  vec3 half_size = vec3(u_box.x, u_box.x, u_box.y);
+  vec3 inv = 1.0 / (abs(d) + 1e-12) * sign(d + 1e-30);
+  vec3 ta = (-half_size - p) * inv, tb = (half_size - p) * inv;
+  vec3 lo = min(ta, tb), hi = max(ta, tb);
+  return vec2(max(max(lo.x, lo.y), lo.z), min(min(hi.x, hi.y), hi.z));
+}
+
+#ifdef BILLBOARDS_VOLUME
+// Archetypes' extinction volumes (1/m), stacked along z: archetype k holds slices [k n, (k + 1) n).
+layout(binding = BILLBOARDS_VOLUME) uniform sampler3D u_billboard_volume;
+float billboard_extinction(vec3 p, int archetype) {
+  vec3 f = p / vec3(u_box.x, u_box.x, u_box.y) * 0.5 + 0.5;
+  if (any(lessThan(f, vec3(0.0))) || any(greaterThan(f, vec3(1.0)))) return 0.0;
+  float slices = u_box.w;
+  // Kept half a slice inside its own stack: no archetype reads its neighbour's.
+  float z = (clamp(f.z * slices, 0.5, slices - 0.5) + float(archetype) * slices) / (slices * float(u_atlas.z));
+  return textureLod(u_billboard_volume, vec3(f.xy, z), 0.0).r;
+}
+// The optical depth from p toward w, to where the ray leaves the box, in `steps` midpoint steps.
+float billboard_march_depth(vec3 p, vec3 w, int archetype, int steps) {
+  float length_m = max(billboard_box_span(p, w).y, 0.0);
+  float dt = length_m / float(steps), tau = 0.0;
+  for (int i = 0; i < steps; ++i) tau += billboard_extinction(p + w * ((float(i) + 0.5) * dt), archetype) * dt;
+  return tau;
+}
+#endif

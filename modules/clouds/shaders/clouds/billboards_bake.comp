@@ -1,0 +1,120 @@
+// The billboards' bake, in stages (BILLBOARDS_BAKE_STAGE), once per layer description and atlas
+// settings (src/billboards.cpp keys it):
+//   0 choose:  each archetype's place in the layer's noise: of 64 places drawn from the seed, the
+//              one whose weather allows the most cloud (one invocation per archetype);
+//   1 volume:  the layer's extinction in the archetype's box, from the field's own functions
+//              (clouds/density.glsl) with its weather windowed to a disc inside the box;
+//   2 atlas:   each view's texel: the optical depth through the volume, the point that hides half of
+//              the opacity, and the diffuse transmittance from there toward 16 directions projected
+//              on spherical harmonics (clouds/billboards.glsl says what each texel holds).
+// The bake reads the noise in a frame of its own (the noise's origin at zero, the world's axes), so
+// it depends on the settings alone, not on where the camera is or when: scrubbing equals playing.
+#include "clouds/density.glsl"
+#include "clouds/placement.glsl"
+#include "clouds/billboards.glsl"
+
+layout(local_size_x = 64) in;
+layout(std430, binding = 7) buffer BillboardArchetypes { vec4 bb_archetypes[]; };  // place (m in the noise's frame), score
+#if BILLBOARDS_BAKE_STAGE == 1
+layout(r32f, binding = 0) uniform writeonly image3D o_volume;
+#elif BILLBOARDS_BAKE_STAGE == 2
+layout(rgba16f, binding = 1) uniform writeonly image3D o_atlas;
+#endif
+uniform int u_layer;
+uniform float u_coverage;  // the coverage the archetypes are baked at
+
+CloudLayerGpu bake_layer() {
+  CloudLayerGpu L = cl_layers[u_layer];
+  L.shape.x = u_coverage;
+  L.weather.xyz = vec3(0.0);
+  L.model.w = 0.0;  // no painted map
+  L.handover = vec4(0.0);
+  return L;
+}
+
+// The layer's extinction (1/m) at x (the noise's frame) and height h above the planet's surface.
+float archetype_field(CloudLayerGpu L, vec3 x, float h) {
+  clouds_detail_sample = -1.0, clouds_painted_sample = 2.0, clouds_detail_displacement = 0.0;
+  clouds_system_g = 0.5;
+  clouds_shape_sample = textureLod(cl_shape_noise, x * cl_shape_origin.w, clouds_lod(1.0 / (cl_shape_origin.w * 128.0)));
+  float envelope;
+  return clouds_layer_density(L, clouds_weather_fetch(L, x), false, true, x, h, envelope) * (cl_medium.x + cl_medium.y);
+}
+
+void main() {
+  clouds_load();
+  cl_shape_origin.xyz = vec3(0.0), cl_detail_origin.xyz = vec3(0.0);
+  CloudLayerGpu L = bake_layer();
+  int id = int(gl_GlobalInvocationID.x);
+  float hw = u_box.x, hh = u_box.y;
+  float centre_h = L.altitude.x + u_volume.y;  // the box's centre above the surface
+#if BILLBOARDS_BAKE_STAGE == 0
+  if (id >= u_atlas.z) return;
+  float period = 1.0 / L.weather.w, best = -1.0;
+  vec2 place = vec2(0.0);
+  const vec2 columns[5] = vec2[5](vec2(0.0), vec2(0.5, 0.0), vec2(-0.5, 0.0), vec2(0.0, 0.5), vec2(0.0, -0.5));
+  for (int j = 0; j < 64; ++j) {
+    vec2 p = random4(ivec2(id, 0), j, 2u).xy * period;
+    float score = 0.0, t, d0;
+    for (int c = 0; c < 5; ++c) {
+      float h = L.altitude.x + 0.33 * L.altitude.y;
+      vec3 x = vec3(p + columns[c] * 0.84 * hw, h);
+      score += clouds_layer_envelope(L, clouds_weather_fetch(L, x), false, x, h, t, d0);
+    }
+    if (score > best) best = score, place = p;
+  }
+  bb_archetypes[id] = vec4(place, best, 0.0);
+#elif BILLBOARDS_BAKE_STAGE == 1
+  int n = int(u_volume.x), slices = int(u_box.w);
+  if (id >= n * n * slices * u_atlas.z) return;
+  int i = id % n, j = (id / n) % n, l = id / (n * n);
+  int archetype = l / slices;
+  vec3 p = vec3((vec2(i, j) + 0.5) / float(n) * 2.0 - 1.0, (float(l % slices) + 0.5) / float(slices) * 2.0 - 1.0) *
+           vec3(hw, hw, hh);
+  // The weather faded out toward the box's sides: a cloud inside it, not a cut block of the layer.
+  clouds_weather_scale = 1.0 - smoothstep(0.55, 0.95, length(p.xy) / hw);
+  clouds_footprint_m = 2.0 * hw / float(n);  // the noise averaged over a voxel
+  vec3 x = vec3(bb_archetypes[archetype].xy + p.xy, centre_h + p.z);
+  float sigma = clouds_weather_scale > 0.0 ? archetype_field(L, x, centre_h + p.z) : 0.0;
+  imageStore(o_volume, ivec3(i, j, l), vec4(sigma));
+#elif BILLBOARDS_BAKE_STAGE == 2
+  int r = u_atlas.w, views = u_atlas.x * u_atlas.y;
+  if (id >= r * r * views * u_atlas.z) return;
+  int i = id % r, j = (id / r) % r, v = (id / (r * r)) % views, archetype = id / (r * r * views);
+  vec3 d = billboard_view_direction(v / u_atlas.x, v % u_atlas.x), f = -d, right, up;
+  billboard_view_axes(d, right, up);
+  vec2 uv = (vec2(i, j) + 0.5) / float(r) * 2.0 - 1.0;
+  vec3 q = (uv.x * right + uv.y * up) * u_box.z;  // on the plane through the centre
+  vec2 span = billboard_box_span(q, f);
+  int steps = 2 * int(u_volume.x);
+  float dt = max(span.y - span.x, 0.0) / float(steps);
+  float tau = 0.0;
+  for (int s = 0; s < steps; ++s) tau += billboard_extinction(q + f * (span.x + (float(s) + 0.5) * dt), archetype) * dt;
+  vec4 a = vec4(0.0), sh = vec4(1.0 / 0.282095, 0.0, 0.0, 0.0);  // empty: no depth, transmittance 1
+  if (tau > 1e-5) {
+    // The point that hides half of the opacity: where the depth reaches -ln(1 - (1 - e^-tau) / 2).
+    float target = -log(1.0 - 0.5 * (1.0 - exp(-tau))), sum = 0.0, t_half = span.x;
+    for (int s = 0; s < steps; ++s) {
+      float step_tau = billboard_extinction(q + f * (span.x + (float(s) + 0.5) * dt), archetype) * dt;
+      if (sum + step_tau >= target) {
+        t_half = span.x + (float(s) + (target - sum) / max(step_tau, 1e-30)) * dt;
+        break;
+      }
+      sum += step_tau;
+    }
+    vec3 p = q + f * t_half;
+    a = vec4(tau, t_half / u_box.z, p.z + u_volume.y, billboard_extinction(p, archetype));
+    // The diffuse transmittance toward 16 directions of a Fibonacci sphere, projected.
+    sh = vec4(0.0);
+    for (int k = 0; k < 16; ++k) {
+      float z = 1.0 - (float(k) + 0.5) / 8.0, ring = sqrt(1.0 - z * z), phi = 2.3999632 * float(k);
+      vec3 w = vec3(ring * cos(phi), ring * sin(phi), z);
+      float depth = billboard_march_depth(p, w, archetype, 12);
+      sh += billboard_sh(w) * (1.0 / (1.0 + 0.15 * depth)) * (4.0 * 3.14159265 / 16.0);
+    }
+  }
+  int layer = 2 * (archetype * views + v);
+  imageStore(o_atlas, ivec3(i, j, layer), a);
+  imageStore(o_atlas, ivec3(i, j, layer + 1), sh);
+#endif
+}

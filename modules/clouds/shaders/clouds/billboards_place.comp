@@ -1,0 +1,62 @@
+// The billboards' instances, each frame: one per cell the clusters' placement chose (cells scored by
+// the layer's weather, nearest first, clouds/clusters_place.comp stages 0 and 1): an archetype drawn
+// from the cell's hash, its box centred over the cell at the layer's middle height, its optical depth
+// scaled by the cross-fades and by how much cloud the cell's weather allows against the archetype's
+// own place; the light, sky and air at its centre; its sort key (distance).
+#include "clouds/density.glsl"
+#include "clouds/placement.glsl"
+#include "clouds/billboards.glsl"
+#include "welkin/lighting.glsl"
+
+layout(local_size_x = 64) in;
+layout(std430, binding = 1) buffer Billboards { Billboard bb_billboards[]; };
+layout(std430, binding = 2) readonly buffer ClusterCells { float bb_cells[]; };
+layout(std430, binding = 3) readonly buffer ClusterChosen { int bb_chosen[]; };
+layout(std430, binding = 5) buffer ClusterOrder { uvec2 bb_order[]; };
+layout(std430, binding = 7) readonly buffer BillboardArchetypes { vec4 bb_archetypes[]; };
+uniform int u_layer;
+uniform int u_count;          // billboards
+uniform int u_order_size;     // the sort's power-of-two size
+uniform vec4 u_fade;          // in from x to y, out from z to w (view distance m)
+uniform float u_density_scale;
+uniform int u_light;          // 0 sun, 1 moon
+
+void main() {
+  clouds_load();
+  int id = int(gl_GlobalInvocationID.x);
+  if (id >= u_order_size) return;
+  if (id >= u_count) {
+    bb_order[id] = uvec2(floatBitsToUint(-2.0), uint(id));  // padding: sorts after every billboard
+    return;
+  }
+  CloudLayerGpu L = cl_layers[u_layer];
+  Billboard b;
+  b.centre = vec4(0.0);
+  b.light = b.sky = b.ap_inscattering = vec4(0.0);
+  b.ap_transmittance = vec4(1.0);
+  float key = -1.0;
+  int cell = bb_chosen[id];
+  if (cell >= 0) {
+    ivec2 global_cell = u_first_cell + ivec2(cell % u_grid, cell / u_grid);
+    vec4 u = random4(global_cell, 0, 3u);
+    vec2 en = cell_centre_en(cell) + (u.xy - 0.5) * 0.3 * u_cell_m;
+    vec3 c = layer_point(en, L.altitude.x + u_volume.y);
+    float rho = length(c);
+    int archetype = min(int(u.z * float(u_atlas.z)), u_atlas.z - 1);
+    float fade = smoothstep(u_fade.x, u_fade.y + 1e-3, rho) * (1.0 - smoothstep(u_fade.z - 1e-3, u_fade.w, rho));
+    float weather = clamp(bb_cells[cell] / max(bb_archetypes[archetype].z, 1e-6), 0.0, 1.0);
+    float scale = u_density_scale * fade * weather;
+    if (scale > 0.0) {
+      vec3 up = normalize(cl_up.xyz * cl_planet.z + c);
+      b.centre = vec4(c, scale);
+      b.light = vec4(u_light == 1 ? welkin_moon_irradiance(c) : welkin_sun_irradiance(c), rho);
+      b.sky = vec4(welkin_sky_irradiance(up), float(archetype));
+      vec3 t;
+      b.ap_inscattering = vec4(welkin_aerial_perspective(c, t), 0.0);
+      b.ap_transmittance = vec4(t, 0.0);
+      key = rho;
+    }
+  }
+  bb_billboards[id] = b;
+  bb_order[id] = uvec2(floatBitsToUint(key), uint(id));
+}

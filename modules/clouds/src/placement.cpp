@@ -1,0 +1,168 @@
+// What the mid- and far-range paths (mesh clusters, billboards) share: the drifting grid of cells
+// they stand on and its scoring and choosing stages, the far-to-near sort, and the targets both
+// draw into before the march composites them.
+#include <algorithm>
+#include <cmath>
+
+#include "welkin/clouds/gpu.h"
+#include "welkin/gfx/compute.h"
+
+namespace welkin::clouds {
+
+void ensure_buffer(std::unique_ptr<Buffer>& buffer, size_t& capacity, size_t bytes) {
+  bytes = std::max<size_t>(bytes, 16);
+  if (!buffer || capacity < bytes) {
+    buffer = std::make_unique<Buffer>(bytes);
+    capacity = bytes;
+  }
+}
+
+int next_power_of_two(int n) {
+  int m = 1;
+  while (m < n) m *= 2;
+  return m;
+}
+
+namespace {
+
+// Cells of a grid x grid square nearest its middle first (the camera lies in cell (grid/2, grid/2)).
+std::vector<int32_t> cells_nearest_first(int grid) {
+  std::vector<int32_t> cells(size_t(grid) * size_t(grid));
+  for (size_t i = 0; i < cells.size(); ++i) cells[i] = int32_t(i);
+  const double middle = 0.5 * grid;
+  auto distance2 = [&](int32_t c) {
+    const double x = c % grid + 0.5 - middle, y = c / grid + 0.5 - middle;
+    return x * x + y * y;
+  };
+  std::stable_sort(cells.begin(), cells.end(), [&](int32_t a, int32_t b) { return distance2(a) < distance2(b); });
+  return cells;
+}
+
+}  // namespace
+
+PlacementGrid placement_grid(const CloudsGpu& gpu, const FrameView& view, const CloudLayer& layer, double cell_m, double far_m) {
+  PlacementGrid g;
+  g.grid = std::max(2, 2 * int(std::ceil(far_m / cell_m)));
+  g.cell_m = cell_m;
+  const glm::dvec3 up = glm::dvec3(gpu.block.up);
+  // East: the world's x axis in the camera's tangent plane (its y where up is nearly x, seen from orbit).
+  const glm::dvec3 x_axis = std::abs(up.x) < 0.99 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  g.east = glm::normalize(x_axis - up * glm::dot(up, x_axis));
+  g.north = glm::cross(up, g.east);
+  const glm::dvec2 wind = glm::dvec2(layer.wind_mps);
+  const glm::dvec2 drift = wind * gpu.context.time_s;
+  const glm::dvec2 camera_en{glm::dot(view.camera_position_m, g.east), glm::dot(view.camera_position_m, g.north)};
+  const glm::dvec2 in_grid = (camera_en - drift) / cell_m;
+  const glm::dvec2 camera_cell = glm::floor(in_grid);
+  g.first_cell = glm::ivec2(camera_cell) - glm::ivec2(g.grid / 2);
+  g.first_corner = glm::vec2((glm::dvec2(g.first_cell) - in_grid) * cell_m);
+  g.wind_en = glm::length(wind) > 1e-6 ? glm::vec2(glm::normalize(wind)) : glm::vec2(1.0f, 0.0f);
+  g.axis_wind = glm::vec3(g.east) * g.wind_en.x + glm::vec3(g.north) * g.wind_en.y;
+  g.axis_up = glm::vec3(up);
+  g.axis_across = glm::cross(g.axis_up, g.axis_wind);
+  return g;
+}
+
+void set_placement_uniforms(const Program& p, const PlacementGrid& g, uint32_t seed) {
+  p.set("u_grid", g.grid);
+  p.set("u_cell_m", float(g.cell_m));
+  glProgramUniform2i(p.id(), p.location("u_first_cell"), g.first_cell.x, g.first_cell.y);
+  p.set("u_first_corner", g.first_corner);
+  p.set("u_east", glm::vec3(g.east));
+  p.set("u_north", glm::vec3(g.north));
+  glProgramUniform1ui(p.id(), p.location("u_seed"), seed);
+}
+
+void PlacementBuffers::ensure(int grid, int chosen_count) {
+  if (cell_order_grid != grid) {
+    const std::vector<int32_t> order = cells_nearest_first(grid);
+    cell_order = std::make_unique<Buffer>(order.size() * sizeof(int32_t), order.data());
+    cell_order_grid = grid;
+  }
+  ensure_buffer(cells, cell_capacity, size_t(grid) * size_t(grid) * sizeof(float));
+  ensure_buffer(chosen, chosen_capacity, size_t(std::max(chosen_count, 1)) * sizeof(int32_t));
+}
+
+void PlacementBuffers::choose(ShaderLibrary& shaders, const ShaderDefines& field, const PlacementGrid& g, int layer,
+                              int choose_count, glm::vec4 range, uint32_t seed) const {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, cells->id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, chosen->id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, cell_order->id());
+  const int invocations[2] = {g.grid * g.grid, 1};
+  for (int stage = 0; stage < 2; ++stage) {
+    ShaderDefines d = field;
+    d["CLUSTERS_STAGE"] = std::to_string(stage);
+    const Program& p = shaders.compute("clouds/clusters_place.comp", d);
+    set_placement_uniforms(p, g, seed);
+    p.set("u_layer", layer);
+    p.set("u_clusters", choose_count);
+    p.set("u_range", range);
+    dispatch_compute(p, group_count(invocations[stage], 64), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+}
+
+void sort_far_to_near(ShaderLibrary& shaders, int size) {
+  // Blocks of 1024 in shared memory, then each larger merge's wide steps across the buffer and its
+  // narrow ones in shared memory again.
+  auto sort_pass = [&](int mode, int k, int j, int groups) {
+    const Program& p = shaders.compute("clouds/clusters_sort.comp", {{"CLUSTERS_SORT_MODE", std::to_string(mode)}});
+    p.set("u_size", size);
+    p.set("u_k", k);
+    p.set("u_j", j);
+    dispatch_compute(p, groups, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  };
+  const int blocks = std::max(size / 1024, 1);
+  sort_pass(0, 0, 0, blocks);
+  for (int k = 2048; k <= size; k *= 2) {
+    for (int j = k / 2; j >= 1024; j /= 2) sort_pass(2, k, j, group_count(size / 2, 512));
+    sort_pass(1, k, 0, blocks);
+  }
+}
+
+FarCloudTargets far_cloud_targets(RenderGraph& graph, PassBuilder& b, int width, int height) {
+  FarCloudTargets t;
+  auto color = graph.blackboard.find("clouds.clusters"), front = graph.blackboard.find("clouds.cluster_front");
+  if (color != graph.blackboard.end() && front != graph.blackboard.end()) {
+    t.color = b.write(color->second);
+    t.front = b.write(front->second);
+    t.width = graph.resource_desc(t.color).width;
+    t.height = graph.resource_desc(t.color).height;
+  } else {
+    t.color = b.create("clouds.clusters", TextureDesc{.width = width, .height = height, .format = TextureFormat::rgba16f});
+    t.front = b.create("clouds.cluster_front",
+                       TextureDesc{.width = width, .height = height, .format = TextureFormat::r32f, .linear_filter = false});
+    t.width = width, t.height = height, t.created = true;
+  }
+  graph.blackboard["clouds.clusters"] = t.color;
+  graph.blackboard["clouds.cluster_front"] = t.front;
+  return t;
+}
+
+Framebuffer begin_far_cloud_draw(PassContext& pc, const FarCloudTargets& t) {
+  Framebuffer fb({&pc.texture(t.color), &pc.texture(t.front)}, nullptr);
+  fb.bind();
+  glViewport(0, 0, t.width, t.height);
+  if (t.created) {
+    const float nothing[4] = {0.0f, 0.0f, 0.0f, 0.0f}, far_away = 3.4e38f;
+    glClearTexImage(pc.texture(t.color).id(), 0, GL_RGBA, GL_FLOAT, nothing);
+    glClearTexImage(pc.texture(t.front).id(), 0, GL_RED, GL_FLOAT, &far_away);
+  }
+  glDisable(GL_DEPTH_TEST);
+  glEnable(GL_BLEND);
+  // Premultiplied: cloud + (1 - opacity) x behind; the front by minimum. (Set for every buffer
+  // first: the atmosphere's pass leaves a second-source blend, which GL forbids with two.)
+  glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  glBlendFunci(1, GL_ONE, GL_ONE);
+  glBlendEquationi(1, GL_MIN);
+  return fb;
+}
+
+void end_far_cloud_draw(int frame_width, int frame_height) {
+  glBlendEquationi(1, GL_FUNC_ADD);
+  glDisable(GL_BLEND);
+  glViewport(0, 0, frame_width, frame_height);
+}
+
+}  // namespace welkin::clouds
