@@ -104,7 +104,8 @@ void billboards_system(SystemContext& sc) {
     bg.volume = std::make_unique<Texture>(TextureDesc{.width = box.resolution, .height = box.resolution,
                                                       .depth = box.slices * billboards.archetypes, .format = TextureFormat::r32f});
     bg.atlas = std::make_unique<Texture>(TextureDesc{.width = billboards.atlas_resolution, .height = billboards.atlas_resolution,
-                                                     .depth = 2 * views * billboards.archetypes, .format = TextureFormat::rgba16f});
+                                                     .depth = 2 * views * billboards.archetypes, .array = true,
+                                                     .format = TextureFormat::rgba16f});
     bg.archetypes = std::make_unique<Buffer>(size_t(billboards.archetypes) * sizeof(glm::vec4));
     bg.baked = key;
     ++bg.bakes;

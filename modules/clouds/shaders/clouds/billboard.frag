@@ -11,7 +11,7 @@
 #include "clouds/billboards.glsl"
 layout(binding = 3) uniform sampler2D u_depth;  // the scene's (reversed Z; 0 = nothing)
 #if !BILLBOARDS_RENDER_VOLUME
-layout(binding = 4) uniform sampler3D u_atlas_texture;  // 2 layers per view and archetype
+layout(binding = 4) uniform sampler2DArray u_atlas_texture;  // 2 layers per view and archetype
 #endif
 uniform mat4 u_inverse_view_projection;  // camera-relative
 uniform vec2 u_viewport;
@@ -94,7 +94,6 @@ void main() {
   if (opacity < 1e-5) discard;
   float weight = 0.0, t_half = 0.0, height = 0.0, sigma = 0.0;
   vec4 sh = vec4(0.0);
-  float layer_step = 1.0 / float(2 * u_atlas.z * u_atlas.x * u_atlas.y);
   for (int i = 0; i < 4; ++i) {
     float w = v_weights[i] * (1.0 - exp(-a[i].x * scale));
     if (w <= 0.0) continue;
@@ -102,7 +101,7 @@ void main() {
     t_half += w * (t_plane[i] + a[i].y * u_box.z);
     height += w * a[i].z;
     sigma += w * a[i].w;
-    sh += w * textureLod(u_atlas_texture, uvw[i] + vec3(0.0, 0.0, layer_step), 0.0);
+    sh += w * textureLod(u_atlas_texture, uvw[i] + vec3(0.0, 0.0, 1.0), 0.0);
   }
   t_half /= weight, height /= weight, sigma /= weight, sh /= weight;
   // Soft where the scene or the planet comes within the cloud's half height of its middle.

@@ -12,7 +12,7 @@ uniform vec3 u_axis_wind;  // the layer's wind direction (camera-relative)
 out vec3 v_position;       // camera-relative m (along the pixel's ray)
 flat out vec3 v_wind, v_across, v_up;
 // Per view i: the plane (normal n, n . centre), and the texel coordinates of the point t along the
-// ray: t (dir . a) + a.w and t (dir . b) + b.w; v_layers: each view's first atlas layer (as a coordinate).
+// ray: t (dir . a) + a.w and t (dir . b) + b.w; v_layers: each view's first atlas layer.
 flat out vec4 v_plane[4], v_axis_a[4], v_axis_b[4];
 flat out vec4 v_layers, v_weights;
 flat out vec4 v_centre;  // camera-relative m; w: optical-depth scale
@@ -35,7 +35,6 @@ void main() {
   vec3 toward_camera = -normalize(c);
   ivec4 views;
   billboard_views(vec3(dot(toward_camera, v_wind), dot(toward_camera, v_across), dot(toward_camera, v_up)), views, v_weights);
-  float layers = float(2 * u_atlas.z * u_atlas.x * u_atlas.y);
   for (int i = 0; i < 4; ++i) {
     int v = views[i];
     vec3 d = billboard_view_direction(v / u_atlas.x, v % u_atlas.x), right, up;
@@ -46,7 +45,7 @@ void main() {
     v_plane[i] = vec4(n, dot(c, n));
     v_axis_a[i] = vec4(a, 0.5 - dot(c, a));
     v_axis_b[i] = vec4(e, 0.5 - dot(c, e));
-    v_layers[i] = (float(2 * (int(b.sky.w) * u_atlas.x * u_atlas.y + v)) + 0.5) / layers;
+    v_layers[i] = float(2 * (int(b.sky.w) * u_atlas.x * u_atlas.y + v));
   }
   // The box that holds the cloud (its window's cylinder), not its bounding sphere: a cloud seen from
   // the side covers a band, a third of the sphere's square.

@@ -18,7 +18,7 @@ layout(std430, binding = 7) buffer BillboardArchetypes { vec4 bb_archetypes[]; }
 #if BILLBOARDS_BAKE_STAGE == 1
 layout(r32f, binding = 0) uniform writeonly image3D o_volume;
 #elif BILLBOARDS_BAKE_STAGE == 2
-layout(rgba16f, binding = 1) uniform writeonly image3D o_atlas;
+layout(rgba16f, binding = 1) uniform writeonly image2DArray o_atlas;
 #endif
 uniform int u_layer;
 uniform float u_coverage;  // the coverage the archetypes are baked at

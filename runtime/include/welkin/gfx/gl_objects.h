@@ -56,6 +56,7 @@ const char* texture_format_name(TextureFormat f);
 
 struct TextureDesc {
   int width = 1, height = 1, depth = 1;  // depth > 1 makes a 3D texture
+  bool array = false;  // with depth > 1: an array of 2D layers instead (filtered within a layer only)
   TextureFormat format = TextureFormat::rgba16f;
   bool linear_filter = true;
   bool clamp = true;
@@ -69,8 +70,8 @@ class Texture {
   explicit Texture(const TextureDesc& desc);
   const TextureDesc& desc() const { return desc_; }
   GLuint id() const { return name_.id(); }
-  GLenum target() const { return desc_.depth > 1 ? GL_TEXTURE_3D : GL_TEXTURE_2D; }
-  bool is_3d() const { return desc_.depth > 1; }
+  GLenum target() const { return desc_.depth > 1 ? (desc_.array ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_3D) : GL_TEXTURE_2D; }
+  bool is_3d() const { return desc_.depth > 1; }  // layered: a 3D texture or a 2D array
   explicit operator bool() const { return bool(name_); }
 
  private:
