@@ -241,12 +241,16 @@ int run_accuracy(const AccuracyOptions& options) {
   if (o.technique == "clusters")
     return run_cluster_accuracy({.out = o.out, .size = o.size.empty() ? "320x180" : o.size,
                                  .scene = o.scene.empty() ? ClusterAccuracyOptions{}.scene : o.scene, .frames = o.frames, .json = o.json});
+  if (o.technique == "billboards")
+    return run_billboard_accuracy({.out = o.out, .size = o.size.empty() ? "320x180" : o.size,
+                                   .scene = o.scene.empty() ? BillboardAccuracyOptions{}.scene : o.scene,
+                                   .frames = o.frames, .quick = o.quick, .json = o.json});
   if (o.size.empty()) o.size = "640x360";
   if (o.technique == "clouds")
     return run_cloud_accuracy({.out = o.out, .size = o.size, .ghosting_scene = o.ghosting_scene,
                                .qualities = o.qualities, .frames = o.frames, .quick = o.quick, .json = o.json});
   if (o.technique != "atmosphere")
-    throw Error(ErrorInfo{.path = "technique", .expected = "atmosphere, clouds, clusters or godrays", .found = "'" + o.technique + "'"});
+    throw Error(ErrorInfo{.path = "technique", .expected = "atmosphere, clouds, clusters, billboards or godrays", .found = "'" + o.technique + "'"});
   int width = 0, height = 0;
   parse_size(o.size, width, height);
   std::vector<Config> configs;
@@ -455,7 +459,7 @@ void add_accuracy_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<AccuracyOptions>();
   CLI::App* cmd = app.add_subcommand(
       "accuracy", "Error against run time of every method and quality preset of a technique (CSV and plot)");
-  cmd->add_option("technique", o->technique, "The technique to measure: atmosphere, clouds, clusters, godrays")->required();
+  cmd->add_option("technique", o->technique, "The technique to measure: atmosphere, clouds, clusters, billboards, godrays")->required();
   cmd->add_option("--out", o->out, "Folder for the CSVs and the plot")->capture_default_str();
   cmd->add_option(
       "--cache", o->cache,

@@ -51,6 +51,16 @@ struct ClusterAccuracyOptions {
   bool json = false;
 };
 int run_cluster_accuracy(const ClusterAccuracyOptions& options);
+// `welkin accuracy billboards`: the impostor against its reference (the same archetypes marched) for
+// several atlas sizes and view grids, with GPU times, and the consistency with the volumetric path
+// at the switch distance; writes a CSV.
+struct BillboardAccuracyOptions {
+  std::string out = "out/accuracy", size = "320x180";
+  std::string scene = "assets/scenes/clouds-billboards.json";
+  int frames = 5;
+  bool quick = false, json = false;
+};
+int run_billboard_accuracy(const BillboardAccuracyOptions& options);
 // Prints nodes, meshes, counts, materials, extensions and bounds of a glTF; throws welkin::Error.
 void print_asset_info(const std::string& file, bool json);
 // Parses WIDTHxHEIGHT (1..kMaxImageSide per side, at most kMaxImagePixels); throws Error naming --size.

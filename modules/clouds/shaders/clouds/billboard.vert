@@ -1,8 +1,8 @@
 // One billboard, instanced in the sorted order: a quad over the screen's rectangle of the box that
 // holds its cloud. Everything the same for all its pixels is found here once: its frame (along the wind,
-// across it, up where it stands), the four views of the atlas around the direction it is seen from
+// across it, up where it stands), the three views of the atlas around the direction it is seen from
 // (their weights, and each view's plane and image axes as the pixel's ray meets them), and its light
-// and air. A slot without a cloud is moved outside the clip volume.
+// A slot without a cloud is moved outside the clip volume.
 #include "clouds/billboards.glsl"
 #include "clouds/sprite.glsl"
 layout(std430, binding = 1) readonly buffer Billboards { Billboard bb_billboards[]; };
@@ -13,19 +13,22 @@ out vec3 v_position;       // camera-relative m (along the pixel's ray)
 flat out vec3 v_wind, v_across, v_up;
 // Per view i: the plane (normal n, n . centre), and the texel coordinates of the point t along the
 // ray: t (dir . a) + a.w and t (dir . b) + b.w; v_layers: each view's first atlas layer.
-flat out vec4 v_plane[4], v_axis_a[4], v_axis_b[4];
-flat out vec4 v_layers, v_weights;
-flat out vec4 v_centre;  // camera-relative m; w: optical-depth scale
-flat out vec4 v_light, v_sky, v_ap_inscattering, v_ap_transmittance;  // sky.w: the archetype
+flat out vec4 v_plane[3], v_axis_a[3], v_axis_b[3];
+flat out vec3 v_layers, v_weights;
+flat out int v_billboard;  // its light and air are read where there is cloud (bb_billboards)
+flat out float v_scale;    // its optical-depth scale
 
 void main() {
   int billboard = int(bb_order[gl_InstanceID].y);
   Billboard b = bb_billboards[billboard];
   vec3 c = b.centre.xyz;
-  v_centre = b.centre;
-  v_light = b.light, v_sky = b.sky, v_ap_inscattering = b.ap_inscattering, v_ap_transmittance = b.ap_transmittance;
+  v_billboard = billboard;
+  v_scale = b.centre.w;
   v_up = normalize(u_up_radius.xyz * u_up_radius.w + c);
-  v_wind = normalize(u_axis_wind - v_up * dot(u_axis_wind, v_up));
+  // The archetype's frame: the wind's direction where it stands, turned by its hash.
+  vec3 wind = normalize(u_axis_wind - v_up * dot(u_axis_wind, v_up)), across = cross(v_up, wind);
+  float turn = b.ap_inscattering.w;
+  v_wind = cos(turn) * wind + sin(turn) * across;
   v_across = cross(v_up, v_wind);
   if (b.centre.w <= 0.0) {
     v_position = vec3(0.0);
@@ -33,9 +36,9 @@ void main() {
     return;
   }
   vec3 toward_camera = -normalize(c);
-  ivec4 views;
+  ivec3 views;
   billboard_views(vec3(dot(toward_camera, v_wind), dot(toward_camera, v_across), dot(toward_camera, v_up)), views, v_weights);
-  for (int i = 0; i < 4; ++i) {
+  for (int i = 0; i < 3; ++i) {
     int v = views[i];
     vec3 d = billboard_view_direction(v / u_atlas.x, v % u_atlas.x), right, up;
     billboard_view_axes(d, right, up);

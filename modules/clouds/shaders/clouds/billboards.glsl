@@ -4,20 +4,23 @@
 // needs, not a colour. Each archetype lives in its own frame: x along the wind, y across it, z up;
 // its box is [-hw, hw]^2 x [-hh, hh] about its centre, seen from the views of a grid of azimuths and
 // elevations (toward the viewer: (cos e cos a, cos e sin a, sin e)), each an orthographic square of
-// the box's bounding sphere. Per texel and view:
-//   layer 2v:     optical depth through the cloud; the depth (along the view, from the sphere's
-//                 centre plane, in bounding radii) and height above the layer's base (m) of the point
-//                 that hides half of its opacity; the extinction there (1/m);
-//   layer 2v + 1: the first four spherical-harmonic coefficients of the diffuse transmittance
-//                 1 / (1 + 0.15 tau(w)) from that point toward every direction w (the light model's
-//                 own term), from which the optical depth toward any light is recovered.
+// the sphere that holds the cloud. Per texel and view, two layers:
+//   2v:     the optical depth through the cloud; the depth (along the view, from the sphere's centre
+//           plane, in radii) and height above the layer's base (m) of the point that hides half of
+//           its opacity; the extinction there (1/m);
+//   2v + 1: the first four spherical-harmonic coefficients of the diffuse transmittance
+//           1 / (1 + 0.15 tau(w)) toward every direction w, averaged over four points along the view
+//           that each hide a quarter of the opacity. The light model is linear in it
+//           (clouds/light_model.glsl), so the average over the view of that part of what the samples
+//           scatter is found from it toward the light, at any time of day; the direct beam is taken
+//           from the optical depth it stands for.
 
 // src/billboards.cpp mirrors it (BillboardGpu, std430).
 struct Billboard {
   vec4 centre;            // camera-relative m (the archetype box's centre); w: optical-depth scale (0: none)
   vec4 light;             // irradiance of the marched light at the centre; w: distance from the camera m
   vec4 sky;               // sky irradiance on a horizontal plane at the centre; w: archetype index
-  vec4 ap_inscattering;   // the air between the camera and the centre
+  vec4 ap_inscattering;   // the air between the camera and the centre; w: the archetype's turn about the vertical (radians)
   vec4 ap_transmittance;
 };
 
@@ -40,9 +43,10 @@ void billboard_view_axes(vec3 d, out vec3 right, out vec3 up) {
   right = normalize(cross(-d, vec3(0.0, 0.0, 1.0)));
   up = cross(right, -d);
 }
-// The four views around a direction toward the viewer (the archetype's frame): (row, column) pairs
-// packed as row * azimuths + column, and their bilinear weights.
-void billboard_views(vec3 d, out ivec4 views, out vec4 weights) {
+// The three views around a direction toward the viewer (the archetype's frame): the corners of the
+// triangle it falls in when each cell of the (azimuth, elevation) grid is split along its diagonal,
+// packed as row * azimuths + column, and their barycentric weights (three reads, not a quad's four).
+void billboard_views(vec3 d, out ivec3 views, out vec3 weights) {
   float a = atan(d.y, d.x) / 6.2831853;
   float fa = fract(a) * float(u_atlas.x);
   int c0 = int(floor(fa)) % u_atlas.x, c1 = (c0 + 1) % u_atlas.x;
@@ -50,17 +54,21 @@ void billboard_views(vec3 d, out ivec4 views, out vec4 weights) {
   float fr = u_atlas.y > 1 ? clamp((d.z + kBillboardSinRange) / (2.0 * kBillboardSinRange), 0.0, 1.0) * float(u_atlas.y - 1) : 0.0;
   int r0 = min(int(floor(fr)), max(u_atlas.y - 2, 0)), r1 = min(r0 + 1, u_atlas.y - 1);
   float wr = u_atlas.y > 1 ? fr - float(r0) : 0.0;
-  views = ivec4(r0 * u_atlas.x + c0, r0 * u_atlas.x + c1, r1 * u_atlas.x + c0, r1 * u_atlas.x + c1);
-  weights = vec4((1.0 - wa) * (1.0 - wr), wa * (1.0 - wr), (1.0 - wa) * wr, wa * wr);
+  int v00 = r0 * u_atlas.x + c0, v01 = r0 * u_atlas.x + c1, v10 = r1 * u_atlas.x + c0, v11 = r1 * u_atlas.x + c1;
+  if (wa >= wr) {
+    views = ivec3(v00, v01, v11);
+    weights = vec3(1.0 - wa, wa - wr, wr);
+  } else {
+    views = ivec3(v00, v10, v11);
+    weights = vec3(1.0 - wr, wr - wa, wa);
+  }
 }
 
 // Spherical harmonics to first order (real, orthonormal): Y00, Y1-1, Y10, Y11.
 vec4 billboard_sh(vec3 w) { return vec4(0.282095, 0.488603 * w.y, 0.488603 * w.z, 0.488603 * w.x); }
-// The optical depth toward w from the coefficients of the diffuse transmittance.
-float billboard_light_depth(vec4 sh, vec3 w) {
-  float diffuse = clamp(dot(sh, billboard_sh(w)), 0.02, 1.0);
-  return (1.0 / diffuse - 1.0) / 0.15;
-}
+// A transmittance toward w from its coefficients (kept within its range: a first-order fit of a
+// sharp function may overshoot).
+float billboard_transmittance(vec4 sh, vec3 w, float lowest) { return clamp(dot(sh, billboard_sh(w)), lowest, 1.0); }
 
 // Where a segment p + t d (the archetype's frame, m) lies in the box: (t near, t far), near > far when missed.
 vec2 billboard_box_span(vec3 p, vec3 d) {

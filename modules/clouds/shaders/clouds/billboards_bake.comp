@@ -1,17 +1,20 @@
 // The billboards' bake, in stages (BILLBOARDS_BAKE_STAGE), once per layer description and atlas
 // settings (src/billboards.cpp keys it):
 //   0 choose:  each archetype's place in the layer's noise: of 64 places drawn from the seed, the
-//              one whose weather allows the most cloud (one invocation per archetype);
+//              one whose weather allows the k-th of K equal steps of cloud (one invocation per
+//              archetype), so that the archetypes range from a small cloud to a large one and each
+//              cell gets the one its own weather matches;
 //   1 volume:  the layer's extinction in the archetype's box, from the field's own functions
 //              (clouds/density.glsl) with its weather windowed to a disc inside the box;
 //   2 atlas:   each view's texel: the optical depth through the volume, the point that hides half of
-//              the opacity, and the diffuse transmittance from there toward 16 directions projected
-//              on spherical harmonics (clouds/billboards.glsl says what each texel holds).
+//              the opacity, and the diffuse transmittance toward 16 directions from four points
+//              along the view, projected on spherical harmonics (clouds/billboards.glsl).
 // The bake reads the noise in a frame of its own (the noise's origin at zero, the world's axes), so
 // it depends on the settings alone, not on where the camera is or when: scrubbing equals playing.
 #include "clouds/density.glsl"
 #include "clouds/placement.glsl"
 #include "clouds/billboards.glsl"
+#include "clouds/transmittance.glsl"
 
 layout(local_size_x = 64) in;
 layout(std430, binding = 7) buffer BillboardArchetypes { vec4 bb_archetypes[]; };  // place (m in the noise's frame), score
@@ -50,7 +53,8 @@ void main() {
   float centre_h = L.altitude.x + u_volume.y;  // the box's centre above the surface
 #if BILLBOARDS_BAKE_STAGE == 0
   if (id >= u_atlas.z) return;
-  float period = 1.0 / L.weather.w, best = -1.0;
+  // Scores are sums of five envelopes (at most 5): archetype k aims at 5 (k + 1/2) / K.
+  float period = 1.0 / L.weather.w, target = 5.0 * (float(id) + 0.5) / float(u_atlas.z), best = 3.4e38, best_score = 0.0;
   vec2 place = vec2(0.0);
   const vec2 columns[5] = vec2[5](vec2(0.0), vec2(0.5, 0.0), vec2(-0.5, 0.0), vec2(0.0, 0.5), vec2(0.0, -0.5));
   for (int j = 0; j < 64; ++j) {
@@ -61,9 +65,9 @@ void main() {
       vec3 x = vec3(p + columns[c] * 0.84 * hw, h);
       score += clouds_layer_envelope(L, clouds_weather_fetch(L, x), false, x, h, t, d0);
     }
-    if (score > best) best = score, place = p;
+    if (score > 0.0 && abs(score - target) < best) best = abs(score - target), best_score = score, place = p;
   }
-  bb_archetypes[id] = vec4(place, best, 0.0);
+  bb_archetypes[id] = vec4(place, best_score, 0.0);
 #elif BILLBOARDS_BAKE_STAGE == 1
   int n = int(u_volume.x), slices = int(u_box.w);
   if (id >= n * n * slices * u_atlas.z) return;
@@ -90,31 +94,42 @@ void main() {
   float dt = max(span.y - span.x, 0.0) / float(steps);
   float tau = 0.0;
   for (int s = 0; s < steps; ++s) tau += billboard_extinction(q + f * (span.x + (float(s) + 0.5) * dt), archetype) * dt;
-  vec4 a = vec4(0.0), sh = vec4(1.0 / 0.282095, 0.0, 0.0, 0.0);  // empty: no depth, transmittance 1
+  // Empty: no depth, the transmittance 1 toward every direction.
+  vec4 a = vec4(0.0), sh_diffuse = vec4(1.0 / 0.282095, 0.0, 0.0, 0.0);
   if (tau > 1e-5) {
-    // The point that hides half of the opacity: where the depth reaches -ln(1 - (1 - e^-tau) / 2).
-    float target = -log(1.0 - 0.5 * (1.0 - exp(-tau))), sum = 0.0, t_half = span.x;
-    for (int s = 0; s < steps; ++s) {
+    // The points that hide the k-th quarter of the opacity (k = 0..3), and the one that hides half:
+    // where the depth reaches -ln(1 - share (1 - e^-tau)).
+    float shares[5] = float[5](0.125, 0.375, 0.5, 0.625, 0.875);
+    float t_at[5];
+    int next = 0;
+    float sum = 0.0, opacity = 1.0 - exp(-tau);
+    for (int s = 0; s < steps && next < 5; ++s) {
       float step_tau = billboard_extinction(q + f * (span.x + (float(s) + 0.5) * dt), archetype) * dt;
-      if (sum + step_tau >= target) {
-        t_half = span.x + (float(s) + (target - sum) / max(step_tau, 1e-30)) * dt;
-        break;
+      while (next < 5 && sum + step_tau >= -log(1.0 - shares[next] * opacity)) {
+        t_at[next] = span.x + (float(s) + (-log(1.0 - shares[next] * opacity) - sum) / max(step_tau, 1e-30)) * dt;
+        ++next;
       }
       sum += step_tau;
     }
-    vec3 p = q + f * t_half;
-    a = vec4(tau, t_half / u_box.z, p.z + u_volume.y, billboard_extinction(p, archetype));
-    // The diffuse transmittance toward 16 directions of a Fibonacci sphere, projected.
-    sh = vec4(0.0);
+    for (; next < 5; ++next) t_at[next] = span.y;
+    vec3 p = q + f * t_at[2];
+    a = vec4(tau, t_at[2] / u_box.z, p.z + u_volume.y, billboard_extinction(p, archetype));
+    // The transmittance toward 16 directions of a Fibonacci sphere from the four points, projected.
+    sh_diffuse = vec4(0.0);
     for (int k = 0; k < 16; ++k) {
       float z = 1.0 - (float(k) + 0.5) / 8.0, ring = sqrt(1.0 - z * z), phi = 2.3999632 * float(k);
       vec3 w = vec3(ring * cos(phi), ring * sin(phi), z);
-      float depth = billboard_march_depth(p, w, archetype, 12);
-      sh += billboard_sh(w) * (1.0 / (1.0 + 0.15 * depth)) * (4.0 * 3.14159265 / 16.0);
+      float diffuse = 0.0;
+      for (int m = 0; m < 5; ++m) {
+        if (m == 2) continue;
+        float depth = billboard_march_depth(q + f * t_at[m], w, archetype, 10);
+        diffuse += 0.25 * clouds_diffuse_transmittance(depth);
+      }
+      sh_diffuse += billboard_sh(w) * (diffuse * 4.0 * 3.14159265 / 16.0);
     }
   }
   int layer = 2 * (archetype * views + v);
   imageStore(o_atlas, ivec3(i, j, layer), a);
-  imageStore(o_atlas, ivec3(i, j, layer + 1), sh);
+  imageStore(o_atlas, ivec3(i, j, layer + 1), sh_diffuse);
 #endif
 }

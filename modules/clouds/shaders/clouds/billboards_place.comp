@@ -1,8 +1,9 @@
 // The billboards' instances, each frame: one per cell the clusters' placement chose (cells scored by
-// the layer's weather, nearest first, clouds/clusters_place.comp stages 0 and 1): an archetype drawn
-// from the cell's hash, its box centred over the cell at the layer's middle height, its optical depth
-// scaled by the cross-fades and by how much cloud the cell's weather allows against the archetype's
-// own place; the light, sky and air at its centre; its sort key (distance).
+// the layer's weather, nearest first, clouds/clusters_place.comp stages 0 and 1): the archetype
+// whose weather matches the cell's, its box centred over the cell at the layer's middle height, its
+// optical depth scaled by the cross-fades and by how much cloud the cell's weather allows against the archetype's
+// own place, turned about the vertical by the hash; the light, sky and air at its centre; its sort
+// key (distance).
 #include "clouds/density.glsl"
 #include "clouds/placement.glsl"
 #include "clouds/billboards.glsl"
@@ -42,9 +43,16 @@ void main() {
     vec2 en = cell_centre_en(cell) + (u.xy - 0.5) * 0.3 * u_cell_m;
     vec3 c = layer_point(en, L.altitude.x + u_volume.y);
     float rho = length(c);
-    int archetype = min(int(u.z * float(u_atlas.z)), u_atlas.z - 1);
+    // The archetype whose own weather is nearest the cell's (of two equally near, one by the hash).
+    float score = bb_cells[cell], nearest = 3.4e38;
+    int archetype = 0;
+    for (int k = 0; k < u_atlas.z; ++k) {
+      float miss = abs(bb_archetypes[k].z - score) + 1e-3 * fract(u.z * 7.0 + float(k) * 0.618);
+      if (bb_archetypes[k].z > 0.0 && miss < nearest) nearest = miss, archetype = k;
+    }
     float fade = smoothstep(u_fade.x, u_fade.y + 1e-3, rho) * (1.0 - smoothstep(u_fade.z - 1e-3, u_fade.w, rho));
-    float weather = clamp(bb_cells[cell] / max(bb_archetypes[archetype].z, 1e-6), 0.0, 1.0);
+    // A cell weaker than the weakest archetype thins it.
+    float weather = clamp(score / max(bb_archetypes[archetype].z, 1e-6), 0.0, 1.0);
     float scale = u_density_scale * fade * weather;
     if (scale > 0.0) {
       vec3 up = normalize(cl_up.xyz * cl_planet.z + c);
@@ -52,7 +60,7 @@ void main() {
       b.light = vec4(u_light == 1 ? welkin_moon_irradiance(c) : welkin_sun_irradiance(c), rho);
       b.sky = vec4(welkin_sky_irradiance(up), float(archetype));
       vec3 t;
-      b.ap_inscattering = vec4(welkin_aerial_perspective(c, t), 0.0);
+      b.ap_inscattering = vec4(welkin_aerial_perspective(c, t), 6.2831853 * u.w);  // w: its turn about the vertical
       b.ap_transmittance = vec4(t, 0.0);
       key = rho;
     }

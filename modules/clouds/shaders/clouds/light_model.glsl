@@ -6,35 +6,50 @@
 //   depth_below_m: the cloud's depth under the sample (its light reflected back up); l: toward the
 //   light; up: the local vertical; e_light, e_sky: the light's and the sky's irradiance there.
 // Needs clouds/density.glsl (the block) and clouds/phase.glsl.
-vec3 clouds_sample_source(float mu, float phase_single, float tau, float sigma_t, float depth_below_m, vec3 l, vec3 up,
-                          vec3 e_light, vec3 e_sky) {
-  float scattered = 0.0;
-  if (cl_light_model.x < 0.5) {
-    // Wrenninge 2015: octave k scatters b^k of the light, sees a^k of the optical depth, and a
-    // phase whose anisotropy is scaled by c^k (a = b = c = 1/2).
-    int octaves = int(cl_light.y);
-    float weight = 1.0;
-    for (int k = 0; k < octaves; ++k) {
-      scattered += weight * clouds_phase(mu, weight) * exp(-weight * tau);
-      weight *= 0.5;
-    }
-  } else {
-    // Single scattering, and the diffuse light of a conservative slab: what the two-stream
-    // transmittance lets through beyond the direct beam, spread over the sphere of directions.
-    // The cloud below reflects part of that light back up (the two-stream reflectance of a
-    // conservative slab, 0.15 tau / (1 + 0.15 tau), of the depth below at this density).
-    float direct = exp(-tau);
-    float tau_below = sigma_t * depth_below_m;
-    float reflected = 0.15 * tau_below / (1.0 + 0.15 * tau_below);
-    scattered = phase_single * direct +
-                max(1.0 / (1.0 + 0.15 * tau) - 0.25 * direct, 0.0) * (1.0 + 0.5 * reflected) / (2.0 * CLOUDS_PI);
-  }
+// The two ways the optical depth toward the light enters the diffusion model: the direct beam's
+// transmittance exp(-tau), and the two-stream (diffuse) transmittance 1 / (1 + 0.15 tau). The source
+// is linear in both, so an average of sources over many samples is the source of their averages
+// (the billboards' atlas keeps those averages toward every direction).
+#include "clouds/transmittance.glsl"
+
+// The diffusion model's source from the two transmittances (see clouds_sample_source).
+vec3 clouds_diffusion_source(float mu, float phase_single, float direct, float diffuse, float sigma_t, float depth_below_m,
+                             vec3 l, vec3 up, vec3 e_light, vec3 e_sky) {
+  // Single scattering, and the diffuse light of a conservative slab: what the two-stream
+  // transmittance lets through beyond the direct beam, spread over the sphere of directions.
+  // The cloud below reflects part of that light back up (the two-stream reflectance of a
+  // conservative slab, 0.15 tau / (1 + 0.15 tau), of the depth below at this density).
+  float tau_below = sigma_t * depth_below_m;
+  float reflected = 0.15 * tau_below / (1.0 + 0.15 * tau_below);
+  float scattered = phase_single * direct + max(diffuse - 0.25 * direct, 0.0) * (1.0 + 0.5 * reflected) / (2.0 * CLOUDS_PI);
   scattered *= 1.0 - cl_light.z * exp(-2.0 * sigma_t * cl_light.x);  // powder (0: off)
   // Sky from above and the lit ground from below, diffused through the cloud: the two-stream
   // transmittance 1 / (1 + 0.75 (1 - g) tau) with g = 0.8, tau the optical depth toward the light
   // (no extra samples: on software rasterisers each density sample is most of a step's cost).
-  vec3 e_ground = cl_light.w * (e_light * max(dot(l, up), 0.0) * exp(-tau) + e_sky);
-  vec3 ambient = (e_sky + e_ground) / (2.0 * CLOUDS_PI * (1.0 + 0.15 * tau));
+  vec3 e_ground = cl_light.w * (e_light * max(dot(l, up), 0.0) * direct + e_sky);
+  vec3 ambient = (e_sky + e_ground) * diffuse / (2.0 * CLOUDS_PI);
+  float albedo = cl_medium.x / max(cl_medium.x + cl_medium.y, 1e-9);
+  return albedo * (e_light * scattered + ambient);
+}
+
+vec3 clouds_sample_source(float mu, float phase_single, float tau, float sigma_t, float depth_below_m, vec3 l, vec3 up,
+                          vec3 e_light, vec3 e_sky) {
+  if (cl_light_model.x > 0.5)
+    return clouds_diffusion_source(mu, phase_single, exp(-tau), clouds_diffuse_transmittance(tau), sigma_t, depth_below_m, l, up,
+                                   e_light, e_sky);
+  // Wrenninge 2015: octave k scatters b^k of the light, sees a^k of the optical depth, and a
+  // phase whose anisotropy is scaled by c^k (a = b = c = 1/2).
+  float scattered = 0.0;
+  int octaves = int(cl_light.y);
+  float weight = 1.0;
+  for (int k = 0; k < octaves; ++k) {
+    scattered += weight * clouds_phase(mu, weight) * exp(-weight * tau);
+    weight *= 0.5;
+  }
+  scattered *= 1.0 - cl_light.z * exp(-2.0 * sigma_t * cl_light.x);  // powder (0: off)
+  float direct = exp(-tau);
+  vec3 e_ground = cl_light.w * (e_light * max(dot(l, up), 0.0) * direct + e_sky);
+  vec3 ambient = (e_sky + e_ground) * clouds_diffuse_transmittance(tau) / (2.0 * CLOUDS_PI);
   float albedo = cl_medium.x / max(cl_medium.x + cl_medium.y, 1e-9);
   return albedo * (e_light * scattered + ambient);
 }

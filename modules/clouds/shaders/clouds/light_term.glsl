@@ -46,9 +46,7 @@ float clouds_light_visibility(vec3 p, vec3 n, int light) {
   return exp(-clouds_shadow_optical_depth(p));
 }
 
-// Diffuse light through a cloud deck: the two-stream transmittance 1 / (1 + 0.75 (1 - g) tau) of a
-// conservative slab (g = 0.8) for the column toward the sun.
-float clouds_diffuse_transmittance(float tau) { return 1.0 / (1.0 + 0.15 * tau); }
+#include "clouds/transmittance.glsl"
 
 float clouds_sky_visibility(vec3 p, vec3 n) {
   return clouds_diffuse_transmittance(clouds_shadow_optical_depth(p) * cs_light.w);

@@ -193,12 +193,12 @@ struct CloudBillboards {
   float cell_m = 8000.0f;         // one billboard per cell of this side; the archetypes' box is as wide
   float near_m = 25000.0f;        // without clusters on the layer: the raymarch draws it nearer than this
   float crossfade_m = 3000.0f;
-  float far_m = 120000.0f;        // the raymarch draws the layer again beyond this
+  float far_m = 50000.0f;         // the raymarch draws the layer again beyond this (64 billboards of 8 km reach about 50 km)
   float density_scale = 1.0f;     // scales the archetypes' optical depth
   int archetypes = 4;
   int atlas_resolution = 32;      // texels per side of a view (and voxels across an archetype's volume)
   int view_azimuths = 8;
-  int view_elevations = 3;        // rows of views from 37 degrees below the horizon to 37 above
+  int view_elevations = 5;        // rows of views from 37 degrees below the horizon to 37 above
   BillboardRender render = BillboardRender::impostor;
   float resolution_scale = 0.5f;  // drawn at this fraction of the frame's width and height
   int seed = 11;
@@ -206,7 +206,7 @@ struct CloudBillboards {
 void describe(TypeBuilder<CloudBillboards>& t);
 // The most billboards one frame may draw, and the most atlas layers (archetypes x views x 2).
 inline constexpr int kMaxBillboards = 16384;
-inline constexpr int kMaxBillboardAtlasLayers = 2048;
+inline constexpr int kMaxBillboardAtlasLayers = 2048;  // within GL's least GL_MAX_ARRAY_TEXTURE_LAYERS (2048)
 void validate(const CloudBillboards& billboards);
 
 // Which path draws what, by the frame's budget: with budget_ms > 0 the distance where the

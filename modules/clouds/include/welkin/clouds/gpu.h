@@ -207,7 +207,7 @@ struct BillboardGpu {
   glm::vec4 centre;            // camera-relative m (the archetype box's centre); w: optical-depth scale (0: none)
   glm::vec4 light;             // irradiance of the marched light at the centre; w: distance m
   glm::vec4 sky;               // sky irradiance on a horizontal plane; w: archetype index
-  glm::vec4 ap_inscattering;
+  glm::vec4 ap_inscattering;  // w: the archetype's turn about the vertical (radians)
   glm::vec4 ap_transmittance;
 };
 static_assert(sizeof(BillboardGpu) == 80, "BillboardGpu must match the std430 Billboard struct");
