@@ -144,20 +144,21 @@ void billboards_system(SystemContext& sc) {
   ensure_buffer(bg.billboards, bg.billboard_capacity, size_t(count) * sizeof(BillboardGpu));
   ensure_buffer(bg.order, bg.order_capacity, size_t(order_size) * 2 * sizeof(uint32_t));
   const glm::vec4 fade = gpu.billboards_fade;
-  // The choice's ring: cells from the fade's start (less half a cross-fade: the stage widens it so) to far.
-  const glm::vec4 range{fade.x + 0.5f * (fade.y - fade.x), fade.y - fade.x, fade.w, 0.0f};
+  // The choice's ring: cells whose centres lie from the fade-in's middle (a billboard nearer is
+  // moved out to it, so that every slot chosen draws) to far.
+  const glm::vec2 ring{0.5f * (fade.x + fade.y), fade.w};
   const bool moon = gpu.block.phase.w > 0.5f;
   const glm::vec3 light_dir = moon ? glm::vec3(0, 0, 1) : gpu.context.sun_direction;
   bg.drawn = count;
   g.add_pass("clouds.billboards_place", [](PassBuilder& b) { b.side_effect(); },
-             [gp, &rc, &world, field, grid, packed, count, order_size, range, fade, billboards, box, moon](PassContext&) {
+             [gp, &rc, &world, field, grid, packed, count, order_size, ring, fade, billboards, box, moon](PassContext&) {
                BillboardsGpu& bb = gp->billboards;
                bind_field(*gp);
                world.resource<LightEnvironment>().bind();
                glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, bb.billboards->id());
                glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, bb.order->id());
                glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, bb.archetypes->id());
-               bb.placement.choose(rc.shaders, field, grid, packed, count, range, uint32_t(billboards.seed));
+               bb.placement.choose(rc.shaders, field, grid, packed, count, ring, uint32_t(billboards.seed));
                const Program& p = rc.shaders.compute("clouds/billboards_place.comp", field);
                set_placement_uniforms(p, grid, uint32_t(billboards.seed));
                set_atlas_uniforms(p, billboards, box);

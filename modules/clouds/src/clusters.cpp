@@ -139,7 +139,9 @@ void clusters_system(SystemContext& sc) {
         world.resource<LightEnvironment>().bind();
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, c.puffs->id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, c.order->id());
-        c.placement.choose(rc.shaders, field, grid, packed, n_clusters, range, seed);
+        // A cluster spreads over its cell: cells a cell beyond the ring's ends may hold some of it.
+        const glm::vec2 ring{range.x - 0.5f * range.y - float(grid.cell_m), range.z + float(grid.cell_m)};
+        c.placement.choose(rc.shaders, field, grid, packed, n_clusters, ring, seed);
         const int invocations[2] = {count, order_size};
         for (int stage = 2; stage < 4; ++stage) {
           ShaderDefines d = field;

@@ -84,7 +84,7 @@ void PlacementBuffers::ensure(int grid, int chosen_count) {
 }
 
 void PlacementBuffers::choose(ShaderLibrary& shaders, const ShaderDefines& field, const PlacementGrid& g, int layer,
-                              int choose_count, glm::vec4 range, uint32_t seed) const {
+                              int choose_count, glm::vec2 ring, uint32_t seed) const {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, cells->id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, chosen->id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, cell_order->id());
@@ -96,7 +96,7 @@ void PlacementBuffers::choose(ShaderLibrary& shaders, const ShaderDefines& field
     set_placement_uniforms(p, g, seed);
     p.set("u_layer", layer);
     p.set("u_clusters", choose_count);
-    p.set("u_range", range);
+    p.set("u_ring", ring);
     dispatch_compute(p, group_count(invocations[stage], 64), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }

@@ -41,6 +41,9 @@ void main() {
     ivec2 global_cell = u_first_cell + ivec2(cell % u_grid, cell / u_grid);
     vec4 u = random4(global_cell, 0, 3u);
     vec2 en = cell_centre_en(cell) + (u.xy - 0.5) * 0.3 * u_cell_m;
+    // No nearer than the fade-in's middle (where the chosen cells' centres begin).
+    float inner = 0.5 * (u_fade.x + u_fade.y);
+    if (length(en) < inner) en *= inner / max(length(en), 1e-3);
     vec3 c = layer_point(en, L.altitude.x + u_volume.y);
     float rho = length(c);
     // The archetype whose own weather is nearest the cell's (of two equally near, one by the hash).

@@ -25,6 +25,7 @@ uniform vec2 u_wind_en;           // the wind's direction in (east, north)
 uniform int u_layer;              // the packed layer the clusters draw
 uniform int u_clusters, u_puffs;  // budget, puffs per cluster
 uniform vec4 u_range;             // near m, cross-fade m, far m, puff size
+uniform vec2 u_ring;              // stage 0: the cells whose centres lie this far from the camera (m) are candidates
 uniform vec4 u_genus;             // dome (0 sheet .. 1 dome), form (0 heaps, 1 sheets, 2 streaks), density scale
 uniform int u_order_size;         // the sort's power-of-two size
 uniform vec3 u_light_dir;         // toward the marched light
@@ -46,7 +47,7 @@ void main() {
   vec2 en = cell_centre_en(id);
   float rho = length(en);
   float score = 0.0;
-  if (rho > u_range.x - 0.5 * u_range.y - u_cell_m && rho < u_range.z + u_cell_m) {
+  if (rho > u_ring.x && rho < u_ring.y) {
     score = weather_score(L, en, cluster_radius);
   }
   cp_cells[id] = score;

@@ -35,6 +35,18 @@ inline nlohmann::json scene(const nlohmann::json& components) {
   return {{"welkin_scene", 1}, {"entities", entities}};
 }
 
+// The scene's entity holding `component` (scene() gives each its own).
+inline nlohmann::json& entity_with(nlohmann::json& doc, const std::string& component) {
+  for (nlohmann::json& e : doc["entities"])
+    if (e["components"].contains(component)) return e;
+  throw Error("test scene without " + component);
+}
+inline void remove_entity_with(nlohmann::json& doc, const std::string& component) {
+  nlohmann::json& entities = doc["entities"];
+  for (size_t i = 0; i < entities.size(); ++i)
+    if (entities[i]["components"].contains(component)) return entities.erase(i);
+}
+
 struct Rendered {
   std::unique_ptr<World> world;
   std::unique_ptr<Renderer> renderer;

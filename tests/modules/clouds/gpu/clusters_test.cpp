@@ -146,18 +146,6 @@ json cluster_scene(const json& clusters, double sun_elevation_deg = 40.0, const 
   return doc;
 }
 
-// The scene's entity holding `component` (scene() orders them by name).
-json& entity_with(json& doc, const std::string& component) {
-  for (json& e : doc["entities"])
-    if (e["components"].contains(component)) return e;
-  throw Error("test scene without " + component);
-}
-void remove_entity_with(json& doc, const std::string& component) {
-  json& entities = doc["entities"];
-  for (size_t i = 0; i < entities.size(); ++i)
-    if (entities[i]["components"].contains(component)) return entities.erase(i);
-}
-
 const json kClusters = {{"near_m", 3000}, {"crossfade_m", 1000}, {"far_m", 30000}, {"cell_m", 3000}};
 
 // kClusters with some fields changed.

@@ -181,10 +181,10 @@ struct PlacementBuffers {
   size_t cell_capacity = 0, chosen_capacity = 0;
   int cell_order_grid = -1;  // the grid the cells' order (nearest first) was made for
   void ensure(int grid, int chosen_count);
-  // Binds them (2 cells, 3 chosen, 4 order) and runs stages 0 and 1 of clusters_place.comp over
-  // the ring range (near, cross-fade, far) for `choose` picks.
+  // Binds them (2 cells, 3 chosen, 4 order) and runs stages 0 and 1 of clusters_place.comp: of
+  // the cells whose centres lie within `ring` (m from the camera), the `choose` nearest that hold cloud.
   void choose(ShaderLibrary& shaders, const ShaderDefines& field, const PlacementGrid& g, int layer, int choose,
-              glm::vec4 range, uint32_t seed) const;
+              glm::vec2 ring, uint32_t seed) const;
 };
 void ensure_buffer(std::unique_ptr<Buffer>& buffer, size_t& capacity, size_t bytes);
 int next_power_of_two(int n);
