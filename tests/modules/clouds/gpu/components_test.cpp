@@ -71,14 +71,28 @@ namespace {
 // Every scene preset is a valid clouds.VolumetricClouds, every genus preset a valid layer of its genus.
 TEST(CloudsPresets, EveryPresetFileLoadsAndEachGenusHasOne) {
   const std::filesystem::path dir = WELKIN_SOURCE_DIR "/modules/clouds/presets";
-  int scenes = 0, clusters = 0;
+  int scenes = 0, clusters = 0, billboards = 0, lods = 0;
   for (const auto& e : std::filesystem::directory_iterator(dir)) {
     if (e.path().extension() != ".json") continue;
-    // The mesh clusters' presets (clusters-*.json) are of their own component.
-    if (e.path().filename().string().rfind("clusters-", 0) == 0) {
+    // The other paths' presets (clusters-*, billboards-*, lod-*.json) are of their own components.
+    const std::string name = e.path().filename().string();
+    if (name.rfind("clusters-", 0) == 0) {
       CloudClusters k;
       EXPECT_NO_THROW(object_from_json(type_desc<CloudClusters>(), &k, read_json_file(e.path().string()))) << e.path();
       ++clusters;
+      continue;
+    }
+    if (name.rfind("billboards-", 0) == 0) {
+      CloudBillboards b;
+      EXPECT_NO_THROW(object_from_json(type_desc<CloudBillboards>(), &b, read_json_file(e.path().string()))) << e.path();
+      EXPECT_NO_THROW(validate(b)) << e.path();
+      ++billboards;
+      continue;
+    }
+    if (name.rfind("lod-", 0) == 0) {
+      CloudLod l;
+      EXPECT_NO_THROW(object_from_json(type_desc<CloudLod>(), &l, read_json_file(e.path().string()))) << e.path();
+      ++lods;
       continue;
     }
     VolumetricClouds c;
@@ -88,6 +102,8 @@ TEST(CloudsPresets, EveryPresetFileLoadsAndEachGenusHasOne) {
   }
   EXPECT_GE(scenes, 7);
   EXPECT_GE(clusters, 3);
+  EXPECT_GE(billboards, 2);
+  EXPECT_GE(lods, 1);
   for (int g = 0; g <= int(Genus::cirrocumulus); ++g) {
     const std::string name = genus_name(Genus(g));
     CloudLayer layer;
