@@ -133,18 +133,22 @@ void main() {
     int first = (id / u_puffs) * u_puffs;
     // At the centre and half a radius to either side along each axis (the draw interpolates, so
     // the shade does not jump from puff to puff).
-    vec3 axes[3] = vec3[3](u_axis_wind * puff.radii.x, u_axis_across * puff.radii.y, u_axis_up * puff.radii.z);
     float tau[7] = float[7](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
     for (int q = first; q < first + u_puffs; ++q) {
       if (q == id) continue;
       vec4 other = cp_puffs[q].centre;
       if (other.w <= 0.0) continue;
       vec3 other_radii = cp_puffs[q].radii.xyz;
-      tau[0] += other.w * puff_optical_depth(puff_chord(c, u_light_dir, other.xyz, other_radii), 0.0, 3.4e38);
+      // In the other puff's normalised frame (the puffs share their axes): the light's direction,
+      // this puff's centre, and the half-radius steps along each axis, found once for the 7 points.
+      vec3 light_local = puff_direction(u_light_dir, other_radii), centre_local = puff_local(c, other.xyz, other_radii);
+      vec3 step_local = 0.5 * puff.radii.xyz / other_radii;
+      tau[0] += other.w * puff_optical_depth(puff_chord_local(centre_local, light_local), 0.0, 3.4e38);
       for (int a = 0; a < 3; ++a)
         for (int side = 0; side < 2; ++side) {
-          vec3 x = c + axes[a] * (side == 0 ? 0.5 : -0.5);
-          tau[1 + 2 * a + side] += other.w * puff_optical_depth(puff_chord(x, u_light_dir, other.xyz, other_radii), 0.0, 3.4e38);
+          vec3 x = centre_local;
+          x[a] += side == 0 ? step_local[a] : -step_local[a];
+          tau[1 + 2 * a + side] += other.w * puff_optical_depth(puff_chord_local(x, light_local), 0.0, 3.4e38);
         }
     }
     // Only this stage's fields are written: the other invocations read the centres and radii.
