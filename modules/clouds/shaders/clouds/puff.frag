@@ -19,6 +19,7 @@ uniform int u_samples;
 in vec3 v_position;
 flat in int v_puff;
 flat in vec4 v_base_plane;  // up at the puff; w: the camera's height above the cluster's base (m)
+flat in vec4 v_light, v_sky, v_ap_inscattering, v_ap_transmittance, v_light_gradient;  // w: the depth toward the light at the centre
 layout(location = 0) out vec4 o_color;  // premultiplied: light reaching the camera, opacity
 layout(location = 1) out float o_front;  // where the puff turns opaque (m; blended by minimum)
 
@@ -58,7 +59,6 @@ void main() {
   float depth_total = sigma * (puff_depth_at(chord, s1) - puff_depth_at(chord, s0));
   float opacity = 1.0 - exp(-depth_total);
   if (opacity < 1e-5) discard;
-  ClusterPuff p = cp_puffs[v_puff];
   vec3 up = v_base_plane.xyz;
   float mu = dot(dir, u_light_dir);
   float phase_single = clouds_phase(mu, 1.0);
@@ -79,14 +79,14 @@ void main() {
     vec4 toward_light = vec4(t_mid, light_a, dot(closest, closest), 0.0);
     toward_light.w = toward_light.z < 1.0 ? sqrt((1.0 - toward_light.z) / light_a) : -1.0;
     // And through the cluster's other puffs: linear across this one, never below zero.
-    float tau = sigma * puff_optical_depth(toward_light, 0.0, 3.4e38) + max(p.radii.w + dot(p.light_gradient.xyz, local), 0.0);
+    float tau = sigma * puff_optical_depth(toward_light, 0.0, 3.4e38) + max(v_light_gradient.w + dot(v_light_gradient.xyz, local), 0.0);
     // The cloud under the sample, from the cluster's base (the march's depth in its layer).
-    float depth_below_m = max(p.sky.w + local.z * radii.z, 0.0);
+    float depth_below_m = max(v_sky.w + local.z * radii.z, 0.0);
     source += clouds_sample_source(mu, phase_single, tau, sigma * max(1.0 - q, 0.0), depth_below_m, u_light_dir, up,
-                                   p.light.rgb, p.sky.rgb);
+                                   v_light.rgb, v_sky.rgb);
   }
   vec3 light = source * (opacity / float(n));
-  o_color = vec4(p.ap_transmittance.rgb * light + p.ap_inscattering.rgb * opacity, opacity);
+  o_color = vec4(v_ap_transmittance.rgb * light + v_ap_inscattering.rgb * opacity, opacity);
   // Opaque beyond one half: where the depth reaches ln 2 (else nowhere).
   o_front = depth_total > 0.6931472 ? chord.x + puff_invert_depth(chord, s0, s1, 0.6931472 / sigma) : 3.4e38;
 }

@@ -12,6 +12,8 @@ layout(std430, binding = 6) readonly buffer PuffProxy { vec4 cp_proxy[]; };
 out vec3 v_position;                     // camera-relative m (along the pixel's ray)
 flat out int v_puff;
 flat out vec4 v_base_plane;              // up at the puff; w: the camera's height above the cluster's base (m)
+// What the light needs of the puff, loaded here once per vertex rather than by every pixel.
+flat out vec4 v_light, v_sky, v_ap_inscattering, v_ap_transmittance, v_light_gradient;
 uniform vec4 u_up_radius;                // up at the camera; w: the camera's distance from the planet's centre
 
 void main() {
@@ -22,6 +24,9 @@ void main() {
   vec3 radii = cp_puffs[puff].radii.xyz;
   vec3 up = normalize(u_up_radius.xyz * u_up_radius.w + centre.xyz);
   v_base_plane = vec4(up, cp_puffs[puff].sky.w - dot(centre.xyz, up));
+  v_light = cp_puffs[puff].light, v_sky = cp_puffs[puff].sky;
+  v_ap_inscattering = cp_puffs[puff].ap_inscattering, v_ap_transmittance = cp_puffs[puff].ap_transmittance;
+  v_light_gradient = vec4(cp_puffs[puff].light_gradient.xyz, cp_puffs[puff].radii.w);
   if (centre.w <= 0.0) {
     v_position = vec3(0.0);
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
