@@ -150,17 +150,33 @@ double relative_rmse(const ImageF& image, const ImageF& reference, const ImageF&
 }
 }  // namespace
 
-int run_cluster_accuracy(const ClusterAccuracyOptions& o) {
+// What both commands start with: the scene, the size, a GL context and the clear sky.
+struct PathRun {
+  PathScene p;
   int width = 0, height = 0;
-  parse_size(o.size, width, height);
-  const PathScene p = read_path_scene(o.scene, "clouds.CloudClusters");
-  fs::create_directories(o.out);
-  std::unique_ptr<GlContext> gl = create_headless_context();
-  const std::string renderer = gl->info().renderer;
+  std::unique_ptr<GlContext> gl;
+  std::string renderer;
+  ImageF clear;
+};
+PathRun start_path_run(const std::string& scene, const std::string& component, const std::string& size, const std::string& out) {
+  PathRun run{read_path_scene(scene, component)};
+  parse_size(size, run.width, run.height);
+  fs::create_directories(out);
+  run.gl = create_headless_context();
+  run.renderer = run.gl->info().renderer;
+  SceneRender clear_scene = load(run.p, {"clouds.VolumetricClouds", component}, {});
+  run.clear = still(clear_scene, run.width, run.height);
+  return run;
+}
 
-  // The clear sky, the volumetric path alone, and the clusters alone out to their far distance.
-  SceneRender clear_scene = load(p, {"clouds.VolumetricClouds", p.component}, {});
-  const ImageF clear = still(clear_scene, width, height);
+int run_cluster_accuracy(const ClusterAccuracyOptions& o) {
+  const PathRun run = start_path_run(o.scene, "clouds.CloudClusters", o.size, o.out);
+  const PathScene& p = run.p;
+  const int width = run.width, height = run.height;
+  const ImageF& clear = run.clear;
+  const std::string& renderer = run.renderer;
+
+  // The volumetric path alone, and the clusters alone out to their far distance.
   SceneRender volumetric_scene = load(p, {p.component}, {});
   const ImageF volumetric = still(volumetric_scene, width, height);
   SceneRender clusters_scene = load(p, {}, {"near_m=0", "crossfade_m=0", "samples=16"});
@@ -198,15 +214,11 @@ int run_cluster_accuracy(const ClusterAccuracyOptions& o) {
 }
 
 int run_billboard_accuracy(const BillboardAccuracyOptions& o) {
-  int width = 0, height = 0;
-  parse_size(o.size, width, height);
-  const PathScene p = read_path_scene(o.scene, "clouds.CloudBillboards");
-  fs::create_directories(o.out);
-  std::unique_ptr<GlContext> gl = create_headless_context();
-  const std::string renderer = gl->info().renderer;
-
-  SceneRender clear_scene = load(p, {"clouds.VolumetricClouds", p.component}, {});
-  const ImageF clear = still(clear_scene, width, height);
+  const PathRun run = start_path_run(o.scene, "clouds.CloudBillboards", o.size, o.out);
+  const PathScene& p = run.p;
+  const int width = run.width, height = run.height;
+  const ImageF& clear = run.clear;
+  const std::string& renderer = run.renderer;
 
   // The impostor against its reference, the same archetypes marched, over atlas sizes and view grids.
   struct Grid {

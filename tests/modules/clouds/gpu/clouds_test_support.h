@@ -97,6 +97,17 @@ inline ImageStats stats(const ImageF& image) {
   return s;
 }
 
+// A stiff case: `doc` with its camera at `camera`, rendered small; its frame must stay finite and
+// non-negative.
+inline Rendered render_stiff_case(nlohmann::json doc, const glm::dvec3& camera, const std::string& name) {
+  entity_with(doc, "core.Camera")["components"]["core.Camera"]["position_m"] = {camera.x, camera.y, camera.z};
+  Rendered r = render(doc, 48, 27);
+  const ImageStats s = stats(r.renderer->read_hdr());
+  EXPECT_TRUE(s.finite) << name;
+  EXPECT_GE(s.min, 0.0f) << name;
+  return r;
+}
+
 // Noon, the sun 40 degrees up, a camera on the ground looking 10 degrees up, default clouds.
 inline nlohmann::json noon(const nlohmann::json& clouds = nlohmann::json::object()) {
   return scene({{"core.Camera", {{"position_m", {0, 0, 100}}, {"heading_deg", 210}, {"pitch_deg", 10}, {"ev100", 14}}},
