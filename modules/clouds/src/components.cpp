@@ -184,6 +184,20 @@ void validate(const CloudBillboards& b) {
     throw Error(ErrorInfo{.path = "/view_azimuths",
                           .expected = "archetypes x view_azimuths x view_elevations at most " + std::to_string(kMaxBillboardAtlasLayers / 2),
                           .found = std::to_string(layers / 2)});
+  // Memory bounded before it is spent: the archetypes' volumes (up to atlas_resolution voxels on
+  // every side, 4 bytes each) and the atlas (8 bytes a texel).
+  const int64_t r = b.atlas_resolution;
+  if (r * r * r * b.archetypes * 4 > kMaxBillboardVolumeBytes)
+    throw Error(ErrorInfo{.path = "/archetypes",
+                          .expected = "archetypes x atlas_resolution^3 x 4 bytes at most " + std::to_string(kMaxBillboardVolumeBytes >> 20) +
+                                      " MiB (at most " + std::to_string(std::max<int64_t>(kMaxBillboardVolumeBytes / (r * r * r * 4), 0)) +
+                                      " archetypes at " + std::to_string(r) + " texels)",
+                          .found = std::to_string(b.archetypes)});
+  if (r * r * layers * 8 > kMaxBillboardAtlasBytes)
+    throw Error(ErrorInfo{.path = "/atlas_resolution",
+                          .expected = "atlas_resolution^2 x archetypes x views x 2 layers x 8 bytes at most " +
+                                      std::to_string(kMaxBillboardAtlasBytes >> 20) + " MiB",
+                          .found = std::to_string(r) + " (" + std::to_string((r * r * layers * 8) >> 20) + " MiB)"});
   if (!(b.far_m > b.near_m))
     throw Error(ErrorInfo{.path = "/far_m", .expected = "more than near_m (" + std::to_string(b.near_m) + ")",
                           .found = std::to_string(b.far_m)});

@@ -241,6 +241,11 @@ TEST(CloudBillboards, BadSettingsAreOneErrorNamingTheField) {
   EXPECT_NE(message(billboard_scene(billboards_with({{"far_m", 1000}}))).find("/far_m"), std::string::npos);
   EXPECT_NE(message(billboard_scene(billboards_with({{"cell_m", 500}, {"far_m", 1e6}}))).find("/cell_m"), std::string::npos);
   EXPECT_NE(message(billboard_scene(billboards_with({{"atlas_resolution", 100000}}))).find("/atlas_resolution"), std::string::npos);
+  // Memory bounded before it is spent: 4 volumes of 128^3 (32 MiB), an atlas of 64 MiB.
+  EXPECT_NE(message(billboard_scene(billboards_with({{"atlas_resolution", 128}}))).find("/archetypes"), std::string::npos);
+  EXPECT_NE(message(billboard_scene(billboards_with({{"atlas_resolution", 64}, {"archetypes", 16}, {"view_azimuths", 32}, {"view_elevations", 2}})))
+                .find("/atlas_resolution"),
+            std::string::npos);
 }
 
 // Billboards at noon and at sunset, looked at before they were committed.

@@ -207,6 +207,10 @@ void describe(TypeBuilder<CloudBillboards>& t);
 // The most billboards one frame may draw, and the most atlas layers (archetypes x views x 2).
 inline constexpr int kMaxBillboards = 16384;
 inline constexpr int kMaxBillboardAtlasLayers = 2048;  // within GL's least GL_MAX_ARRAY_TEXTURE_LAYERS (2048)
+// The most memory the archetypes' volumes and the atlas may take (software rasterisers refuse
+// larger 3D textures).
+inline constexpr int64_t kMaxBillboardVolumeBytes = int64_t(16) << 20;
+inline constexpr int64_t kMaxBillboardAtlasBytes = int64_t(32) << 20;
 void validate(const CloudBillboards& billboards);
 
 // Which path draws what, by the frame's budget: with budget_ms > 0 the distance where the
