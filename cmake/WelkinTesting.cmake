@@ -13,7 +13,11 @@ function(welkin_add_test)
     target_link_options(${T_NAME} PRIVATE ${WELKIN_FUZZ_SANITIZERS})
   endif()
   include(GoogleTest)
-  gtest_discover_tests(${T_NAME} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR} DISCOVERY_TIMEOUT 60)
+  # The disk cache (core/disk_cache.h) is the build tree's own, never the user's: a LUT that one test
+  # builds, the next reads, bit for bit (AtmosphereLuts.ReadFromTheDiskCacheBitForBit), and the
+  # tests of building them turn it off.
+  gtest_discover_tests(${T_NAME} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR} DISCOVERY_TIMEOUT 60
+    PROPERTIES ENVIRONMENT "WELKIN_CACHE_DIR=${PROJECT_BINARY_DIR}/test-disk-cache")
   # Labels are set by a script ctest reads after the discovered tests, from the list of their names
   # discovery leaves in <name>_TESTS: gtest_discover_tests' PROPERTIES splits a list value, which
   # kept only the first label.

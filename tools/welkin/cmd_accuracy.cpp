@@ -47,16 +47,37 @@ struct AccuracyOptions {
   int frames = 7, threads = 2;
   bool quick = false, json = false, check = false;
   std::string tolerances;  // --check's table; default: the atmosphere module's validation/accuracy-tolerances.json
+  std::string write_tolerances;  // writes this run's measurements as limits (see write_tolerance_table)
+  std::vector<double> panorama_suns;  // sun elevations of the sky panoramas against the path tracer
+  std::string panorama_size = "24x8";
+  uint64_t panorama_paths = 1u << 22;
 };
 
 // Rays are grouped by the sun's elevation: where the LUT method's approximations differ most.
-enum class Band { day, horizon, twilight };
+enum class Band { day, horizon, dusk, twilight, nautical };
+constexpr Band kBands[] = {Band::day, Band::horizon, Band::dusk, Band::twilight, Band::nautical};
 Band band_of(const ref::ProbeGeometry& g) {
   const double sun_elevation = 90.0 - g.sun_zenith_deg;
-  return sun_elevation >= 3.0 ? Band::day : sun_elevation >= 0.0 ? Band::horizon : Band::twilight;
+  return sun_elevation >= 3.0    ? Band::day
+         : sun_elevation >= 0.0  ? Band::horizon
+         : sun_elevation >= -4.5 ? Band::dusk
+         : sun_elevation >= -9.0 ? Band::twilight
+                                 : Band::nautical;
 }
 const char* band_name(Band b) {
-  return b == Band::day ? "sun>=3" : b == Band::horizon ? "sun=0" : "sun=-6";
+  switch (b) {
+    case Band::day:
+      return "sun>=3";
+    case Band::horizon:
+      return "sun=0";
+    case Band::dusk:
+      return "sun=-3";
+    case Band::twilight:
+      return "sun=-6";
+    case Band::nautical:
+      return "sun=-12";
+  }
+  return "?";
 }
 
 // Below this radiance (1/sr for sun illuminance 1; a clear day's sky is 0.01 to 0.1) a channel is
@@ -176,7 +197,7 @@ std::vector<Tolerance> read_tolerances(const std::string& file) {
   if (!doc.contains("limits") || !doc["limits"].is_array()) throw fail("/limits", "an array of limits", doc.value("limits", nlohmann::json()));
   const std::vector<std::pair<std::string, std::vector<std::string>>> names{
       {"method", {"lut", "raymarch"}}, {"quality", {"low", "medium", "high", "ultra"}}, {"orders", {"all", "1"}},
-      {"band", {"sun>=3", "sun=0", "sun=-6"}}, {"rays", {"quick", "all"}}};
+      {"band", {"sun>=3", "sun=0", "sun=-3", "sun=-6", "sun=-12"}}, {"rays", {"quick", "all"}}};
   std::vector<Tolerance> out;
   for (size_t i = 0; i < doc["limits"].size(); ++i) {
     const nlohmann::json& e = doc["limits"][i];
@@ -208,7 +229,8 @@ std::vector<Tolerance> read_tolerances(const std::string& file) {
 std::pair<int, int> check_tolerances(const std::vector<Tolerance>& limits, const std::vector<ConfigResult>& results,
                                      bool quick) {
   int exceeded = 0, checked = 0;
-  const std::map<std::string, Band> bands{{"sun>=3", Band::day}, {"sun=0", Band::horizon}, {"sun=-6", Band::twilight}};
+  std::map<std::string, Band> bands;
+  for (Band b : kBands) bands[band_name(b)] = b;
   for (const Tolerance& t : limits) {
     if (t.rays != (quick ? "quick" : "all")) continue;
     for (const ConfigResult& r : results) {
@@ -227,6 +249,121 @@ std::pair<int, int> check_tolerances(const std::vector<Tolerance>& limits, const
     }
   }
   return {exceeded, checked};
+}
+
+// Writes the run's measurements as the limits of its ray set (quick or all), each the measured value
+// plus 15% and 0.1 percentage point, keeping the other set's limits from `keep` (the table in use).
+void write_tolerance_table(const std::string& path, const std::vector<Tolerance>& keep,
+                           const std::vector<ConfigResult>& results, bool quick) {
+  const std::string rays = quick ? "quick" : "all";
+  nlohmann::json limits = nlohmann::json::array();
+  auto add = [&](const Tolerance& t) {
+    limits.push_back({{"method", t.method}, {"quality", t.quality}, {"orders", t.orders}, {"band", t.band},
+                      {"rays", t.rays}, {"rmse", t.rmse}, {"max", t.max}});
+  };
+  auto limit = [](double measured) { return std::ceil((measured * 1.15 + 0.001) * 1e4) / 1e4; };
+  for (const Tolerance& t : keep)
+    if (t.rays != rays) add(t);
+  for (const ConfigResult& r : results)
+    for (const char* orders : {"all", "1"}) {
+      const auto& set = std::string(orders) == "all" ? r.all_orders : r.single;
+      for (Band b : kBands) {
+        const auto it = set.find(b);
+        if (it == set.end() || it->second.n == 0) continue;
+        add({.method = method_name(r.config.method), .quality = quality_name(r.config.quality), .orders = orders,
+             .band = band_name(b), .rays = rays, .rmse = limit(it->second.rmse()), .max = limit(it->second.max)});
+      }
+    }
+  const nlohmann::json doc{
+      {"welkin_accuracy_tolerances", 1},
+      {"note",
+       "Limits of `welkin accuracy atmosphere --check`: relative RMSE and worst relative error of radiance per "
+       "method, quality, scattering orders (all: against the path-traced references; 1: single scattering "
+       "against the quadrature), band of sun elevation and ray set (quick: every tenth ray, what CI runs; all: "
+       "the rays of the README's table). Each is the measured value at the time of writing plus 15% and 0.1 "
+       "percentage point (written by `welkin accuracy atmosphere --write-tolerances`): a regression guard."},
+      {"limits", limits}};
+  write_file_atomically(path, doc.dump(1) + "\n");
+}
+
+// The whole sky from the ground, LUT path at `high` against the path tracer, for looking at: one
+// image per sun elevation, the LUT's panorama above the path tracer's and their relative difference
+// below (red: the LUT too bright, blue: too dark; full at 20%). Azimuth runs across from -180 to 180
+// degrees from the sun's (the sun's in the middle), elevation up from the horizon, rows crowded
+// towards it. Both panoramas share one exposure, the path tracer's 97th percentile, and a 1/2.2 curve.
+void write_panoramas(const AccuracyOptions& o, const ref::AtmosphereModel& model, const std::string& renderer) {
+  int w = 0, h = 0;
+  parse_size(o.panorama_size, w, h);
+  if (w > 360 || h > 90)
+    throw Error(ErrorInfo{.path = "--panorama-size", .expected = "at most 360x90 rays", .found = o.panorama_size});
+  constexpr int kCell = 8, kGap = 4;
+  const atmosphere::Atmosphere earth;
+  atmosphere::GpuProbe probe(earth, SkyMethod::lut, /*single_scattering=*/false);
+  const atmosphere::ReferenceSettings settings{.samples = o.panorama_paths,
+                                              .samples_sun_below_horizon = o.panorama_paths,
+                                              .samples_deep_twilight = o.panorama_paths};
+  auto luminance = [](const glm::dvec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
+  for (double sun : o.panorama_suns) {
+    if (!(sun >= -18.0 && sun <= 90.0))
+      throw Error(ErrorInfo{.path = "--panorama", .expected = "sun elevations from -18 to 90 degrees", .found = fmt(sun)});
+    std::vector<glm::dvec3> lut(size_t(w) * h), pt(size_t(w) * h), ci(size_t(w) * h);
+    ErrorStats errors;
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const double t = (h - 1 - y + 0.5) / h;  // the top row is the highest
+        const ref::ProbeGeometry g{.altitude_km = 0.0,
+                                   .view_zenith_deg = 90.0 - 90.0 * t * t,
+                                   .view_azimuth_deg = -180.0 + 360.0 * (x + 0.5) / w,
+                                   .sun_zenith_deg = 90.0 - sun,
+                                   .sun_azimuth_deg = 0.0};
+        const size_t i = size_t(y) * w + x;
+        lut[i] = probe.evaluate(g).radiance;
+        const atmosphere::CachedReference r = atmosphere::path_trace_reference(model, g, settings, o.threads);
+        pt[i] = r.radiance, ci[i] = r.ci95;
+        errors.add(lut[i], pt[i]);
+      }
+      std::fprintf(stderr, "\rpanorama, sun %g: row %d/%d", sun, y + 1, h);
+    }
+    std::vector<double> sorted;
+    for (const glm::dvec3& c : pt) sorted.push_back(luminance(c));
+    std::sort(sorted.begin(), sorted.end());
+    const double exposure = std::max(sorted[size_t(0.97 * (sorted.size() - 1))], 1e-30);
+    ImageU8 img;
+    img.width = w * kCell;
+    img.height = 3 * h * kCell + 2 * kGap;
+    img.rgba.assign(size_t(img.width) * img.height * 4, 255);
+    auto fill = [&](int panel, int x, int y, glm::dvec3 c) {
+      for (int dy = 0; dy < kCell; ++dy)
+        for (int dx = 0; dx < kCell; ++dx) {
+          uint8_t* p = &img.rgba[(size_t(panel * (h * kCell + kGap) + y * kCell + dy) * img.width + x * kCell + dx) * 4];
+          for (int k = 0; k < 3; ++k) p[k] = uint8_t(std::lround(255.0 * std::clamp(c[k], 0.0, 1.0)));
+        }
+    };
+    double ci_sum = 0.0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t i = size_t(y) * w + x;
+        for (int panel = 0; panel < 2; ++panel) {
+          const glm::dvec3 c = (panel == 0 ? lut[i] : pt[i]) / exposure;
+          fill(panel, x, y, glm::pow(glm::max(c, glm::dvec3(0.0)), glm::dvec3(1.0 / 2.2)));
+        }
+        const double ref_l = luminance(pt[i]);
+        const double rel = ref_l > 0.0 ? (luminance(lut[i]) - ref_l) / ref_l : 0.0;
+        ci_sum += ref_l > 0.0 ? luminance(ci[i]) / ref_l : 0.0;
+        const double a = std::min(std::abs(rel) / 0.2, 1.0);
+        fill(2, x, y, rel > 0 ? glm::dvec3(1.0, 1.0 - a, 1.0 - a) : glm::dvec3(1.0 - a, 1.0 - a, 1.0));
+      }
+    char name[64];
+    std::snprintf(name, sizeof name, "panorama-sun%+g.png", sun);
+    const std::string path = (fs::path(o.out) / name).string();
+    write_png(path, img);
+    std::fprintf(stderr, "\n");
+    std::printf("panorama, sun %g deg (%dx%d rays from the ground, %llu paths each, %s): LUT at high against the "
+                "path tracer, RMSE %.1f%%, worst %.1f%% over rays and channels; mean 95%% half-width of the "
+                "references %.1f%%; wrote %s\n",
+                sun, w, h, (unsigned long long)o.panorama_paths, renderer.c_str(), 100 * errors.rmse(),
+                100 * errors.max, 100 * ci_sum / (w * h), path.c_str());
+  }
 }
 
 int run_accuracy(const AccuracyOptions& options) {
@@ -275,9 +412,15 @@ int run_accuracy(const AccuracyOptions& options) {
   world->modules().require_component("atmosphere.Atmosphere");
   const fs::path validation = world->modules().manifest("atmosphere")->data_dir / "validation";
   std::vector<Tolerance> limits;
-  if (o.check) limits = read_tolerances(o.tolerances.empty() ? (validation / "accuracy-tolerances.json").string() : o.tolerances);
+  const std::string table = o.tolerances.empty() ? (validation / "accuracy-tolerances.json").string() : o.tolerances;
+  if (o.check || !o.write_tolerances.empty()) limits = read_tolerances(table);
   const atmosphere::Atmosphere earth;
   const ref::AtmosphereModel model = atmosphere::to_reference(earth);
+  if (!o.panorama_suns.empty()) {
+    auto context = create_headless_context();
+    write_panoramas(o, model, context->info().renderer);
+    return kOk;
+  }
   std::vector<ref::ProbeGeometry> rays = atmosphere::accuracy_rays();
   if (o.quick) {
     // A spread-out tenth of the set: a smoke test of the whole pipeline.
@@ -338,7 +481,7 @@ int run_accuracy(const AccuracyOptions& options) {
           const atmosphere::CachedReference c = *cache.find(g);
           reference = c.radiance, ci = c.ci95;
           r.all_orders[band_of(g)].add(v.radiance, reference);
-          if (band_of(g) != Band::twilight) r.all_orders_plotted.add(v.radiance, reference);
+          if (g.sun_zenith_deg <= 90.0) r.all_orders_plotted.add(v.radiance, reference);
         }
         rays_csv << method_name(cfg.method) << "," << quality_name(cfg.quality) << ","
                  << (single ? "1" : "all") << "," << g.altitude_km << "," << 90.0 - g.sun_zenith_deg << ","
@@ -359,6 +502,7 @@ int run_accuracy(const AccuracyOptions& options) {
   std::fprintf(stderr, "\n");
 
   write_file_atomically((fs::path(o.out) / "accuracy-atmosphere-rays.csv").string(), rays_csv.str());
+  if (!o.write_tolerances.empty()) write_tolerance_table(o.write_tolerances, limits, results, o.quick);
   int status = kOk;
   if (o.check) {
     const auto [exceeded, checked] = check_tolerances(limits, results, o.quick);
@@ -370,22 +514,27 @@ int run_accuracy(const AccuracyOptions& options) {
     if (exceeded > 0) status = kFailure;
   }
   std::ostringstream csv;
-  csv << "method,quality,steps,frame_size,atmosphere_ms,sky_pass_ms,frame_ms,copy_ms,all_orders_rel_rmse_sun_"
-         "ge_0,"
-         "all_orders_max_sun_ge_0,all_orders_rel_rmse_sun_ge_3,all_orders_max_sun_ge_3,all_orders_rel_rmse_"
-         "sun_0,"
-         "all_orders_max_sun_0,all_orders_rel_rmse_sun_m6,all_orders_max_sun_m6,single_rel_rmse_sun_ge_3,"
-         "single_max_sun_ge_3,single_rel_rmse_sun_0,single_max_sun_0,single_rel_rmse_sun_m6,single_max_sun_"
-         "m6\n";
+  csv << "method,quality,steps,frame_size,atmosphere_ms,sky_pass_ms,frame_ms,copy_ms,all_orders_rel_rmse_sun_ge_0,"
+         "all_orders_max_sun_ge_0";
+  // Column names per band: sun>=3 -> sun_ge_3, sun=-6 -> sun_m6.
+  auto column = [](Band b) {
+    std::string n = band_name(b);
+    n.replace(0, 3, "sun_");
+    if (n.rfind("sun_>=", 0) == 0) n = "sun_ge_" + n.substr(6);
+    if (n.rfind("sun_=-", 0) == 0) n = "sun_m" + n.substr(6);
+    if (n.rfind("sun_=", 0) == 0) n = "sun_" + n.substr(5);
+    return n;
+  };
+  for (const char* orders : {"all_orders", "single"})
+    for (Band b : kBands) csv << "," << orders << "_rel_rmse_" << column(b) << "," << orders << "_max_" << column(b);
+  csv << "\n";
   for (ConfigResult& r : results) {
     csv << method_name(r.config.method) << "," << quality_name(r.config.quality) << ",\"" << r.steps << "\","
         << width << "x" << height << "," << fmt(r.cost.atmosphere_ms) << "," << fmt(r.cost.sky_ms) << ","
         << fmt(r.cost.frame_ms) << "," << fmt(r.cost.copy_ms) << "," << fmt(r.all_orders_plotted.rmse())
         << "," << fmt(r.all_orders_plotted.max);
-    for (Band b : {Band::day, Band::horizon, Band::twilight})
-      csv << "," << fmt(r.all_orders[b].rmse()) << "," << fmt(r.all_orders[b].max);
-    for (Band b : {Band::day, Band::horizon, Band::twilight})
-      csv << "," << fmt(r.single[b].rmse()) << "," << fmt(r.single[b].max);
+    for (Band b : kBands) csv << "," << fmt(r.all_orders[b].rmse()) << "," << fmt(r.all_orders[b].max);
+    for (Band b : kBands) csv << "," << fmt(r.single[b].rmse()) << "," << fmt(r.single[b].max);
     csv << "\n";
   }
   write_file_atomically((fs::path(o.out) / "accuracy-atmosphere.csv").string(), csv.str());
@@ -396,7 +545,7 @@ int run_accuracy(const AccuracyOptions& options) {
     nlohmann::json list = nlohmann::json::array();
     for (ConfigResult& r : results) {
       nlohmann::json bands_all, bands_single;
-      for (Band b : {Band::day, Band::horizon, Band::twilight}) {
+      for (Band b : kBands) {
         bands_all[band_name(b)] = {{"rel_rmse", r.all_orders[b].rmse()}, {"max", r.all_orders[b].max}};
         bands_single[band_name(b)] = {{"rel_rmse", r.single[b].rmse()}, {"max", r.single[b].max}};
       }
@@ -436,17 +585,18 @@ int run_accuracy(const AccuracyOptions& options) {
       "left out)\n\n",
       kBlack);
   std::printf(
-      "| method | quality | atmosphere ms | sky pass ms | copy ms | all orders sun>=0 | sun>=3 | sun=0 | "
-      "sun=-6 | single sun>=3 | single sun=0 |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "| method | quality | atmosphere ms | sky pass ms | copy ms | all orders sun>=0 | sun>=3 | sun=0 | sun=-3 | "
+      "sun=-6 | sun=-12 | single sun>=3 | single sun=0 |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   auto pair = [](const ErrorStats& s) {
     return fmt(s.rmse() * 100, "%.1f") + "% / " + fmt(s.max * 100, "%.1f") + "%";
   };
   for (ConfigResult& r : results)
-    std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", method_name(r.config.method),
+    std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", method_name(r.config.method),
                 quality_name(r.config.quality), fmt(r.cost.atmosphere_ms, "%.2f").c_str(),
                 fmt(r.cost.sky_ms, "%.2f").c_str(), fmt(r.cost.copy_ms, "%.2f").c_str(),
                 pair(r.all_orders_plotted).c_str(), pair(r.all_orders[Band::day]).c_str(),
-                pair(r.all_orders[Band::horizon]).c_str(), pair(r.all_orders[Band::twilight]).c_str(),
+                pair(r.all_orders[Band::horizon]).c_str(), pair(r.all_orders[Band::dusk]).c_str(),
+                pair(r.all_orders[Band::twilight]).c_str(), pair(r.all_orders[Band::nautical]).c_str(),
                 pair(r.single[Band::day]).c_str(), pair(r.single[Band::horizon]).c_str());
   std::printf("\nwrote %s, %s and %s\n", (fs::path(o.out) / "accuracy-atmosphere.csv").string().c_str(),
               (fs::path(o.out) / "accuracy-atmosphere-rays.csv").string().c_str(), png.c_str());
@@ -482,6 +632,17 @@ void add_accuracy_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--quick", o->quick, "Every tenth ray only (a smoke test)");
   cmd->add_flag("--check", o->check, "atmosphere: exit 1 when an error exceeds its limit in the tolerance table");
   cmd->add_option("--tolerances", o->tolerances, "atmosphere --check: the table (default: the module's validation/accuracy-tolerances.json)");
+  cmd->add_option("--panorama", o->panorama_suns,
+                  "atmosphere: instead of the sweep, whole-sky panoramas from the ground at these sun elevations "
+                  "(degrees), the LUT path at high above the path tracer's, and their difference")
+      ->delimiter(',');
+  cmd->add_option("--panorama-size", o->panorama_size, "atmosphere --panorama: rays across and up")->capture_default_str();
+  cmd->add_option("--panorama-paths", o->panorama_paths, "atmosphere --panorama: paths per ray")
+      ->check(CLI::Range(uint64_t(1), uint64_t(1) << 32))
+      ->capture_default_str();
+  cmd->add_option("--write-tolerances", o->write_tolerances,
+                  "atmosphere: write this run's errors (+15% and 0.1 point) as the limits of its ray set, keeping the "
+                  "other set's from the table in use");
   cmd->add_flag("--json", o->json, "Machine-readable summary");
   cmd->callback([o, &exit_code] { exit_code = run_accuracy(*o); });
 }

@@ -144,12 +144,12 @@ void describe(TypeBuilder<Moon>& t) {
 ResolvedQuality resolve_quality(const Atmosphere& a) {
   switch (a.quality) {
     case Quality::low:
-      return {128, 32, 20, 16, 10, 1, 96, 54, 16, 16, 16, 16, 1, 16, 4};
+      return {128, 32, 20, 24, 15, 1, 96, 54, 16, 16, 16, 16, 1, 16, 4};
     case Quality::medium:
       return {256, 64, 30, 32, 15, 2, 144, 81, 20, 32, 32, 32, 1, 20, 6};
     // Method raymarch at the default quality is the seeds' 24 x 8 steps.
     case Quality::high:
-      return {256, 64, 40, 32, 20, 2, 192, 108, 30, 32, 32, 32, 2, 24, 8};
+      return {256, 64, 40, 48, 30, 2, 192, 108, 30, 32, 32, 32, 2, 24, 8};
     case Quality::ultra:
       return {512, 128, 80, 64, 40, 3, 384, 216, 60, 64, 64, 64, 2, 48, 16};
     case Quality::custom:

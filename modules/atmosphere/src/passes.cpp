@@ -5,6 +5,7 @@
 
 #include "welkin/atmosphere/ground_region.h"
 #include "welkin/atmosphere/gpu.h"
+#include "welkin/core/disk_cache.h"
 #include "welkin/core/error.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/compute.h"
@@ -26,6 +27,50 @@ ShaderDefines moon_defines(const GpuUniforms& u) {
 
 bool in_space(const GpuUniforms& u) {
   return u.aerial_params.z > 0.5f;
+}
+
+// The persistent LUTs are a pure function of the medium, their sizes and step counts, the shaders
+// that build them and the GL implementation that runs them: all of it is the disk cache's key.
+std::string persistent_lut_key(const ShaderLibrary& shaders, const GpuUniforms& u) {
+  std::string key = "welkin atmosphere: transmittance and multi-scattering LUTs, " +
+                    std::to_string(kMultiscatteringLayers) + " layers\n";
+  for (GLenum name : {GL_VENDOR, GL_RENDERER, GL_VERSION}) {
+    const GLubyte* text = glGetString(name);
+    key += text ? reinterpret_cast<const char*>(text) : "?";
+    key += "\n";
+  }
+  key.append(reinterpret_cast<const char*>(&u), offsetof(GpuUniforms, camera_km));
+  key.append(reinterpret_cast<const char*>(&u.transmittance_size), sizeof u.transmittance_size);
+  key.append(reinterpret_cast<const char*>(&u.multiscattering_size), sizeof u.multiscattering_size);
+  key += shaders.preprocess("atmosphere/transmittance_lut.comp", {}).text;
+  for (const char* iterate : {"0", "1"})
+    key += shaders.preprocess("atmosphere/multiscattering_lut.comp", {{"ATM_MS_ITERATE", iterate}}).text;
+  return key;
+}
+
+size_t float_bytes(const Texture& t) {
+  return size_t(t.desc().width) * size_t(t.desc().height) * 4 * sizeof(float);
+}
+
+// Both LUTs from the cache into their textures; false on a miss.
+bool load_persistent_luts(const DiskCache& cache, const std::string& key, AtmosphereGpu& gpu) {
+  const size_t t_bytes = float_bytes(*gpu.transmittance), ms_bytes = float_bytes(*gpu.multiscattering);
+  const auto bytes = cache.read(key, t_bytes + ms_bytes);
+  if (!bytes) return false;
+  for (auto [texture, offset] : {std::pair{gpu.transmittance.get(), size_t(0)}, {gpu.multiscattering.get(), t_bytes}})
+    glTextureSubImage2D(texture->id(), 0, 0, 0, texture->desc().width, texture->desc().height, GL_RGBA, GL_FLOAT,
+                        bytes->data() + offset);
+  return true;
+}
+
+void store_persistent_luts(const DiskCache& cache, const std::string& key, const AtmosphereGpu& gpu) {
+  std::string bytes;
+  for (const Texture* texture : {gpu.transmittance.get(), gpu.multiscattering.get()}) {
+    const size_t n = float_bytes(*texture), at = bytes.size();
+    bytes.resize(at + n);
+    glGetTextureImage(texture->id(), 0, GL_RGBA, GL_FLOAT, GLsizei(n), bytes.data() + at);
+  }
+  cache.write(key, bytes);
 }
 
 // What the star pass needs of a frame, prepared outside the pass (the catalogue is rebuilt only when
@@ -140,8 +185,8 @@ void lut_system(SystemContext& sc) {
   bool resized = ensure_texture(
       gpu.transmittance,
       {.width = q.transmittance_width, .height = q.transmittance_height, .format = TextureFormat::rgba32f});
-  // Three layers side by side, each with a one-texel gutter either side (multiscattering_lut.comp).
-  const TextureDesc ms_desc{.width = 3 * (q.multiscattering_size + 2),
+  // Layers side by side, each with a one-texel gutter either side (multiscattering_lut.comp).
+  const TextureDesc ms_desc{.width = kMultiscatteringLayers * (q.multiscattering_size + 2),
                             .height = q.multiscattering_size,
                             .format = TextureFormat::rgba32f};
   resized |= ensure_texture(gpu.multiscattering, ms_desc);
@@ -185,7 +230,21 @@ void lut_system(SystemContext& sc) {
   AtmosphereGpu* gp = &gpu;
   RenderContext* rcp = &rc;
 
-  if (rebuild) {
+  // A medium built before, by this program on this GL, is read back from the disk cache: on
+  // llvmpipe the multi-scattering LUT is most of a start's GPU work.
+  std::string lut_key;
+  const DiskCache disk_cache = rebuild ? DiskCache::from_environment() : DiskCache();
+  bool build_luts = rebuild;
+  if (rebuild && disk_cache.enabled()) {
+    lut_key = persistent_lut_key(rc.shaders, u);
+    if (load_persistent_luts(disk_cache, lut_key, gpu)) {
+      gpu.lut_uniforms = u;
+      gpu.luts_valid = true;
+      ++gpu.lut_cache_reads;
+      build_luts = false;
+    }
+  }
+  if (build_luts) {
     gpu.luts_valid = false;  // until the passes below have run
     // Persistent outputs nobody reads this frame must still be produced: side effects.
     g.add_pass(
@@ -207,7 +266,7 @@ void lut_system(SystemContext& sc) {
           b.write(ms);
           b.side_effect();
         },
-        [gp, rcp, q, u](PassContext&) {
+        [gp, rcp, q, u, lut_key, disk_cache](PassContext&) {
           bind_for_materials(*gp);
           // Hillaire's estimate, then passes that each read the last one's output and write the
           // other texture, ordered so that the final pass writes the LUT every reader binds.
@@ -227,6 +286,7 @@ void lut_system(SystemContext& sc) {
           gp->lut_uniforms = u;
           gp->luts_valid = true;
           ++gp->lut_builds;
+          if (!lut_key.empty()) store_persistent_luts(disk_cache, lut_key, *gp);
         });
   }
   // The sky-view LUT serves the LUT method inside the atmosphere only; from space, and with method

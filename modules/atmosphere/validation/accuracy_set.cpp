@@ -72,6 +72,26 @@ std::vector<ref::ProbeGeometry> accuracy_rays() {
                           .sun_zenith_deg = 90.0 - sun,
                           .sun_azimuth_deg = 0.0});
         }
+  // Appended, so that the quick tenth of the rays above stays what it was.
+  for (double altitude : {0.0, 1.0, 10.0})
+    for (double view : {2.0, 5.0, 10.0, 30.0, 60.0, 90.0})
+      for (double azimuth : {0.0, 45.0, 90.0, 180.0}) {
+        if (view == 90.0 && azimuth != 0.0) continue;
+        rays.push_back({.altitude_km = altitude,
+                        .view_zenith_deg = 90.0 - view,
+                        .view_azimuth_deg = azimuth,
+                        .sun_zenith_deg = 93.0,
+                        .sun_azimuth_deg = 0.0});
+      }
+  for (double view : {2.0, 10.0, 30.0, 90.0})
+    for (double azimuth : {0.0, 90.0, 180.0}) {
+      if (view == 90.0 && azimuth != 0.0) continue;
+      rays.push_back({.altitude_km = 0.0,
+                      .view_zenith_deg = 90.0 - view,
+                      .view_azimuth_deg = azimuth,
+                      .sun_zenith_deg = 102.0,
+                      .sun_azimuth_deg = 0.0});
+    }
   return rays;
 }
 
@@ -128,6 +148,7 @@ void ReferenceCache::save(const std::string& path) const {
       {"model", json::parse(model_key_)},
       {"samples", settings_.samples},
       {"samples_sun_below_horizon", settings_.samples_sun_below_horizon},
+      {"samples_deep_twilight", settings_.samples_deep_twilight},
       {"seed", settings_.seed},
       {"chunk_size", settings_.chunk_size},
       {"rays", rays}};

@@ -16,20 +16,27 @@ namespace welkin::atmosphere {
 
 // Altitudes 0, 1 and 10 km; sun elevations -6 (civil twilight), 0, 3, 10, 30, 60 and 90 degrees; view
 // elevations 2, 5, 10, 30, 60 and 90 degrees at azimuths 0, 45, 90 and 180 degrees from the sun's (one
-// azimuth where the view or the sun is at the zenith): 396 rays. The sun's azimuth is 0.
+// azimuth where the view or the sun is at the zenith): 396 rays. Then the same grid with the sun 3
+// degrees below the horizon (63 rays), and 10 rays from the ground with the sun 12 degrees below it
+// (nautical twilight; views 2, 10, 30 and 90 degrees up at azimuths 0, 90 and 180): 469 rays. The
+// sun's azimuth is 0.
 std::vector<reference::ProbeGeometry> accuracy_rays();
 
 // Path tracing of the cached references: seeded, so a rerun reproduces them bit for bit. With the sun
 // below the horizon only paths that climb into the sunlit air score, so those rays get 16 times the
-// paths (95% intervals of up to 15% at 2^20, 4% at 2^24).
+// paths (95% intervals of up to 15% at 2^20, 4% at 2^24), and 128 times with the sun 9 degrees or
+// more below it, where the sunlit air lies above the whole atmosphere overhead (60-100% at 2^22).
 struct ReferenceSettings {
   std::uint64_t samples = 1u << 20;
   std::uint64_t samples_sun_below_horizon = 1u << 24;
+  std::uint64_t samples_deep_twilight = 1u << 27;
   std::uint64_t seed = 20261123;
   std::uint64_t chunk_size = 512;  // part of the result's identity (reference/path_tracer.h)
 
   std::uint64_t samples_for(const reference::ProbeGeometry& g) const {
-    return g.sun_zenith_deg > 90.0 ? samples_sun_below_horizon : samples;
+    return g.sun_zenith_deg >= 99.0 ? samples_deep_twilight
+           : g.sun_zenith_deg > 90.0 ? samples_sun_below_horizon
+                                     : samples;
   }
 };
 

@@ -246,40 +246,55 @@ vec2 atm_multiscattering_uv(AtmParams P, float r, float mu_s) {
               atm_unit_to_sub_uv(clamp((r - P.bottom) / P.thickness, 0.0, 1.0), n));
 }
 
-// The LUT holds three square layers side by side (multiscattering_lut.comp): the scattered light
-// arriving at a point as Legendre moments about the local vertical, L(w) = c0 + c1 P1(w.up) +
-// c2 P2(w.up) (w towards where the light comes from), and the irradiance / pi it gives a horizontal
-// surface. Layer 0 holds log c0 and k2 = c2 / c0 (one ratio for all channels: two fetches per sample
-// instead of three, at 0.2% more worst-case error), layer 1 c1 / c0, layer 2 the irradiance over c0.
-// Interpolating log c0 is exact where light falls exponentially, as it does into the planet's shadow;
-// interpolated linearly, a dusk sky's multiple scattering came out 29% RMSE off instead of 10%. Each
-// layer has a one-texel gutter on either side holding copies of its edge texels: texture units blend
-// with 8-bit weights, so even a tap at a texel's centre takes up to 1/256 of its neighbour.
+// The LUT holds five square layers side by side (multiscattering_lut.comp): the scattered light
+// arriving at a point, L(w) = c0 + a.w + w^T Q w (w towards where the light comes from), in the
+// point's frame: z up, y towards the sun's azimuth. Layer 0 holds log c0 and Q_yz / c0 (one ratio
+// for all channels), layer 1 a_z / c0 and Q_zz / c0 of red, layer 2 a_y / c0 and Q_zz / c0 of green,
+// layer 3 Q_yy / c0 and Q_zz / c0 of blue (Q is traceless), layer 4 the irradiance / pi a horizontal
+// surface receives, over c0. The terms toward the sun's azimuth matter in the planet's shadow: there
+// the light comes from the sunlit air on one side, and Rayleigh scatters it forward and back twice
+// as much as sideways; kept only about the vertical (averaged over azimuth), the anti-sun sky at dusk
+// came out up to 38% too dark against the path tracer. Interpolating log c0 is exact where light
+// falls exponentially, as it does into the planet's shadow; interpolated linearly, a dusk sky's
+// multiple scattering came out 29% RMSE off instead of 10%. Each layer has a one-texel gutter on
+// either side holding copies of its edge texels: texture units blend with 8-bit weights, so even a
+// tap at a texel's centre takes up to 1/256 of its neighbour.
+#define ATM_MS_LAYERS 5.0
 vec4 atm_multiscattering_layer(AtmParams P, vec2 uv, float layer) {
   float n = P.multiscattering_size;
   float x = layer * (n + 2.0) + 1.0 + uv.x * n;
-  return texture(atm_multiscattering_lut, vec2(x / (3.0 * (n + 2.0)), uv.y));
+  return texture(atm_multiscattering_lut, vec2(x / (ATM_MS_LAYERS * (n + 2.0)), uv.y));
 }
 
-// Scattered light of every order, in-scattered towards the march direction d (mu_v = d.up) by the
-// medium, per unit illuminance. By Funk-Hecke a phase function with Legendre moments lambda_l turns
-// the field's moment c_l into lambda_l c_l P_l(mu_v): Rayleigh's are (1, 0, 1/10), Mie's come from
-// the block. The truncated series can dip below zero looking away from a bright hemisphere through a
-// forward-peaked phase; the clamp keeps the source physical there.
-vec3 atm_multiscattering_source(AtmParams P, float r, float mu_s, float mu_v, AtmMedium med) {
+// Scattered light of every order, in-scattered towards the march direction d by the medium, per
+// unit illuminance; mu_v = d.up, nu = d.(towards the light). By Funk-Hecke a phase function with
+// Legendre moments lambda_l scales the field's part of degree l by lambda_l, evaluated at d:
+// Rayleigh's are (1, 0, 1/10), Mie's come from the block. The truncated series can dip below zero
+// looking away from a bright hemisphere through a forward-peaked phase; the clamp keeps the source
+// physical there.
+vec3 atm_multiscattering_source(AtmParams P, float r, float mu_s, float mu_v, float nu, AtmMedium med) {
   vec2 uv = atm_multiscattering_uv(P, r, mu_s);
-  vec4 log_c0_k2 = atm_multiscattering_layer(P, uv, 0.0);
-  vec3 c1_over_c0 = atm_multiscattering_layer(P, uv, 1.0).rgb;
-  float p2 = 1.5 * mu_v * mu_v - 0.5;
-  vec3 rayleigh = vec3(1.0 + 0.1 * p2 * log_c0_k2.a);
-  vec3 mie = 1.0 + P.mie_moments.y * p2 * log_c0_k2.a + P.mie_moments.x * mu_v * c1_over_c0;
-  return exp(log_c0_k2.rgb) * max(med.rayleigh * rayleigh + med.mie * mie, vec3(0.0));
+  vec4 log_c0_kyz = atm_multiscattering_layer(P, uv, 0.0);
+  vec4 az_kzz_r = atm_multiscattering_layer(P, uv, 1.0);
+  vec4 ay_kzz_g = atm_multiscattering_layer(P, uv, 2.0);
+  vec4 kyy_kzz_b = atm_multiscattering_layer(P, uv, 3.0);
+  // d's component towards the light's azimuth; the terms that use it vanish with a vertical light.
+  float z = mu_v;
+  float y = clamp((nu - mu_v * mu_s) * inversesqrt(max(1.0 - mu_s * mu_s, 1e-12)), -1.0, 1.0);
+  // d^T Q d with Q_xx = -Q_yy - Q_zz and x^2 = 1 - y^2 - z^2.
+  vec3 k_zz = vec3(az_kzz_r.a, ay_kzz_g.a, kyy_kzz_b.a);
+  vec3 quadrupole = k_zz * (2.0 * z * z + y * y - 1.0) + kyy_kzz_b.rgb * (2.0 * y * y + z * z - 1.0) +
+                    2.0 * log_c0_kyz.a * y * z;
+  vec3 dipole = az_kzz_r.rgb * z + ay_kzz_g.rgb * y;
+  vec3 rayleigh = 1.0 + 0.1 * quadrupole;
+  vec3 mie = 1.0 + P.mie_moments.y * quadrupole + P.mie_moments.x * dipole;
+  return exp(log_c0_kyz.rgb) * max(med.rayleigh * rayleigh + med.mie * mie, vec3(0.0));
 }
 
 // Sky light of the scattered orders on the ground, as irradiance / pi for an illuminance of 1.
 vec3 atm_multiscattering_ground(AtmParams P, float mu_s) {
   vec2 uv = atm_multiscattering_uv(P, P.bottom + P.lift, mu_s);
-  return exp(atm_multiscattering_layer(P, uv, 0.0).rgb) * atm_multiscattering_layer(P, uv, 2.0).rgb;
+  return exp(atm_multiscattering_layer(P, uv, 0.0).rgb) * atm_multiscattering_layer(P, uv, 4.0).rgb;
 }
 
 // Sky-view LUT (Hillaire 2020's layout: horizon at v = 0.5, texels crowded towards it from both

@@ -64,12 +64,12 @@ float atm_ms_factor() { return atm_absorption_extinction.w; }
 // Light of `l` reaching radius r and scattered towards the camera: single scattering through the
 // transmittance LUT and the planet's shadow, higher orders through the multi-scattering LUT.
 vec3 atm_light_source(AtmParams P, AtmLight l, vec3 up, float r, AtmMedium med, float rayleigh_phase,
-                      float mie_phase, float mu_v, float ms_weight) {
+                      float mie_phase, float mu_v, float nu, float ms_weight) {
   float mu = dot(up, l.direction);
   vec3 phase_scattering = med.rayleigh * rayleigh_phase + med.mie * mie_phase;
   vec3 s = atm_transmittance_to_light(P, r, mu, l.angular_radius) * phase_scattering;
   // A branch, not a product: the LUT's first build must not read the texture it is writing.
-  if (ms_weight > 0.0) s += ms_weight * atm_multiscattering_source(P, r, mu, mu_v, med);
+  if (ms_weight > 0.0) s += ms_weight * atm_multiscattering_source(P, r, mu, mu_v, nu, med);
   return l.illuminance * s;
 }
 
@@ -78,13 +78,14 @@ struct AtmRayLights {
   vec3 dir;
   AtmLight l0, l1;
   float pr0, pm0, pr1, pm1;  // Rayleigh and Mie phase of each light for this ray
+  float nu0, nu1;            // cosine between the ray and each light
   float ms_weight;
 };
 
 AtmRayLights atm_ray_lights(vec3 dir, AtmLight l0, AtmLight l1, float ms_weight) {
   float c0 = dot(dir, l0.direction), c1 = dot(dir, l1.direction);
   return AtmRayLights(dir, l0, l1, atm_rayleigh_phase(c0), atm_mie_phase(c0), atm_rayleigh_phase(c1),
-                      atm_mie_phase(c1), ms_weight);
+                      atm_mie_phase(c1), c0, c1, ms_weight);
 }
 
 AtmSample atm_sample(AtmParams P, AtmRayLights L, vec3 p) {
@@ -93,9 +94,9 @@ AtmSample atm_sample(AtmParams P, AtmRayLights L, vec3 p) {
   vec3 up = p / max(len, 1e-20);
   AtmMedium med = atm_medium(P, r - P.bottom);
   float mu_v = dot(L.dir, up);
-  vec3 s = atm_light_source(P, L.l0, up, r, med, L.pr0, L.pm0, mu_v, L.ms_weight);
+  vec3 s = atm_light_source(P, L.l0, up, r, med, L.pr0, L.pm0, mu_v, L.nu0, L.ms_weight);
 #if ATM_MOON_LIGHT
-  if (atm_light_on(L.l1)) s += atm_light_source(P, L.l1, up, r, med, L.pr1, L.pm1, mu_v, L.ms_weight);
+  if (atm_light_on(L.l1)) s += atm_light_source(P, L.l1, up, r, med, L.pr1, L.pm1, mu_v, L.nu1, L.ms_weight);
 #endif
   return AtmSample(s, med.extinction, med.rayleigh + med.mie);
 }

@@ -24,11 +24,11 @@ vec3 atm_light_march_transmittance(AtmParams P, float r, float mu, float angular
 }
 
 vec3 atm_raymarch_light(AtmParams P, AtmLight l, vec3 up, float r, AtmMedium med, float rayleigh_phase,
-                        float mie_phase, float mu_v, int light_steps) {
+                        float mie_phase, float mu_v, float nu, int light_steps) {
   float mu = dot(up, l.direction);
   vec3 t = atm_light_march_transmittance(P, r, mu, l.angular_radius, light_steps);
   vec3 s = t * (med.rayleigh * rayleigh_phase + med.mie * mie_phase);
-  s += P.ms_factor * atm_multiscattering_source(P, r, mu, mu_v, med);
+  s += P.ms_factor * atm_multiscattering_source(P, r, mu, mu_v, nu, med);
   return l.illuminance * s;
 }
 
@@ -53,9 +53,9 @@ AtmMarch atm_raymarch(vec3 origin, vec3 dir, int steps, int light_steps, AtmLigh
     vec3 up = p / max(len, 1e-20);
     AtmMedium med = atm_medium(P, r - P.bottom);
     float mu_v = dot(dir, up);
-    vec3 s = atm_raymarch_light(P, l0, up, r, med, pr0, pm0, mu_v, light_steps);
+    vec3 s = atm_raymarch_light(P, l0, up, r, med, pr0, pm0, mu_v, c0, light_steps);
 #if ATM_MOON_LIGHT
-    if (atm_light_on(l1)) s += atm_raymarch_light(P, l1, up, r, med, pr1, pm1, mu_v, light_steps);
+    if (atm_light_on(l1)) s += atm_raymarch_light(P, l1, up, r, med, pr1, pm1, mu_v, c1, light_steps);
 #endif
     vec3 x = med.extinction * dt;
     m.luminance += m.transmittance * s * (dt * atm_one_minus_exp_over_x(x));

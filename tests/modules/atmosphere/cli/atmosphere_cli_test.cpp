@@ -140,7 +140,7 @@ TEST(AtmosphereCli, AccuracyCheckHoldsTheCommittedTolerances) {
   const std::string quick = "accuracy atmosphere --quick --size 16x9 --frames 1 --check --out ";
   CliRun ok = run(quick + tmp("check-ok").string());
   ASSERT_EQ(ok.code, 0) << ok.out;
-  EXPECT_NE(ok.out.find("0 of 48 limits exceeded (quick rays)"), std::string::npos) << ok.out;
+  EXPECT_NE(ok.out.find("0 of 72 limits exceeded (quick rays)"), std::string::npos) << ok.out;
 
   const fs::path tight = tmp("tight.json");
   std::ofstream(tight) << R"({"welkin_accuracy_tolerances": 1, "limits": [)"
@@ -155,6 +155,59 @@ TEST(AtmosphereCli, AccuracyCheckHoldsTheCommittedTolerances) {
   std::ofstream(bad) << R"({"welkin_accuracy_tolerances": 1, "limits": [{"method": "lut", "quality": "best"}]})";
   expect_one_line_error(run("accuracy atmosphere --quick --check --tolerances " + bad.string() + " --out " + tmp("check-bad").string()),
                         bad.string(), "/limits/0/quality");
+}
+
+// `--write-tolerances` turns a run's errors into the limits of its ray set (the measured value plus
+// 15% and 0.1 point, rounded up), keeps the other set's limits, and the table it writes passes.
+TEST(AtmosphereCli, AccuracyWritesTheTolerancesItMeasured) {
+  const fs::path given = tmp("given.json"), written = tmp("written.json"), out = tmp("write-out");
+  std::ofstream(given) << R"({"welkin_accuracy_tolerances": 1, "limits": [)"
+                       << R"({"method": "raymarch", "quality": "ultra", "orders": "all", "band": "sun=0", "rays": "all", "rmse": 0.5, "max": 0.5},)"
+                       << R"({"method": "lut", "quality": "low", "orders": "all", "band": "sun>=3", "rays": "quick", "rmse": 0.001, "max": 0.001}]})";
+  const std::string run_low = "accuracy atmosphere --quick --methods lut --qualities low --size 16x9 --frames 1 ";
+  CliRun w = run(run_low + "--tolerances " + given.string() + " --write-tolerances " + written.string() + " --out " +
+                 out.string());
+  ASSERT_EQ(w.code, 0) << w.out;
+  const nlohmann::json table = nlohmann::json::parse(std::ifstream(written));
+  int kept = 0, quick = 0;
+  double rmse_limit = -1.0;
+  for (const auto& l : table["limits"]) {
+    if (l["rays"] == "all") {
+      ++kept;
+      EXPECT_EQ(l["method"], "raymarch");
+    }
+    if (l["rays"] != "quick") continue;
+    ++quick;
+    EXPECT_TRUE(l["method"] == "lut" && l["quality"] == "low") << l.dump();
+    if (l["orders"] == "all" && l["band"] == "sun>=3") rmse_limit = l["rmse"];
+  }
+  EXPECT_EQ(kept, 1);
+  // 5 bands, 2 orders, less single scattering at -12 degrees: darker than 1e-7 / sr on every quick ray.
+  EXPECT_EQ(quick, 9);
+  // The measured RMSE from the run's CSV (column all_orders_rel_rmse_sun_ge_3).
+  std::ifstream csv(out / "accuracy-atmosphere.csv");
+  std::string header, row;
+  std::getline(csv, header);
+  std::getline(csv, row);
+  auto cells = [](const std::string& line) {  // CSV with quoted fields
+    std::vector<std::string> out(1);
+    bool quoted = false;
+    for (char c : line) {
+      if (c == '"') quoted = !quoted;
+      else if (c == ',' && !quoted) out.emplace_back();
+      else out.back() += c;
+    }
+    return out;
+  };
+  const std::vector<std::string> names = cells(header), values = cells(row);
+  ASSERT_EQ(names.size(), values.size()) << header << "\n" << row;
+  const auto column = std::find(names.begin(), names.end(), "all_orders_rel_rmse_sun_ge_3") - names.begin();
+  ASSERT_LT(size_t(column), names.size()) << header;
+  const double measured = std::stod(values[column]);
+  EXPECT_NEAR(rmse_limit, measured * 1.15 + 0.001, 1e-4) << row;
+  CliRun check = run(run_low + "--check --tolerances " + written.string() + " --out " + out.string());
+  EXPECT_EQ(check.code, 0) << check.out;
+  EXPECT_NE(check.out.find("0 of 9 limits exceeded"), std::string::npos) << check.out;
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // same code as `welkin probe` and `welkin accuracy` (validation/probe.h): single scattering against
 // the quadrature within 2% (sun above 3 degrees, view above 2 degrees), all orders against the
 // cached path-traced references. The full sweep and its figures are `welkin accuracy atmosphere`.
+#include <algorithm>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -121,10 +122,11 @@ TEST(AtmosphereAccuracy, AllOrdersAgainstCachedPathTracedReferences) {
 }
 
 TEST(AtmosphereAccuracy, AllOrdersOverTheSweep) {
-  // Every ray of `welkin accuracy atmosphere` at the default quality: within 5% of the path tracer
-  // for a sun 3 degrees up or higher (measured 3.5%); the sun on the horizon (5.0%) and twilight
-  // (RMSE 10.7%, worst 39%, references within 3.7% there at 2^24 paths) are bounded by their
-  // measured figures (README) with a margin, so that a regression shows.
+  // Every ray of `welkin accuracy atmosphere` at the default quality against the path tracer, by the
+  // sun's elevation: the goals at -6 degrees (RMSE <= 4%, worst <= 12%), and the other bands
+  // bounded near their measured figures (README), so that a regression shows. With the sun 12
+  // degrees down the references' own 95% intervals reach 20%, so there a ray fails only beyond
+  // twice its interval plus 15%.
   gl().make_current();
   const Atmosphere earth;
   GpuProbe probe(earth, SkyMethod::lut, /*single_scattering=*/false);
@@ -133,31 +135,40 @@ TEST(AtmosphereAccuracy, AllOrdersOverTheSweep) {
                         "modules/atmosphere/validation/accuracy-references.json")
                            .string()),
             0u);
-  double worst_day = 0.0, worst_horizon = 0.0, worst_twilight = 0.0, twilight_sum_sq = 0.0;
-  int rays = 0, twilight_channels = 0;
+  struct Band {
+    const char* name;
+    double lowest_sun, worst_allowed, rmse_allowed;
+    double worst = 0.0, sum_sq = 0.0;
+    int channels = 0;
+  };
+  Band bands[] = {{"sun >= 3", 3.0, 0.03, 0.01},   {"sun = 0", 0.0, 0.04, 0.015},
+                  {"sun = -3", -4.5, 0.08, 0.03},  {"sun = -6", -9.0, 0.12, 0.04},
+                  {"sun = -12", -90.0, 1.0, 1.0}};
   for (const ref::ProbeGeometry& g : accuracy_rays()) {
     const double sun_elevation = 90.0 - g.sun_zenith_deg;
     const std::optional<CachedReference> pt = cache.find(g);
     ASSERT_TRUE(pt) << describe(g);
     const glm::dvec3 value = probe.evaluate(g).radiance;
+    Band& band = *std::find_if(std::begin(bands), std::end(bands),
+                               [&](const Band& b) { return sun_elevation >= b.lowest_sun; });
     const double e = max_rel(value, pt->radiance);
-    ++rays;
-    if (sun_elevation < 0.0) {
-      worst_twilight = std::max(worst_twilight, e);
+    band.worst = std::max(band.worst, e);
+    for (int c = 0; c < 3; ++c)
+      band.sum_sq += std::pow((value[c] - pt->radiance[c]) / pt->radiance[c], 2), ++band.channels;
+    if (sun_elevation < -9.0) {
       for (int c = 0; c < 3; ++c)
-        twilight_sum_sq += std::pow((value[c] - pt->radiance[c]) / pt->radiance[c], 2), ++twilight_channels;
-      EXPECT_LT(e, 0.5) << describe(g);
-      continue;
+        EXPECT_NEAR(value[c], pt->radiance[c], 2.0 * pt->ci95[c] + 0.15 * pt->radiance[c])
+            << describe(g) << " channel " << c;
+    } else {
+      EXPECT_LT(e, band.worst_allowed) << describe(g);
     }
-    double& worst = sun_elevation >= 3.0 ? worst_day : worst_horizon;
-    worst = std::max(worst, e);
-    EXPECT_LT(e, sun_elevation >= 3.0 ? 0.05 : 0.065) << describe(g);
   }
-  const double twilight_rmse = std::sqrt(twilight_sum_sq / twilight_channels);
-  std::printf("%d rays: worst relative error %.4f (sun >= 3 degrees), %.4f (sun on the horizon); "
-              "twilight RMSE %.4f, worst %.4f\n",
-              rays, worst_day, worst_horizon, twilight_rmse, worst_twilight);
-  EXPECT_LT(twilight_rmse, 0.13);
+  for (const Band& b : bands) {
+    ASSERT_GT(b.channels, 0) << b.name;
+    const double rmse = std::sqrt(b.sum_sq / b.channels);
+    std::printf("%s: RMSE %.4f, worst %.4f over %d channels\n", b.name, rmse, b.worst, b.channels);
+    EXPECT_LT(rmse, b.rmse_allowed) << b.name;
+  }
 }
 
 TEST(AtmosphereAccuracy, MieLegendreMomentsMatchQuadrature) {

@@ -1,5 +1,8 @@
 // Components, validation, presets, uniforms and the LUT cache of the atmosphere module.
+#include <unistd.h>
+
 #include <filesystem>
+#include <optional>
 
 #include "gpu_test_support.h"
 #include "welkin/atmosphere/presets.h"
@@ -157,12 +160,29 @@ TEST(AtmosphereUniforms, QualityPresetsAndCustom) {
   a.quality = Quality::high;
   ResolvedQuality q = resolve_quality(a);
   EXPECT_EQ(q.transmittance_width, 256);
-  EXPECT_EQ(q.multiscattering_size, 32);
+  EXPECT_EQ(q.multiscattering_size, 48);
   EXPECT_EQ(q.sky_view_width, 192);
   EXPECT_EQ(q.aerial_perspective_slices, 32);
 }
 
+// Points the disk cache (core/disk_cache.h) elsewhere for one test ("": no cache), then back.
+class CacheFolder {
+ public:
+  explicit CacheFolder(const std::string& folder) {
+    if (const char* v = std::getenv("WELKIN_CACHE_DIR")) saved_ = v;
+    ::setenv("WELKIN_CACHE_DIR", folder.c_str(), 1);
+  }
+  ~CacheFolder() {
+    if (saved_) ::setenv("WELKIN_CACHE_DIR", saved_->c_str(), 1);
+    else ::unsetenv("WELKIN_CACHE_DIR");
+  }
+
+ private:
+  std::optional<std::string> saved_;
+};
+
 TEST(AtmosphereLuts, RegeneratedOnlyWhenTheMediumChanges) {
+  const CacheFolder no_cache("");
   auto r = test::render(test::scene(json::object(), json::object()), 16, 8, 3);
   EXPECT_EQ(r.gpu().lut_builds, 1);
   auto has_pass = [&](const std::string& name) {
@@ -180,6 +200,31 @@ TEST(AtmosphereLuts, RegeneratedOnlyWhenTheMediumChanges) {
   r.frame(16, 8, 4);
   EXPECT_EQ(r.gpu().lut_builds, 2);
   EXPECT_TRUE(has_pass("atmosphere.multiscattering"));
+}
+
+// A start with the disk cache (core/disk_cache.h) reads the persistent LUTs a start before built,
+// bit for bit, and draws the same frame; another medium is a miss and is built.
+TEST(AtmosphereLuts, ReadFromTheDiskCacheBitForBit) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("welkin-lut-cache-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  const CacheFolder cache(dir.string());
+  const json sun = {{"elevation_deg", -4}};
+  auto built = test::render(test::scene(json::object(), json::object(), sun), 16, 8);
+  EXPECT_EQ(built.gpu().lut_builds, 1);
+  EXPECT_EQ(built.gpu().lut_cache_reads, 0);
+  ASSERT_TRUE(std::filesystem::exists(dir));
+  auto read = test::render(test::scene(json::object(), json::object(), sun), 16, 8);
+  EXPECT_EQ(read.gpu().lut_builds, 0);
+  EXPECT_EQ(read.gpu().lut_cache_reads, 1);
+  for (auto lut : {&AtmosphereGpu::transmittance, &AtmosphereGpu::multiscattering})
+    EXPECT_EQ(read_texture_float(*(read.gpu().*lut)).rgba, read_texture_float(*(built.gpu().*lut)).rgba);
+  EXPECT_EQ(read.renderer->read_hdr().rgba, built.renderer->read_hdr().rgba);
+  for (const auto& t : read.last.timings) EXPECT_NE(t.name, "atmosphere.multiscattering");
+  auto other = test::render(test::scene(json::object(), {{"mie_g", 0.7}}, sun), 16, 8);
+  EXPECT_EQ(other.gpu().lut_builds, 1);
+  EXPECT_EQ(other.gpu().lut_cache_reads, 0);
+  std::filesystem::remove_all(dir);
 }
 
 // The per-frame LUTs are kept while what they depend on holds still, and the frame drawn from kept
@@ -216,6 +261,7 @@ TEST(AtmosphereLuts, PerFrameLutsAreKeptWhileTheirInputsHoldStill) {
 }
 
 TEST(AtmosphereFrame, PassesAndBlackboard) {
+  const CacheFolder no_cache("");
   auto r = test::render(test::scene(json::object(), json::object()), 16, 8);
   std::vector<std::string> names;
   for (const auto& t : r.last.timings) names.push_back(t.name);

@@ -146,29 +146,37 @@ TEST_P(StiffCases, EverythingFiniteNonNegativeBounded) {
     EXPECT_GE(s.min, 0.0f) << c.name << ": " << k.what;
     EXPECT_LE(s.max, k.max * (1.0f + 1e-3f)) << c.name << ": " << k.what;
   }
-  // Multi-scattering LUT: the moments of a non-negative field, (log c0, k2 = c2 / c0) and c1 / c0,
-  // and its irradiance / pi over c0, side by side with a one-texel gutter either side. The irradiance
-  // is non-negative and at most 4 c0, |c1| <= 3 c0 and -2.5 <= k2 <= 5 (c_l = (2l + 1) mean(L P_l),
-  // P_l in its range; the upper hemisphere's irradiance / pi is at most 4 times the sphere's mean).
+  // Multi-scattering LUT: the harmonics of a non-negative field L relative to its mean c0, side by
+  // side with a one-texel gutter either side (common.glsl): (log c0, Q_yz / c0), (a_z / c0, Q_zz / c0
+  // of red), (a_y / c0, Q_zz / c0 of green), (Q_yy / c0, Q_zz / c0 of blue), the irradiance / pi over
+  // c0, with a = 3 mean(L w) and Q = 5 mean(L (3/2 w w^T - 1/2)). So |a_i| <= 3 c0, -2.5 <= Q_ii / c0
+  // <= 5 and |Q_yz| <= 3.75 c0; the upper hemisphere's irradiance / pi is non-negative and at most 4
+  // times the sphere's mean.
   const ImageF ms = read_texture_float(*g.multiscattering);
-  const int n = ms.width / 3 - 2;
+  const int n = ms.width / kMultiscatteringLayers - 2;
   ASSERT_EQ(n, ms.height);
+  const float slack = 1e-2f;
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
       auto at = [&](int layer, int ch) { return ms.pixel(layer * (n + 2) + 1 + x, y)[ch]; };
-      const float k2 = at(0, 3);
-      ASSERT_TRUE(std::isfinite(k2)) << c.name << ": multi-scattering LUT k2 at " << x << "," << y;
-      EXPECT_GE(k2, -2.5f - 1e-2f) << c.name << ": k2 at " << x << "," << y;
-      EXPECT_LE(k2, 5.0f + 1e-2f) << c.name << ": k2 at " << x << "," << y;
+      const float k_yz = at(0, 3);
+      ASSERT_TRUE(std::isfinite(k_yz)) << c.name << ": multi-scattering LUT Q_yz at " << x << "," << y;
+      EXPECT_LE(std::abs(k_yz), 3.75f + slack) << c.name << ": Q_yz at " << x << "," << y;
       for (int ch = 0; ch < 3; ++ch) {
-        const float log_c0 = at(0, ch), c1 = at(1, ch), upper = at(2, ch);
-        ASSERT_TRUE(std::isfinite(log_c0) && std::isfinite(c1) && std::isfinite(upper))
-            << c.name << ": multi-scattering LUT texel " << x << "," << y;
+        const float log_c0 = at(0, ch), a_z = at(1, ch), a_y = at(2, ch), k_yy = at(3, ch), k_zz = at(1 + ch, 3),
+                    upper = at(4, ch);
+        for (float v : {log_c0, a_z, a_y, k_yy, k_zz, upper})
+          ASSERT_TRUE(std::isfinite(v)) << c.name << ": multi-scattering LUT texel " << x << "," << y;
         // c0 itself fits the half floats of the LUTs that use it.
         EXPECT_LE(log_c0, std::log(half_max)) << c.name << ": c0 at " << x << "," << y;
         EXPECT_GE(upper, 0.0f) << c.name << ": multi-scattering LUT irradiance at " << x << "," << y;
         EXPECT_LE(upper, 4.0f + 1e-4f) << c.name << ": irradiance at " << x << "," << y;
-        EXPECT_LE(std::abs(c1), 3.0f + 1e-4f) << c.name << ": c1 at " << x << "," << y;
+        EXPECT_LE(std::abs(a_z), 3.0f + 1e-4f) << c.name << ": a_z at " << x << "," << y;
+        EXPECT_LE(std::abs(a_y), 3.0f + 1e-4f) << c.name << ": a_y at " << x << "," << y;
+        for (float k : {k_zz, k_yy}) {
+          EXPECT_GE(k, -2.5f - slack) << c.name << ": Q_zz or Q_yy at " << x << "," << y;
+          EXPECT_LE(k, 5.0f + slack) << c.name << ": Q_zz or Q_yy at " << x << "," << y;
+        }
       }
     }
 }

@@ -63,7 +63,7 @@ struct Atmosphere {
   SkyMethod method = SkyMethod::lut;
   Quality quality = Quality::high;
   int transmittance_width = 256, transmittance_height = 64, transmittance_steps = 40;
-  int multiscattering_size = 32, multiscattering_steps = 20;
+  int multiscattering_size = 48, multiscattering_steps = 30;
   // Orders solved on the LUT after Hillaire's estimate (0: the paper's geometric series alone).
   int multiscattering_iterations = 2;
   int sky_view_width = 192, sky_view_height = 108, sky_view_steps = 30;

@@ -58,6 +58,11 @@ bool sky_view_differs(const GpuUniforms& a, const GpuUniforms& b);
 // True when they need a different aerial-perspective volume (it follows the view: any change).
 bool aerial_perspective_differs(const GpuUniforms& a, const GpuUniforms& b);
 
+// Layers of the multi-scattering LUT, side by side (multiscattering_lut.comp, common.glsl): the mean
+// light arriving at a point, its dipole and quadrupole in the point's frame (z up, y towards the
+// sun's azimuth) in the next three, and the ground's sky light.
+inline constexpr int kMultiscatteringLayers = 5;
+
 // LUTs and the uniform buffer of one world (a world resource, so GL objects live with the world).
 struct AtmosphereGpu {
   static constexpr std::string_view kTypeName = "atmosphere.Gpu";
@@ -70,7 +75,8 @@ struct AtmosphereGpu {
   GpuUniforms uniforms;      // as last uploaded
   GpuUniforms lut_uniforms;  // what the persistent LUTs were built from
   bool luts_valid = false;
-  int lut_builds = 0;  // transmittance + multi-scattering regenerations (tests, stats)
+  int lut_builds = 0;       // transmittance + multi-scattering regenerations (tests, stats)
+  int lut_cache_reads = 0;  // the same, read from the disk cache instead
   // The per-frame LUTs are kept while nothing they depend on changed (a still camera, a still sun):
   // reusing them is exact, not an approximation.
   GpuUniforms sky_view_uniforms, aerial_uniforms;
