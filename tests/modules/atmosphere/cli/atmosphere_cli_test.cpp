@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "cli_run.h"
+#include "welkin/gfx/image.h"
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -208,6 +209,25 @@ TEST(AtmosphereCli, AccuracyWritesTheTolerancesItMeasured) {
   CliRun check = run(run_low + "--check --tolerances " + written.string() + " --out " + out.string());
   EXPECT_EQ(check.code, 0) << check.out;
   EXPECT_NE(check.out.find("0 of 9 limits exceeded"), std::string::npos) << check.out;
+}
+
+// `--panorama` draws the whole sky against the path tracer: one PNG per sun elevation, the three
+// panels stacked (8-pixel cells, 4-pixel gaps), and its figures; a sun out of range or a grid over
+// the bound is one error naming the option.
+TEST(AtmosphereCli, PanoramaAgainstThePathTracer) {
+  const fs::path out = tmp("panorama");
+  CliRun r = run("accuracy atmosphere --panorama=-6,10 --panorama-size 3x2 --panorama-paths 4096 --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  for (const char* f : {"panorama-sun-6.png", "panorama-sun+10.png"}) {
+    ASSERT_TRUE(fs::exists(out / f)) << f;
+    const welkin::ImageU8 img = welkin::read_png((out / f).string());
+    EXPECT_EQ(img.width, 3 * 8) << f;
+    EXPECT_EQ(img.height, 3 * 2 * 8 + 2 * 4) << f;
+  }
+  EXPECT_NE(r.out.find("panorama, sun -6 deg (3x2 rays"), std::string::npos) << r.out;
+  expect_one_line_error(run("accuracy atmosphere --panorama=-30 --out " + out.string()), "--panorama", "-18 to 90");
+  expect_one_line_error(run("accuracy atmosphere --panorama 0 --panorama-size 1000x1 --out " + out.string()),
+                        "--panorama-size", "360x90");
 }
 
 }  // namespace
