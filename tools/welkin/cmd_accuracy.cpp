@@ -64,21 +64,27 @@ Band band_of(const ref::ProbeGeometry& g) {
          : sun_elevation >= -9.0 ? Band::twilight
                                  : Band::nautical;
 }
-const char* band_name(Band b) {
+// Each band's name in tables and tolerance files, and in the CSV's column names.
+struct BandNames {
+  const char* name;
+  const char* column;
+};
+BandNames band_names(Band b) {
   switch (b) {
     case Band::day:
-      return "sun>=3";
+      return {"sun>=3", "sun_ge_3"};
     case Band::horizon:
-      return "sun=0";
+      return {"sun=0", "sun_0"};
     case Band::dusk:
-      return "sun=-3";
+      return {"sun=-3", "sun_m3"};
     case Band::twilight:
-      return "sun=-6";
+      return {"sun=-6", "sun_m6"};
     case Band::nautical:
-      return "sun=-12";
+      return {"sun=-12", "sun_m12"};
   }
-  return "?";
+  return {"?", "?"};
 }
+const char* band_name(Band b) { return band_names(b).name; }
 
 // Below this radiance (1/sr for sun illuminance 1; a clear day's sky is 0.01 to 0.1) a channel is
 // black for every purpose, and a relative error there measures nothing.
@@ -516,17 +522,11 @@ int run_accuracy(const AccuracyOptions& options) {
   std::ostringstream csv;
   csv << "method,quality,steps,frame_size,atmosphere_ms,sky_pass_ms,frame_ms,copy_ms,all_orders_rel_rmse_sun_ge_0,"
          "all_orders_max_sun_ge_0";
-  // Column names per band: sun>=3 -> sun_ge_3, sun=-6 -> sun_m6.
-  auto column = [](Band b) {
-    std::string n = band_name(b);
-    n.replace(0, 3, "sun_");
-    if (n.rfind("sun_>=", 0) == 0) n = "sun_ge_" + n.substr(6);
-    if (n.rfind("sun_=-", 0) == 0) n = "sun_m" + n.substr(6);
-    if (n.rfind("sun_=", 0) == 0) n = "sun_" + n.substr(5);
-    return n;
-  };
   for (const char* orders : {"all_orders", "single"})
-    for (Band b : kBands) csv << "," << orders << "_rel_rmse_" << column(b) << "," << orders << "_max_" << column(b);
+    for (Band b : kBands) {
+      const char* column = band_names(b).column;
+      csv << "," << orders << "_rel_rmse_" << column << "," << orders << "_max_" << column;
+    }
   csv << "\n";
   for (ConfigResult& r : results) {
     csv << method_name(r.config.method) << "," << quality_name(r.config.quality) << ",\"" << r.steps << "\","
