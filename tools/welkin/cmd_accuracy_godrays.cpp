@@ -111,7 +111,7 @@ int run_god_ray_accuracy(const GodRayAccuracyOptions& o) {
   for (int d : {4, 2})
     for (int steps : o.quick ? std::vector<int>{16} : std::vector<int>{8, 16, 32}) configs.push_back({"marched", d, steps});
   for (int d : {8, 4})
-    for (int taps : o.quick ? std::vector<int>{16} : std::vector<int>{16, 32}) configs.push_back({"screen_space", d, taps});
+    for (int taps : o.quick ? std::vector<int>{16} : std::vector<int>{8, 16, 32}) configs.push_back({"screen_space", d, taps});
 
   std::ostringstream csv;
   csv << "method,resolution_divisor,steps,godrays_ms,copy_ms,ratio_to_copy,shaft_relative_rmse,worst_block,image_relative_rmse\n";

@@ -92,9 +92,11 @@ void shafts_system(SystemContext& sc) {
   const FrameTargets t = *sc.targets;
   RenderGraph& g = *sc.graph;
   auto loss = std::make_shared<ResourceHandle>();
+  glm::ivec2 loss_size(1);
   if (shafts) {
     const int d = std::max(rays->resolution_divisor, 1);
     const int w = std::max((view.width + d - 1) / d, 1), h = std::max((view.height + d - 1) / d, 1);
+    loss_size = {w, h};
     const MarchSteps march = march_steps(rays->steps);
     // Counts are compiled in: llvmpipe runs a loop of run-time length for its whole group of pixels.
     const ShaderDefines defines = {
@@ -152,7 +154,12 @@ void shafts_system(SystemContext& sc) {
       loss = filtered;
     }
   }
-  const ShaderDefines apply_defines = {{"GODRAYS_SHAFTS", shafts ? "1" : "0"}, {"GODRAYS_HAZE", with_haze}};
+  // The screen-space shafts alone are drawn tile by tile, skipping the tiles they leave unchanged
+  // (apply.vert): they are zero wherever no tap toward the sun meets geometry. The marched shafts
+  // are nowhere zero under broken cloud, and their tiles cost 1.56 ms against the triangle's 1.08.
+  const bool tiles = shafts && !haze && rays->method == ShaftMethod::screen_space;
+  const ShaderDefines apply_defines = {
+      {"GODRAYS_SHAFTS", shafts ? "1" : "0"}, {"GODRAYS_HAZE", with_haze}, {"GODRAYS_TILES", tiles ? "1" : "0"}};
   g.add_pass(
       "godrays.apply",
       [&](PassBuilder& b) {
@@ -161,7 +168,7 @@ void shafts_system(SystemContext& sc) {
         b.read(t.color);
         b.write(t.color);
       },
-      [&rc, &world, t, loss, shafts, haze_on = haze != nullptr, apply_defines, set_common,
+      [&rc, &world, t, loss, shafts, tiles, loss_size, haze_on = haze != nullptr, apply_defines, set_common,
        sun_direction = sun.value_or(glm::vec3(0.0f, 0.0f, 1.0f))](PassContext& pc) {
         Framebuffer fb(&pc.texture(t.color), nullptr);
         fb.bind();
@@ -185,7 +192,13 @@ void shafts_system(SystemContext& sc) {
           set_common(p, 0.0f);
           p.set("u_sun_direction", sun_direction);
         }
-        rc.draw_fullscreen_triangle();
+        if (tiles) {
+          const glm::ivec2 count = (loss_size + kApplyTileTexels - 1) / kApplyTileTexels;
+          glBindVertexArray(rc.empty_vao.id());
+          glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, count.x * count.y);
+        } else {
+          rc.draw_fullscreen_triangle();
+        }
         glBlendEquation(GL_FUNC_ADD);
         glDisable(GL_BLEND);
       });

@@ -13,6 +13,8 @@ void shafts_system(SystemContext& sc);
 // The marched shafts look the air up at the ends of `segments` equal segments and sample the shadow
 // `substeps` times in each: `steps` rounded up to a whole number of segments of (at most) four samples.
 inline constexpr int kSubsteps = 4;
+// The shafts' application skips tiles of this many texels square where they are zero (apply.vert).
+inline constexpr int kApplyTileTexels = 8;
 struct MarchSteps {
   int segments, substeps;
 };

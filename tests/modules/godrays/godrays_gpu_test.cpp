@@ -251,7 +251,9 @@ namespace {
 
 // The valley at sunset looking into the low sun under cumulus (assets/scenes/godrays-sunset.json),
 // or at noon, with the god rays' method set, rendered alone at a small size.
-ImageU8 valley(const std::string& method, double local_time_h, bool haze = false) {
+// The godrays-sunset scene at 160x90 with the given shafts ("" for none) and a haze of the given
+// density (negative for none).
+ImageU8 valley(const std::string& method, double local_time_h, double haze_density = -1.0) {
   gl_context().make_current();
   World world;
   for (const ModuleDefinition* m : {&modules::atmosphere_module(), &modules::terrain_module(), &modules::timeofday_module(),
@@ -261,10 +263,14 @@ ImageU8 valley(const std::string& method, double local_time_h, bool haze = false
   for (auto& e : doc["entities"]) {  // the scene names the terrain relative to the repository root
     json& c = e["components"];
     if (c.contains("terrain.Terrain")) c["terrain.Terrain"]["file"] = WELKIN_SOURCE_DIR "/assets/terrain/valley.glb";
-    if (c.contains("godrays.GodRays")) c["godrays.GodRays"]["method"] = method;
+    if (c.contains("godrays.GodRays")) {
+      if (method.empty()) c.erase("godrays.GodRays");
+      else c["godrays.GodRays"]["method"] = method;
+    }
     if (c.contains("timeofday.TimeOfDay")) c["timeofday.TimeOfDay"]["local_time_h"] = local_time_h;
   }
-  if (haze) doc["entities"].push_back({{"name", "haze"}, {"components", {{"godrays.Haze", {{"density_per_m", 1e-4}}}}}});
+  if (haze_density >= 0.0)
+    doc["entities"].push_back({{"name", "haze"}, {"components", {{"godrays.Haze", {{"density_per_m", haze_density}}}}}});
   load_scene(world, doc, "godrays-sunset.json");
   Renderer r(world);
   r.render_frame({.index = 1, .alone = true}, 160, 90);
@@ -281,8 +287,23 @@ TEST(GodRaysGolden, EachPathAtSunsetAndNoon) {
     const auto res = welkin::testing::compare_with_golden(valley(method, hour), name, tolerance);
     EXPECT_TRUE(res.passed) << name << ": " << res.message;
   }
-  const auto res = welkin::testing::compare_with_golden(valley("marched", 20.6, true), "godrays/sunset_haze", tolerance);
+  const auto res = welkin::testing::compare_with_golden(valley("marched", 20.6, 1e-4), "godrays/sunset_haze", tolerance);
   EXPECT_TRUE(res.passed) << "godrays/sunset_haze: " << res.message;
+}
+
+// Without haze the screen-space shafts are applied tile by tile, skipping tiles where they are zero;
+// with a haze of density 0 (which changes nothing) the application covers the whole screen. Both
+// must give the same frame, and it must differ from the frame without shafts.
+TEST(GodRays, TheScreenSpaceTilesLeaveTheFrameAsTheWholeScreenDoes) {
+  const ImageU8 tiled = valley("screen_space", 20.6), whole = valley("screen_space", 20.6, 0.0), none = valley("", 20.6);
+  ASSERT_EQ(tiled.rgba.size(), whole.rgba.size());
+  int differing = 0, shafted = 0;
+  for (size_t i = 0; i < tiled.rgba.size(); ++i) {
+    differing += std::abs(int(tiled.rgba[i]) - int(whole.rgba[i])) > 1;
+    shafted += tiled.rgba[i] != none.rgba[i];
+  }
+  EXPECT_EQ(differing, 0);
+  EXPECT_GT(shafted, int(tiled.rgba.size() / 20)) << "the shafts change at least 5% of the channels";
 }
 
 }  // namespace
