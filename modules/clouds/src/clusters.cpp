@@ -189,13 +189,15 @@ void clusters_system(SystemContext& sc) {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, c.order->id());
         if (mesh) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, c.proxy->id());
         glBindTextureUnit(3, pc.texture(t.depth).id());
-        const Program& p = rc.shaders.graphics("clouds/puff.vert", "clouds/puff.frag", {{"PUFF_PROXY_MESH", mesh ? "1" : "0"}});
+        // The sample count is compiled in: llvmpipe runs a loop of run-time length for its whole group
+        // of pixels, and unrolls one of fixed length.
+        const Program& p = rc.shaders.graphics("clouds/puff.vert", "clouds/puff.frag",
+                                               {{"PUFF_PROXY_MESH", mesh ? "1" : "0"}, {"PUFF_SAMPLES", std::to_string(samples)}});
         p.use();
         p.set("u_view_projection", rc.view.view_projection);
         p.set("u_inverse_view_projection", rc.view.inverse_view_projection);
         p.set("u_viewport", glm::vec2(targets->width, targets->height));
         p.set("u_light_dir", light_dir);
-        p.set("u_samples", samples);
         p.set("u_up_radius", glm::vec4(glm::vec3(gp->block.up), gp->block.planet.z));
         p.set("u_axis_wind", grid.axis_wind);
         p.set("u_axis_across", grid.axis_across);

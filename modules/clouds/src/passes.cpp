@@ -565,6 +565,12 @@ void clouds_system(SystemContext& sc) {
       });
 
   ResourceHandle result = (*current)[0];
+  // The mesh clusters (and billboards) drawn before the march lie behind it. At the march's resolution
+  // the resolve lays them in as it writes (a read at a quarter of the frame's pixels); otherwise the
+  // composite reads them at the frame's resolution.
+  ResourceHandle clusters = published("clouds.clusters");
+  const bool merge_clusters = temporal && clusters.valid() && sc.graph->resource_desc(clusters).width == w &&
+                              sc.graph->resource_desc(clusters).height == h;
   if (temporal) {
     const int write = gpu.history_index, read = 1 - write;
     const ResourceHandle out_color = g.import("clouds.history_color", *gpu.history_color[write]);
@@ -573,7 +579,9 @@ void clouds_system(SystemContext& sc) {
     const glm::mat4 previous_vp = gpu.previous_view_projection, inverse_vp = view.inverse_view_projection;
     const bool valid = gpu.history_valid;
     const float inside_cloud_m = 2.0f * gpu.block.steps.y;  // two of the shortest march steps
-    const ShaderDefines resolve_defines = {{"CLOUDS_CLIP", clouds->temporal_clipping ? "1" : "0"}};
+    const ShaderDefines resolve_defines = {{"CLOUDS_CLIP", clouds->temporal_clipping ? "1" : "0"},
+                                           {"CLOUDS_WITH_CLUSTERS", merge_clusters ? "1" : "0"}};
+    auto merged = std::make_shared<ResourceHandle>();
     g.add_pass(
         "clouds.resolve",
         [&](PassBuilder& b) {
@@ -581,16 +589,23 @@ void clouds_system(SystemContext& sc) {
           b.read((*current)[1]);
           b.read(history);
           b.write(out_color);
+          if (merge_clusters) {
+            b.read(clusters);
+            *merged = b.create("clouds.with_clusters", TextureDesc{.width = w, .height = h, .format = TextureFormat::rgba16f});
+          }
         },
         [&rc, current, out_color, history, offset, moved, previous_vp, inverse_vp, valid,
-         resolve_defines, inside_cloud_m, partial, n](PassContext& pc) {
-          Framebuffer fb(&pc.texture(out_color), nullptr);
+         resolve_defines, inside_cloud_m, partial, n, merge_clusters, clusters, merged](PassContext& pc) {
+          Framebuffer fb = merge_clusters ? Framebuffer({&pc.texture(out_color), &pc.texture(*merged)}, nullptr)
+                                          : Framebuffer(&pc.texture(out_color), nullptr);
           fb.bind();
           glDisable(GL_DEPTH_TEST);
           glDisable(GL_BLEND);
+          glBlendFunc(GL_ONE, GL_ZERO);  // no second source colour while several buffers are drawn
           glBindTextureUnit(0, pc.texture((*current)[0]).id());
           glBindTextureUnit(1, pc.texture((*current)[1]).id());
           glBindTextureUnit(2, pc.texture(history).id());
+          if (merge_clusters) glBindTextureUnit(3, pc.texture(clusters).id());
           const Program& p = rc.shaders.graphics("fullscreen.vert", "clouds/resolve.frag", resolve_defines);
           p.use();
           glProgramUniform2i(p.id(), p.location("u_offset"), offset.x, offset.y);
@@ -603,7 +618,8 @@ void clouds_system(SystemContext& sc) {
           p.set("u_inside_cloud_m", inside_cloud_m);
           rc.draw_fullscreen_triangle();
         });
-    result = out_color;
+    result = merge_clusters ? *merged : out_color;
+    if (merge_clusters) clusters = {};
     gpu.history_index = read;
     gpu.history_valid = true;
   } else {
@@ -612,8 +628,6 @@ void clouds_system(SystemContext& sc) {
   gpu.previous_view_projection = view.view_projection;
   gpu.previous_camera_m = view.camera_position_m;
 
-  // The mesh clusters drawn before the march lie behind it: laid over the frame in the same pass.
-  const ResourceHandle clusters = published("clouds.clusters");
   g.add_pass(
       "clouds.composite",
       [&](PassBuilder& b) {

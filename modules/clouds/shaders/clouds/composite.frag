@@ -1,7 +1,8 @@
 // Lays the clouds over the frame: the march (at a fraction of the frame's resolution, upsampled
 // bilinearly: colour is premultiplied, so filtering it is exact) as colour + transmittance x behind,
 // and with CLOUDS_WITH_CLUSTERS the mesh clusters behind it (premultiplied, opacity in alpha):
-// march + T (clusters + (1 - opacity) behind), which the blend (one, source alpha) computes.
+// march + T (clusters + (1 - opacity) behind), which the blend (one, source alpha) computes. Where
+// the temporal resolve ran at the clusters' resolution it has laid them in already (resolve.frag).
 in vec2 v_ndc;
 layout(location = 0, index = 0) out vec4 o_color;
 layout(binding = 0) uniform sampler2D u_clouds;

@@ -5,7 +5,7 @@
 // taken at samples stratified by opacity (each stands for an equal share of what the puff hides),
 // each lit like a sample of the march (clouds/light_model.glsl) with the optical depth toward the
 // light through the puff itself and through the cluster's other puffs (found at its centre and
-// across it, interpolated).
+// across it, interpolated). PUFF_SAMPLES: the light's samples per pixel.
 #include "clouds/density.glsl"
 #include "clouds/phase.glsl"
 #include "clouds/light_model.glsl"
@@ -15,7 +15,6 @@ layout(binding = 3) uniform sampler2D u_depth;  // the scene's (reversed Z; 0 = 
 uniform mat4 u_inverse_view_projection;         // camera-relative
 uniform vec2 u_viewport;
 uniform vec3 u_light_dir;
-uniform int u_samples;
 in vec3 v_position;
 flat in int v_puff;
 flat in vec4 v_base_plane;  // up at the puff; w: the camera's height above the cluster's base (m)
@@ -66,7 +65,7 @@ void main() {
   vec3 light_local = puff_direction(u_light_dir, radii.xyz);
   float light_a = max(dot(light_local, light_local), 1e-30);
   vec3 source = vec3(0.0);
-  int n = u_samples;
+  const int n = PUFF_SAMPLES;
   for (int k = 0; k < n; ++k) {
     // The sample that hides the k-th equal share of the puff's opacity.
     float share = (float(k) + 0.5) / float(n) * opacity;

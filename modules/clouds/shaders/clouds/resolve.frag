@@ -4,9 +4,16 @@
 // so that what moved or appeared does not leave ghosts. CLOUDS_CLIP 0 keeps plain reprojection
 // (for the ghosting comparison of `welkin accuracy clouds`). Where the ray starts inside a cloud (the
 // camera in it) nothing is reprojected: the history there would smear the cloud around the camera.
+// CLOUDS_WITH_CLUSTERS: the mesh clusters, drawn at this resolution, are also laid behind the result
+// in a second target (march + T x clusters) for the composite, which then reads one texture at the
+// frame's resolution instead of two; the history stays the march alone.
 #include "welkin/view.glsl"
 in vec2 v_ndc;
-out vec4 o_color;
+layout(location = 0) out vec4 o_color;
+#if CLOUDS_WITH_CLUSTERS
+layout(location = 1) out vec4 o_with_clusters;
+layout(binding = 3) uniform sampler2D u_clusters;  // premultiplied, opacity in alpha
+#endif
 layout(binding = 0) uniform sampler2D u_current;           // one pixel per block: colour, transmittance
 layout(binding = 1) uniform sampler2D u_current_distance;  // one pixel per block: mean and first cloud distance (m)
 layout(binding = 2) uniform sampler2D u_history;           // the last result at the march resolution
@@ -19,18 +26,11 @@ uniform int u_history_valid;
 uniform int u_full_frame;  // every pixel was marched this frame (no history yet): taken as it is
 uniform float u_inside_cloud_m;  // a first cloud sample closer than this: the camera is in the cloud
 
-void main() {
-  ivec2 pixel = ivec2(gl_FragCoord.xy);
+vec4 resolved(ivec2 pixel) {
   ivec2 block = pixel / u_block;
   ivec2 current_size = textureSize(u_current, 0);
-  if (u_full_frame == 1) {
-    o_color = texelFetch(u_current, pixel, 0);
-    return;
-  }
-  if (all(equal(pixel % u_block, u_offset))) {
-    o_color = texelFetch(u_current, block, 0);
-    return;
-  }
+  if (u_full_frame == 1) return texelFetch(u_current, pixel, 0);
+  if (all(equal(pixel % u_block, u_offset))) return texelFetch(u_current, block, 0);
   // The neighbourhood of fresh samples around this pixel: its range bounds the history.
   vec4 lo = vec4(1e30), hi = vec4(-1e30), nearest = vec4(0.0);
   float distance_m = 0.0, front_m = 0.0;
@@ -48,18 +48,12 @@ void main() {
       }
     }
   vec4 upsampled = texture(u_current, (fresh_pos + 0.5) / vec2(current_size));
-  if (u_history_valid == 0 || front_m < u_inside_cloud_m) {
-    o_color = upsampled;
-    return;
-  }
+  if (u_history_valid == 0 || front_m < u_inside_cloud_m) return upsampled;
   // Where this pixel's clouds were last frame, seen from last frame's camera.
   vec3 dir = view_ray_direction(u_inverse_view_projection, v_ndc);
   vec4 clip = u_previous_view_projection * vec4(dir * distance_m + u_camera_moved_m, 1.0);
   vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
-  if (clip.w <= 0.0 || any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) {
-    o_color = upsampled;
-    return;
-  }
+  if (clip.w <= 0.0 || any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return upsampled;
   // Where the camera did not move, the pixel lands on its own texel's centre up to rounding: that
   // texel is read as it is, or the history would be filtered again every frame and blur.
   vec2 texel = uv * vec2(textureSize(u_history, 0)) - 0.5;
@@ -70,5 +64,14 @@ void main() {
 #if CLOUDS_CLIP
   history = clamp(history, lo, hi);
 #endif
-  o_color = history;
+  return history;
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  o_color = resolved(pixel);
+#if CLOUDS_WITH_CLUSTERS
+  vec4 c = texelFetch(u_clusters, pixel, 0);
+  o_with_clusters = vec4(o_color.rgb + o_color.a * c.rgb, o_color.a * (1.0 - c.a));
+#endif
 }
