@@ -4,10 +4,15 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <memory>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "welkin/clouds/blue_noise.h"
 #include "welkin/clouds/gpu.h"
+#include "welkin/core/disk_cache.h"
 #include "welkin/core/error.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/compute.h"
@@ -366,20 +371,72 @@ bool upload_frame(World& world, const SystemContext& sc, const VolumetricClouds&
 
 }  // namespace
 
-void ensure_noise(World& world, int seed) {
-  auto& gpu = world.resource<CloudsGpu>();
-  if (gpu.noise_seed == seed) return;
-  auto& rc = world.resource<RenderContext>();
-  ensure_texture(gpu.shape, {.width = kShapeNoiseSize, .height = kShapeNoiseSize, .depth = kShapeNoiseSize,
-                             .format = TextureFormat::rgba8, .clamp = false, .mipmaps = true});
+namespace {
+
+// Bump when the C++ that finishes the volumes (equalise, pack_turbulence, void_and_cluster) changes:
+// the cache's key holds the shaders' sources, not this code.
+constexpr int kNoiseCacheVersion = 1;
+
+// Level 0 of each volume, 8-bit, as the march reads it, and the blue noise: what the disk cache holds.
+struct NoiseBytes {
+  std::vector<uint8_t> shape, detail, weather, systems;
+  std::vector<float> blue;
+};
+constexpr size_t kShapeBytes = size_t(kShapeNoiseSize) * kShapeNoiseSize * kShapeNoiseSize * 4;
+constexpr size_t kDetailBytes = size_t(kDetailNoiseSize) * kDetailNoiseSize * kDetailNoiseSize;
+constexpr size_t kWeatherBytes = size_t(kWeatherNoiseSize) * kWeatherNoiseSize * kWeatherNoiseSize * 4;
+constexpr size_t kSystemsBytes = size_t(kSystemsNoiseSize) * kSystemsNoiseSize * kSystemsNoiseSize;
+constexpr size_t kBlueBytes = size_t(kBlueNoiseSize) * kBlueNoiseSize * sizeof(float);
+
+// The noise is a pure function of the seed, the sizes, the generating shaders, this code's version
+// and the GL implementation that runs them: all of it is the disk cache's key.
+std::string noise_key(const ShaderLibrary& shaders, int seed) {
+  std::string key = "welkin clouds: noise volumes, version " + std::to_string(kNoiseCacheVersion) + ", seed " +
+                    std::to_string(seed) + ", sizes " + std::to_string(kShapeNoiseSize) + " " + std::to_string(kDetailNoiseSize) +
+                    " " + std::to_string(kWeatherNoiseSize) + " " + std::to_string(kSystemsNoiseSize) + " " +
+                    std::to_string(kBlueNoiseSize) + "\n";
+  for (GLenum name : {GL_VENDOR, GL_RENDERER, GL_VERSION}) {
+    const GLubyte* text = glGetString(name);
+    key += text ? reinterpret_cast<const char*>(text) : "?";
+    key += "\n";
+  }
+  for (const char* kind : {"0", "1", "2", "3", "4"}) key += shaders.preprocess("clouds/noise.comp", {{"CLOUDS_NOISE", kind}}).text;
+  return key;
+}
+
+std::optional<NoiseBytes> load_noise(const DiskCache& cache, const std::string& key) {
+  auto bytes = cache.read(key, kShapeBytes + kDetailBytes + kWeatherBytes + kSystemsBytes + kBlueBytes);
+  if (!bytes) return std::nullopt;
+  NoiseBytes n;
+  auto at = bytes->begin();
+  for (auto [v, size] : {std::pair{&n.shape, kShapeBytes}, {&n.detail, kDetailBytes}, {&n.weather, kWeatherBytes}, {&n.systems, kSystemsBytes}}) {
+    v->assign(at, at + std::ptrdiff_t(size));
+    at += std::ptrdiff_t(size);
+  }
+  n.blue.resize(size_t(kBlueNoiseSize) * kBlueNoiseSize);
+  std::memcpy(n.blue.data(), &*at, kBlueBytes);
+  return n;
+}
+
+void store_noise(const DiskCache& cache, const std::string& key, const NoiseBytes& n) {
+  std::string bytes;
+  for (const auto* v : {&n.shape, &n.detail, &n.weather, &n.systems}) bytes.append(v->begin(), v->end());
+  bytes.append(reinterpret_cast<const char*>(n.blue.data()), kBlueBytes);
+  cache.write(key, bytes);
+}
+
+std::vector<uint8_t> read_volume(const Texture& volume, GLenum format, size_t size) {
+  std::vector<uint8_t> data(size);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTextureImage(volume.id(), 0, format, GL_UNSIGNED_BYTE, GLsizei(size), data.data());
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  return data;
+}
+
+// Generates the volumes on the GPU and finishes them (equalised, the curl packed into the shape).
+NoiseBytes generate_noise(RenderContext& rc, CloudsGpu& gpu, int seed) {
   // The curl field at the shape's size, packed into its gba below.
   Texture curl({.width = kShapeNoiseSize, .height = kShapeNoiseSize, .depth = kShapeNoiseSize, .format = TextureFormat::rgba16f});
-  ensure_texture(gpu.detail, {.width = kDetailNoiseSize, .height = kDetailNoiseSize, .depth = kDetailNoiseSize,
-                              .format = TextureFormat::r8, .clamp = false, .mipmaps = true});
-  ensure_texture(gpu.weather, {.width = kWeatherNoiseSize, .height = kWeatherNoiseSize, .depth = kWeatherNoiseSize,
-                               .format = TextureFormat::rgba8, .clamp = false, .mipmaps = true});
-  ensure_texture(gpu.systems, {.width = kSystemsNoiseSize, .height = kSystemsNoiseSize, .depth = kSystemsNoiseSize,
-                               .format = TextureFormat::r8, .clamp = false, .mipmaps = true});
   const std::pair<Texture*, const char*> volumes[] = {
       {gpu.shape.get(), "0"}, {gpu.detail.get(), "1"}, {gpu.weather.get(), "2"}, {&curl, "3"}, {gpu.systems.get(), "4"}};
   for (auto [texture, kind] : volumes) {
@@ -391,13 +448,58 @@ void ensure_noise(World& world, int seed) {
     dispatch_compute(p, g, g, g);
   }
   glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
-  const std::vector<uint8_t> weather = equalise(*gpu.weather, GL_RGBA, 4, 3);
+  NoiseBytes n;
+  n.weather = equalise(*gpu.weather, GL_RGBA, 4, 3);
   pack_turbulence(*gpu.shape, curl);
-  gpu.noise_facts = systems_facts(equalise(*gpu.systems, GL_RED, 1, 1), kSystemsNoiseSize);
+  n.systems = equalise(*gpu.systems, GL_RED, 1, 1);
+  n.shape = read_volume(*gpu.shape, GL_RGBA, kShapeBytes);
+  n.detail = read_volume(*gpu.detail, GL_RED, kDetailBytes);
+  n.blue = void_and_cluster(kBlueNoiseSize, uint32_t(seed));
+  ++gpu.noise_builds;
+  return n;
+}
+
+void upload_volume(Texture& volume, GLenum format, const std::vector<uint8_t>& data) {
+  const TextureDesc& d = volume.desc();
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage3D(volume.id(), 0, 0, 0, 0, d.width, d.height, d.depth, format, GL_UNSIGNED_BYTE, data.data());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+}
+
+}  // namespace
+
+void ensure_noise(World& world, int seed) {
+  auto& gpu = world.resource<CloudsGpu>();
+  if (gpu.noise_seed == seed) return;
+  auto& rc = world.resource<RenderContext>();
+  ensure_texture(gpu.shape, {.width = kShapeNoiseSize, .height = kShapeNoiseSize, .depth = kShapeNoiseSize,
+                             .format = TextureFormat::rgba8, .clamp = false, .mipmaps = true});
+  ensure_texture(gpu.detail, {.width = kDetailNoiseSize, .height = kDetailNoiseSize, .depth = kDetailNoiseSize,
+                              .format = TextureFormat::r8, .clamp = false, .mipmaps = true});
+  ensure_texture(gpu.weather, {.width = kWeatherNoiseSize, .height = kWeatherNoiseSize, .depth = kWeatherNoiseSize,
+                               .format = TextureFormat::rgba8, .clamp = false, .mipmaps = true});
+  ensure_texture(gpu.systems, {.width = kSystemsNoiseSize, .height = kSystemsNoiseSize, .depth = kSystemsNoiseSize,
+                               .format = TextureFormat::r8, .clamp = false, .mipmaps = true});
+  // Made before, by this program on this GL: read from the disk cache (on llvmpipe the generation is
+  // most of a cloudy scene's start-up: 3.7 s of the default demo's 6.9).
+  const DiskCache cache = DiskCache::from_environment();
+  const std::string key = cache.enabled() ? noise_key(rc.shaders, seed) : std::string();
+  std::optional<NoiseBytes> noise = cache.enabled() ? load_noise(cache, key) : std::nullopt;
+  if (noise) {
+    upload_volume(*gpu.shape, GL_RGBA, noise->shape);
+    upload_volume(*gpu.detail, GL_RED, noise->detail);
+    upload_volume(*gpu.weather, GL_RGBA, noise->weather);
+    upload_volume(*gpu.systems, GL_RED, noise->systems);
+    ++gpu.noise_cache_reads;
+  } else {
+    noise = generate_noise(rc, gpu, seed);
+    if (cache.enabled()) store_noise(cache, key, *noise);
+  }
+  gpu.noise_facts = systems_facts(noise->systems, kSystemsNoiseSize);
   ensure_texture(gpu.weather_maximum, {.width = kWeatherOccupancySize, .height = kWeatherOccupancySize, .depth = kWeatherOccupancySize,
                                        .format = TextureFormat::rgba8, .linear_filter = false, .clamp = false});
   glTextureSubImage3D(gpu.weather_maximum->id(), 0, 0, 0, 0, kWeatherOccupancySize, kWeatherOccupancySize, kWeatherOccupancySize,
-                      GL_RGBA, GL_UNSIGNED_BYTE, weather_maximum(weather, kWeatherNoiseSize).data());
+                      GL_RGBA, GL_UNSIGNED_BYTE, weather_maximum(noise->weather, kWeatherNoiseSize).data());
   // Far away a pixel spans many texels: the march reads coarser levels there instead of aliasing.
   // Between levels the nearer one is read, not a blend of two: a 3D trilinear read costs 16 texels
   // (twice a bilinear one), and on software rasterisers the march's texture reads are most of its cost.
@@ -405,12 +507,10 @@ void ensure_noise(World& world, int seed) {
     glGenerateTextureMipmap(t->id());
     glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
   }
-  const std::vector<float> blue = void_and_cluster(kBlueNoiseSize, uint32_t(seed));
   ensure_texture(gpu.blue_noise, {.width = kBlueNoiseSize, .height = kBlueNoiseSize, .format = TextureFormat::r32f,
                                   .linear_filter = false, .clamp = false});
-  glTextureSubImage2D(gpu.blue_noise->id(), 0, 0, 0, kBlueNoiseSize, kBlueNoiseSize, GL_RED, GL_FLOAT, blue.data());
+  glTextureSubImage2D(gpu.blue_noise->id(), 0, 0, 0, kBlueNoiseSize, kBlueNoiseSize, GL_RED, GL_FLOAT, noise->blue.data());
   gpu.noise_seed = seed;
-  ++gpu.noise_builds;
 }
 
 void add_light_term(World& world) {

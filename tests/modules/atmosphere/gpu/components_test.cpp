@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "cache_folder.h"
 #include "gpu_test_support.h"
 #include "welkin/atmosphere/presets.h"
 #include "welkin/core/error.h"
@@ -165,21 +166,7 @@ TEST(AtmosphereUniforms, QualityPresetsAndCustom) {
   EXPECT_EQ(q.aerial_perspective_slices, 32);
 }
 
-// Points the disk cache (core/disk_cache.h) elsewhere for one test ("": no cache), then back.
-class CacheFolder {
- public:
-  explicit CacheFolder(const std::string& folder) {
-    if (const char* v = std::getenv("WELKIN_CACHE_DIR")) saved_ = v;
-    ::setenv("WELKIN_CACHE_DIR", folder.c_str(), 1);
-  }
-  ~CacheFolder() {
-    if (saved_) ::setenv("WELKIN_CACHE_DIR", saved_->c_str(), 1);
-    else ::unsetenv("WELKIN_CACHE_DIR");
-  }
-
- private:
-  std::optional<std::string> saved_;
-};
+using welkin::testing::CacheFolder;
 
 TEST(AtmosphereLuts, RegeneratedOnlyWhenTheMediumChanges) {
   const CacheFolder no_cache("");

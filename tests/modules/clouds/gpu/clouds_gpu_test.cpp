@@ -3,7 +3,9 @@
 // the materials under them through the light environment, and the march converges as steps grow.
 #include <algorithm>
 #include <array>
+#include <filesystem>
 
+#include "cache_folder.h"
 #include "clouds_test_support.h"
 #include "validation/cloud_field.h"
 #include "welkin/gfx/light_environment.h"
@@ -53,6 +55,7 @@ TEST(CloudsGpu, ShadowsOnlyFromLayersThatCastThem) {
 }
 
 TEST(CloudsGpu, NoiseIsMadeOnceDeterministicFromTheSeedAndTileable) {
+  const welkin::testing::CacheFolder no_cache("");  // generated each time, not read back
   test::Rendered a = render(noon());
   a.frame(32, 18);
   a.frame(32, 18);
@@ -74,6 +77,34 @@ TEST(CloudsGpu, NoiseIsMadeOnceDeterministicFromTheSeedAndTileable) {
     for (int y = 0; y < n; ++y) across += std::abs(at(n - 1, y, z) - at(0, y, z)), inside += std::abs(at(n / 2, y, z) - at(n / 2 + 1, y, z));
   EXPECT_LT(across, 1.5 * inside);
   EXPECT_GT(inside, 0.0);
+}
+
+
+// A start that finds the noise in the disk cache reads it instead of generating it, and gets the
+// same volumes bit for bit, so the same frame; another seed is another key.
+TEST(CloudsGpu, NoiseReadFromTheDiskCacheBitForBit) {
+  const std::filesystem::path folder = std::filesystem::path(::testing::TempDir()) / "welkin-noise-cache";
+  std::filesystem::remove_all(folder);
+  const welkin::testing::CacheFolder cache(folder.string());
+  test::Rendered built = render(noon());
+  const auto& g1 = built.world->resource<CloudsGpu>();
+  EXPECT_EQ(g1.noise_builds, 1);
+  EXPECT_EQ(g1.noise_cache_reads, 0);
+  const NoiseVolumes generated = read_noise(g1);
+  const ImageF first = built.renderer->read_hdr();
+  test::Rendered read = render(noon());
+  const auto& g2 = read.world->resource<CloudsGpu>();
+  EXPECT_EQ(g2.noise_builds, 0);
+  EXPECT_EQ(g2.noise_cache_reads, 1);
+  const NoiseVolumes cached = read_noise(g2);
+  EXPECT_EQ(cached.shape, generated.shape);
+  EXPECT_EQ(cached.detail, generated.detail);
+  EXPECT_EQ(cached.weather, generated.weather);
+  EXPECT_EQ(cached.systems, generated.systems);
+  EXPECT_EQ(read.renderer->read_hdr().rgba, first.rgba);
+  test::Rendered other = render(noon({{"seed", 7}}));
+  EXPECT_EQ(other.world->resource<CloudsGpu>().noise_builds, 1);
+  std::filesystem::remove_all(folder);
 }
 
 TEST(CloudsGpu, WeatherChannelsAreEqualisedSoCoverageIsTheCoveredFraction) {

@@ -246,7 +246,8 @@ struct CloudsGpu {
   float coverage_map_raise = 0.0f;
   int noise_seed = -1;   // the seed the noise was made from (-1: none yet)
   NoiseFacts noise_facts;
-  int noise_builds = 0;  // how often the noise was generated (tests, stats)
+  int noise_builds = 0;       // how often the noise was generated (tests, stats)
+  int noise_cache_reads = 0;  // how often it was read from the disk cache instead
   std::unique_ptr<Buffer> frame_buffer, layer_buffer, shadow_buffer;
   size_t layer_capacity = 0;
   ShadowBlock shadow;    // as last uploaded (valid: origin[k].w = 1)
