@@ -77,6 +77,11 @@ GpuTerrain& TerrainCache::get(const Terrain& s) {
     glEnableVertexArrayAttrib(vao, a);
   }
   glVertexArrayElementBuffer(vao, gpu->indices.id());
+  // The GPU holds the geometry: only the chunks' bounds and levels stay on the CPU, freed before the
+  // images are uploaded so that the two copies never coexist.
+  gpu->mesh.positions = {}, gpu->mesh.normals = {};
+  gpu->mesh.uvs = {};
+  gpu->mesh.indices = {};
   for (const assets::Material& mat : model->materials) {
     GpuMaterial g;
     g.base_color_factor = mat.base_color_factor;
@@ -92,6 +97,10 @@ GpuTerrain& TerrainCache::get(const Terrain& s) {
   }
   gpu->materials.emplace_back();  // primitives without a material: glTF's default (white, rough, dielectric)
   gpu->materials.back().metallic = 0.0f;
+  // The decoded model leaves the asset cache now that its images are uploaded (a terrain built again
+  // with other settings reads the file again).
+  model.reset();
+  assets.evict_unused();
   slot = std::move(gpu);
   return *slot;
 }
