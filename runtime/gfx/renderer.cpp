@@ -80,7 +80,7 @@ FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height
     glDepthMask(GL_TRUE);
     glClearColor(0, 0, 0, 1);
     glClearDepth(0.0);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glClear(targets_copy->color_covered ? GL_DEPTH_BUFFER_BIT : GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   });
   graph.blackboard["scene_color"] = targets.color;
   graph.blackboard["scene_depth"] = targets.depth;

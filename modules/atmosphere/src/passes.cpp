@@ -411,6 +411,8 @@ void background_system(SystemContext& sc) {
                           (space || glm::dot(glm::vec3(u.sun_direction), camera_up) < 0.0f);
   StarsDraw stars_draw;
   if (draw_stars) stars_draw = prepare_stars(gpu, *stars, rc.view);
+  // The sky's first draw covers every pixel without blending: the frame's colour needs no clear.
+  sc.targets->color_covered = true;
   g.add_pass(
       "atmosphere.sky",
       [&](PassBuilder& b) {

@@ -30,7 +30,7 @@ struct SystemContext {
   World& world;
   FrameInfo frame;
   RenderGraph* graph = nullptr;         // render phase only
-  const FrameTargets* targets = nullptr;  // render phase only: the frame's colour/depth handles
+  FrameTargets* targets = nullptr;  // render phase only: the frame's colour/depth handles
   // Called with each system's name before it runs (the renderer tells its graph whose passes follow).
   std::function<void(const std::string&)> entering_system;
 };

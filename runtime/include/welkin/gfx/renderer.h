@@ -18,6 +18,9 @@ namespace welkin {
 struct FrameTargets {
   ResourceHandle color;  // RGBA16F linear radiance (scene-referred)
   ResourceHandle depth;  // depth32f, reversed Z (1 = near, 0 = infinity)
+  // Set by a system whose first pass writes every pixel of `color` without reading it (a sky): the
+  // frame's clear then clears only the depth (on llvmpipe the colour's clear is half of it).
+  bool color_covered = false;
 };
 
 // GL state shared by every render system of a world (a world resource).
