@@ -159,7 +159,8 @@ void shafts_system(SystemContext& sc) {
   // are nowhere zero under broken cloud, and their tiles cost 1.56 ms against the triangle's 1.08.
   const bool tiles = shafts && !haze && rays->method == ShaftMethod::screen_space;
   const ShaderDefines apply_defines = {
-      {"GODRAYS_SHAFTS", shafts ? "1" : "0"}, {"GODRAYS_HAZE", with_haze}, {"GODRAYS_TILES", tiles ? "1" : "0"}};
+      {"GODRAYS_SHAFTS", shafts ? "1" : "0"}, {"GODRAYS_HAZE", with_haze}, {"GODRAYS_TILES", tiles ? "1" : "0"},
+      {"GODRAYS_TILE_TEXELS", std::to_string(kApplyTileTexels)}};
   g.add_pass(
       "godrays.apply",
       [&](PassBuilder& b) {
