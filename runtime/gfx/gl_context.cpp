@@ -11,13 +11,15 @@
 
 namespace welkin {
 
-GlInfo GlContext::info() const {
+GlInfo current_gl_info() {
   auto str = [](GLenum e) {
     auto* s = reinterpret_cast<const char*>(glGetString(e));
     return std::string(s ? s : "?");
   };
   return GlInfo{str(GL_VENDOR), str(GL_RENDERER), str(GL_VERSION)};
 }
+
+GlInfo GlContext::info() const { return current_gl_info(); }
 
 namespace {
 

@@ -9,6 +9,7 @@
 #include "welkin/core/error.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/compute.h"
+#include "welkin/gfx/gl_context.h"
 #include "welkin/gfx/light_environment.h"
 #include "welkin/gfx/renderer.h"
 #include "welkin/scene/json_fields.h"
@@ -34,11 +35,7 @@ bool in_space(const GpuUniforms& u) {
 std::string persistent_lut_key(const ShaderLibrary& shaders, const GpuUniforms& u) {
   std::string key = "welkin atmosphere: transmittance and multi-scattering LUTs, " +
                     std::to_string(kMultiscatteringLayers) + " layers\n";
-  for (GLenum name : {GL_VENDOR, GL_RENDERER, GL_VERSION}) {
-    const GLubyte* text = glGetString(name);
-    key += text ? reinterpret_cast<const char*>(text) : "?";
-    key += "\n";
-  }
+  key += current_gl_info().key();
   key.append(reinterpret_cast<const char*>(&u), offsetof(GpuUniforms, camera_km));
   key.append(reinterpret_cast<const char*>(&u.transmittance_size), sizeof u.transmittance_size);
   key.append(reinterpret_cast<const char*>(&u.multiscattering_size), sizeof u.multiscattering_size);

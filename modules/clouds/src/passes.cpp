@@ -16,6 +16,7 @@
 #include "welkin/core/error.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/compute.h"
+#include "welkin/gfx/gl_context.h"
 #include "welkin/gfx/light_environment.h"
 #include "welkin/gfx/renderer.h"
 #include "welkin/scene/field_path.h"
@@ -51,15 +52,28 @@ CloudsContext read_context(World& world, const FrameInfo& frame) {
   return c;
 }
 
+// An 8-bit volume's level 0, read back or uploaded (`size` bytes, tightly packed).
+std::vector<uint8_t> read_volume(const Texture& volume, GLenum format, size_t size) {
+  std::vector<uint8_t> data(size);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTextureImage(volume.id(), 0, format, GL_UNSIGNED_BYTE, GLsizei(size), data.data());
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  return data;
+}
+
+void upload_volume(Texture& volume, GLenum format, const std::vector<uint8_t>& data) {
+  const TextureDesc& d = volume.desc();
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage3D(volume.id(), 0, 0, 0, 0, d.width, d.height, d.depth, format, GL_UNSIGNED_BYTE, data.data());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+}
+
 // Equalises the first `equalised` channels of an 8-bit volume (GL_RGBA: 4 channels, GL_RED: 1) to a
 // uniform distribution, so that a layer's coverage c covers a fraction c of the sky whatever the
 // noise's own histogram.
 std::vector<uint8_t> equalise(Texture& volume, GLenum format, int channels, int equalised) {
   const int n = volume.desc().width * volume.desc().height * volume.desc().depth;
-  std::vector<uint8_t> data(size_t(n) * size_t(channels));
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glGetTextureImage(volume.id(), 0, format, GL_UNSIGNED_BYTE, GLsizei(data.size()), data.data());
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  std::vector<uint8_t> data = read_volume(volume, format, size_t(n) * size_t(channels));
   for (int c = 0; c < equalised; ++c) {
     std::array<double, 256> histogram{};
     for (int i = 0; i < n; ++i) histogram[data[size_t(i) * size_t(channels) + size_t(c)]] += 1.0;
@@ -71,16 +85,14 @@ std::vector<uint8_t> equalise(Texture& volume, GLenum format, int channels, int 
     }
     for (int i = 0; i < n; ++i) data[size_t(i) * size_t(channels) + size_t(c)] = map[data[size_t(i) * size_t(channels) + size_t(c)]];
   }
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTextureSubImage3D(volume.id(), 0, 0, 0, 0, volume.desc().width, volume.desc().height, volume.desc().depth, format,
-                      GL_UNSIGNED_BYTE, data.data());
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  upload_volume(volume, format, data);
   return data;
 }
 
 // Packs the curl field into the shape volume's gba as 0.5 + 0.5 c, scaled so that its longest
 // vector has length 1 (the displacement setting is then the largest distance the noise moves).
-void pack_turbulence(Texture& shape, const Texture& curl) {
+// Returns the shape's texels as stored.
+std::vector<uint8_t> pack_turbulence(Texture& shape, const Texture& curl) {
   const TextureDesc& d = shape.desc();
   const size_t n = size_t(d.width) * size_t(d.height) * size_t(d.depth);
   std::vector<float> c(n * 4);
@@ -90,12 +102,12 @@ void pack_turbulence(Texture& shape, const Texture& curl) {
     longest = std::max(longest, std::sqrt(double(c[i * 4]) * c[i * 4] + double(c[i * 4 + 1]) * c[i * 4 + 1] +
                                           double(c[i * 4 + 2]) * c[i * 4 + 2]));
   if (!(longest > 0.0)) throw Error("clouds: the generated curl field is zero everywhere");
-  std::vector<uint8_t> texels(n * 4);
-  glGetTextureImage(shape.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(texels.size()), texels.data());
+  std::vector<uint8_t> texels = read_volume(shape, GL_RGBA, n * 4);
   for (size_t i = 0; i < n; ++i)
     for (size_t a = 0; a < 3; ++a)
       texels[i * 4 + 1 + a] = uint8_t(std::lround(std::clamp(127.5 + 127.5 * c[i * 4 + a] / longest, 0.0, 255.0)));
-  glTextureSubImage3D(shape.id(), 0, 0, 0, 0, d.width, d.height, d.depth, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
+  upload_volume(shape, GL_RGBA, texels);
+  return texels;
 }
 
 // What the weather systems need of their (equalised, R8) volume: the largest step
@@ -395,11 +407,7 @@ std::string noise_key(const ShaderLibrary& shaders, int seed) {
                     std::to_string(seed) + ", sizes " + std::to_string(kShapeNoiseSize) + " " + std::to_string(kDetailNoiseSize) +
                     " " + std::to_string(kWeatherNoiseSize) + " " + std::to_string(kSystemsNoiseSize) + " " +
                     std::to_string(kBlueNoiseSize) + "\n";
-  for (GLenum name : {GL_VENDOR, GL_RENDERER, GL_VERSION}) {
-    const GLubyte* text = glGetString(name);
-    key += text ? reinterpret_cast<const char*>(text) : "?";
-    key += "\n";
-  }
+  key += current_gl_info().key();
   for (const char* kind : {"0", "1", "2", "3", "4"}) key += shaders.preprocess("clouds/noise.comp", {{"CLOUDS_NOISE", kind}}).text;
   return key;
 }
@@ -425,14 +433,6 @@ void store_noise(const DiskCache& cache, const std::string& key, const NoiseByte
   cache.write(key, bytes);
 }
 
-std::vector<uint8_t> read_volume(const Texture& volume, GLenum format, size_t size) {
-  std::vector<uint8_t> data(size);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glGetTextureImage(volume.id(), 0, format, GL_UNSIGNED_BYTE, GLsizei(size), data.data());
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  return data;
-}
-
 // Generates the volumes on the GPU and finishes them (equalised, the curl packed into the shape).
 NoiseBytes generate_noise(RenderContext& rc, CloudsGpu& gpu, int seed) {
   // The curl field at the shape's size, packed into its gba below.
@@ -450,20 +450,12 @@ NoiseBytes generate_noise(RenderContext& rc, CloudsGpu& gpu, int seed) {
   glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
   NoiseBytes n;
   n.weather = equalise(*gpu.weather, GL_RGBA, 4, 3);
-  pack_turbulence(*gpu.shape, curl);
+  n.shape = pack_turbulence(*gpu.shape, curl);
   n.systems = equalise(*gpu.systems, GL_RED, 1, 1);
-  n.shape = read_volume(*gpu.shape, GL_RGBA, kShapeBytes);
   n.detail = read_volume(*gpu.detail, GL_RED, kDetailBytes);
   n.blue = void_and_cluster(kBlueNoiseSize, uint32_t(seed));
   ++gpu.noise_builds;
   return n;
-}
-
-void upload_volume(Texture& volume, GLenum format, const std::vector<uint8_t>& data) {
-  const TextureDesc& d = volume.desc();
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTextureSubImage3D(volume.id(), 0, 0, 0, 0, d.width, d.height, d.depth, format, GL_UNSIGNED_BYTE, data.data());
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
 }
 
 }  // namespace

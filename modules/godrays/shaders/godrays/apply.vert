@@ -13,7 +13,7 @@ flat out vec3 v_sun_irradiance;
 flat out vec3 v_sky_radiance;  // mean over the sphere of directions: (up + down irradiance) / 4 pi
 #endif
 #if GODRAYS_TILES
-layout(binding = 0) uniform sampler2D u_loss;  // the shafts, encoded (non-negative)
+layout(binding = 0) uniform sampler2D u_loss;  // the shafts (non-negative)
 const int kTileTexels = GODRAYS_TILE_TEXELS;  // kApplyTileTexels (src/shafts.h)
 
 // Quad corner gl_VertexID (a strip) of tile gl_InstanceID, in [0, 1]^2, or nothing to draw.

@@ -10,7 +10,11 @@ namespace welkin {
 
 struct GlInfo {
   std::string vendor, renderer, version;
+  // One line each: what results computed on this GL depend on (the disk cache's keys).
+  std::string key() const { return vendor + "\n" + renderer + "\n" + version + "\n"; }
 };
+// The current context's implementation.
+GlInfo current_gl_info();
 
 class GlContext {
  public:
