@@ -194,7 +194,8 @@ void billboards_system(SystemContext& sc) {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, bb.order->id());
         glBindTextureUnit(3, pc.texture(t.depth).id());
         glBindTextureUnit(4, volume ? bb.volume->id() : bb.atlas->id());
-        ShaderDefines d = {{"BILLBOARDS_RENDER_VOLUME", volume ? "1" : "0"}};
+        ShaderDefines d = light_model_defines(*gp);
+        d["BILLBOARDS_RENDER_VOLUME"] = volume ? "1" : "0";
         if (volume) d["BILLBOARDS_VOLUME"] = "4";
         const Program& p = rc.shaders.graphics("clouds/billboard.vert", "clouds/billboard.frag", d);
         p.use();

@@ -191,8 +191,10 @@ void clusters_system(SystemContext& sc) {
         glBindTextureUnit(3, pc.texture(t.depth).id());
         // The sample count is compiled in: llvmpipe runs a loop of run-time length for its whole group
         // of pixels, and unrolls one of fixed length.
-        const Program& p = rc.shaders.graphics("clouds/puff.vert", "clouds/puff.frag",
-                                               {{"PUFF_PROXY_MESH", mesh ? "1" : "0"}, {"PUFF_SAMPLES", std::to_string(samples)}});
+        ShaderDefines d = light_model_defines(*gp);
+        d["PUFF_PROXY_MESH"] = mesh ? "1" : "0";
+        d["PUFF_SAMPLES"] = std::to_string(samples);
+        const Program& p = rc.shaders.graphics("clouds/puff.vert", "clouds/puff.frag", d);
         p.use();
         p.set("u_view_projection", rc.view.view_projection);
         p.set("u_inverse_view_projection", rc.view.inverse_view_projection);

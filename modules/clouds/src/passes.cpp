@@ -174,9 +174,16 @@ void bind_field(const CloudsGpu& gpu) {
 // The density field's compile-time description (density.glsl): which layers there are and what each
 // uses, so that no shader carries code for a layer's unused noise or a map the scene lacks. Up to
 // CLOUDS_LOCAL_LAYERS layers; more are read with run-time checks.
+ShaderDefines light_model_defines(const CloudsGpu& gpu) {
+  return {{"CLOUDS_MULTIPLE_SCATTERING", gpu.block.light_model.x > 0.5f ? "1" : "0"},
+          {"CLOUDS_POWDER", gpu.block.light.z != 0.0f ? "1" : "0"},
+          {"CLOUDS_PHASE_MODEL", gpu.block.medium.z > 0.5f ? "1" : "0"}};
+}
+
 ShaderDefines field_defines(const CloudsGpu& gpu) {
   constexpr int kLocalLayers = 4;
-  ShaderDefines d = {{"CLOUDS_TURBULENCE", gpu.block.noise_mix.x > 0.0f ? "1" : "0"}};
+  ShaderDefines d = light_model_defines(gpu);
+  d["CLOUDS_TURBULENCE"] = gpu.block.noise_mix.x > 0.0f ? "1" : "0";
   if (gpu.clusters_layer >= 0 || gpu.billboards_layer >= 0) d["CLOUDS_HANDOVER"] = "1";
   const std::vector<LayerBlock>& layers = gpu.layers;
   if (layers.empty() || layers.size() > size_t(kLocalLayers)) return d;

@@ -115,7 +115,7 @@ void main() {
   float direct = exp(-tau), diffuse = clouds_diffuse_transmittance(tau);
   float phase_single = clouds_phase(mu, 1.0);
   Billboard b = bb_billboards[v_billboard];
-  vec3 source = cl_light_model.x > 0.5
+  vec3 source = clouds_diffusion_model
       ? clouds_diffusion_source(mu, phase_single, direct, diffuse, sigma * scale, max(height, 0.0), u_light_dir, v_up, b.light.rgb, b.sky.rgb)
       : clouds_sample_source(mu, phase_single, tau, sigma * scale, max(height, 0.0), u_light_dir, v_up,
                              b.light.rgb, b.sky.rgb);

@@ -10,7 +10,22 @@
 // transmittance exp(-tau), and the two-stream (diffuse) transmittance 1 / (1 + 0.15 tau). The source
 // is linear in both, so an average of sources over many samples is the source of their averages
 // (the billboards' atlas keeps those averages toward every direction).
+// CLOUDS_MULTIPLE_SCATTERING and CLOUDS_POWDER (src/passes.cpp, light_model_defines) compile the
+// model's choices in; undefined, they are read from the block.
 #include "clouds/transmittance.glsl"
+#ifdef CLOUDS_MULTIPLE_SCATTERING
+const bool clouds_diffusion_model = CLOUDS_MULTIPLE_SCATTERING == 1;
+#else
+#define clouds_diffusion_model (cl_light_model.x > 0.5)
+#endif
+
+// Schneider's beer-powder darkening of thin edges (cl_light.z = 0: off).
+float clouds_powder(float sigma_t) {
+#ifdef CLOUDS_POWDER
+  if (CLOUDS_POWDER == 0) return 1.0;
+#endif
+  return 1.0 - cl_light.z * exp(-2.0 * sigma_t * cl_light.x);
+}
 
 // The diffusion model's source from the two transmittances (see clouds_sample_source).
 vec3 clouds_diffusion_source(float mu, float phase_single, float direct, float diffuse, float sigma_t, float depth_below_m,
@@ -22,7 +37,7 @@ vec3 clouds_diffusion_source(float mu, float phase_single, float direct, float d
   float tau_below = sigma_t * depth_below_m;
   float reflected = 0.15 * tau_below / (1.0 + 0.15 * tau_below);
   float scattered = phase_single * direct + max(diffuse - 0.25 * direct, 0.0) * (1.0 + 0.5 * reflected) / (2.0 * CLOUDS_PI);
-  scattered *= 1.0 - cl_light.z * exp(-2.0 * sigma_t * cl_light.x);  // powder (0: off)
+  scattered *= clouds_powder(sigma_t);
   // Sky from above and the lit ground from below, diffused through the cloud: the two-stream
   // transmittance 1 / (1 + 0.75 (1 - g) tau) with g = 0.8, tau the optical depth toward the light
   // (no extra samples: on software rasterisers each density sample is most of a step's cost).
@@ -34,7 +49,7 @@ vec3 clouds_diffusion_source(float mu, float phase_single, float direct, float d
 
 vec3 clouds_sample_source(float mu, float phase_single, float tau, float sigma_t, float depth_below_m, vec3 l, vec3 up,
                           vec3 e_light, vec3 e_sky) {
-  if (cl_light_model.x > 0.5)
+  if (clouds_diffusion_model)
     return clouds_diffusion_source(mu, phase_single, exp(-tau), clouds_diffuse_transmittance(tau), sigma_t, depth_below_m, l, up,
                                    e_light, e_sky);
   // Wrenninge 2015: octave k scatters b^k of the light, sees a^k of the optical depth, and a
@@ -46,7 +61,7 @@ vec3 clouds_sample_source(float mu, float phase_single, float tau, float sigma_t
     scattered += weight * clouds_phase(mu, weight) * exp(-weight * tau);
     weight *= 0.5;
   }
-  scattered *= 1.0 - cl_light.z * exp(-2.0 * sigma_t * cl_light.x);  // powder (0: off)
+  scattered *= clouds_powder(sigma_t);
   float direct = exp(-tau);
   vec3 e_ground = cl_light.w * (e_light * max(dot(l, up), 0.0) * direct + e_sky);
   vec3 ambient = (e_sky + e_ground) * clouds_diffuse_transmittance(tau) / (2.0 * CLOUDS_PI);

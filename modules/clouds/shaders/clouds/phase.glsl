@@ -24,8 +24,15 @@ float clouds_droplet_mie(float mu, float d) {
 
 // The phase of octave k of the multiple-scattering approximation: anisotropy scaled by c^k
 // (Wrenninge 2015, c = 0.5), so higher orders scatter more evenly.
+// CLOUDS_PHASE_MODEL (src/passes.cpp, light_model_defines) compiles the model in; undefined, it is
+// read from the block.
 float clouds_phase(float mu, float octave_scale) {
-  if (cl_medium.z > 0.5) {
+#ifdef CLOUDS_PHASE_MODEL
+  const bool droplets = CLOUDS_PHASE_MODEL == 1;
+#else
+  bool droplets = cl_medium.z > 0.5;
+#endif
+  if (droplets) {
     // The droplet fit has no g to scale: blend it toward isotropic instead.
     return mix(1.0 / (4.0 * CLOUDS_PI), clouds_droplet_mie(mu, cl_medium.w), octave_scale);
   }
