@@ -2,6 +2,7 @@
 // they stand on and its scoring and choosing stages, the far-to-near sort, and the targets both
 // draw into before the march composites them.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "welkin/clouds/gpu.h"
@@ -103,20 +104,53 @@ void PlacementBuffers::choose(ShaderLibrary& shaders, const ShaderDefines& field
 }
 
 void sort_far_to_near(ShaderLibrary& shaders, int size) {
-  // Blocks of 1024 in shared memory, then each larger merge's wide steps across the buffer and its
-  // narrow ones in shared memory again.
+  // Blocks of up to 1024 in shared memory, then each larger merge's wide steps across the buffer and
+  // its narrow ones in shared memory again. The shared-memory steps are compiled in as a list.
+  if (size < 2) return;
+  const int block = std::min(size, 1024), block_bits = std::countr_zero(unsigned(block));
+  // Pairs per invocation in the shared-memory steps (clusters_sort.comp): 2^bits of them.
+  const int bits = std::min(4, block_bits);
+  // The steps (k, bit of j) in order, grouped in rounds whose bits fall in one window.
+  auto rounds = [&](bool whole_sort) {
+    std::vector<std::pair<std::string, int>> steps;
+    if (whole_sort) {
+      for (int k = 2; k <= block; k *= 2)
+        for (int g = std::countr_zero(unsigned(k)) - 1; g >= 0; --g) steps.emplace_back(std::to_string(k), g);
+    } else {
+      for (int g = block_bits - 1; g >= 0; --g) steps.emplace_back("u_k", g);  // a larger merge's narrow steps
+    }
+    std::string list;
+    int low = -1;
+    for (const auto& [k, g] : steps) {
+      const int window = std::min(g / bits * bits, block_bits - bits);
+      if (window != low) {
+        if (low >= 0) list += "SORT_ROUND_END(" + std::to_string(low) + ") ";
+        low = window;
+        list += "SORT_ROUND_BEGIN(" + std::to_string(low) + ") ";
+      }
+      list += "SORT_STEP(" + k + ", " + std::to_string(low) + ", " + std::to_string(g - low) + ") ";
+    }
+    return list + "SORT_ROUND_END(" + std::to_string(low) + ")";
+  };
   auto sort_pass = [&](int mode, int k, int j, int groups) {
-    const Program& p = shaders.compute("clouds/clusters_sort.comp", {{"CLUSTERS_SORT_MODE", std::to_string(mode)}});
+    ShaderDefines d = {{"CLUSTERS_SORT_MODE", std::to_string(mode)}};
+    if (mode != 2) {
+      d["CLUSTERS_SORT_BLOCK"] = std::to_string(block);
+      d["CLUSTERS_SORT_BITS"] = std::to_string(bits);
+      d["CLUSTERS_SORT_PER"] = std::to_string(1 << bits);
+      d["CLUSTERS_SORT_ROUNDS"] = rounds(mode == 0);
+    }
+    const Program& p = shaders.compute("clouds/clusters_sort.comp", d);
     p.set("u_size", size);
     p.set("u_k", k);
     p.set("u_j", j);
     dispatch_compute(p, groups, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   };
-  const int blocks = std::max(size / 1024, 1);
+  const int blocks = size / block;
   sort_pass(0, 0, 0, blocks);
-  for (int k = 2048; k <= size; k *= 2) {
-    for (int j = k / 2; j >= 1024; j /= 2) sort_pass(2, k, j, group_count(size / 2, 512));
+  for (int k = 2 * block; k <= size; k *= 2) {
+    for (int j = k / 2; j >= block; j /= 2) sort_pass(2, k, j, group_count(size / 2, 512));
     sort_pass(1, k, 0, blocks);
   }
 }

@@ -1,16 +1,8 @@
 // Bitonic sort of the puffs' (key, index) pairs, far first, so that the instanced draw composites
 // them back to front. CLUSTERS_SORT_MODE
-//   0: sorts each block of 1024 in shared memory (every k up to min(1024, size));
-//   1: the steps j < 1024 of merge k for each block, in shared memory;
-//   2: one step (k, j >= 1024) across the whole buffer.
-#if CLUSTERS_SORT_MODE == 2
-layout(local_size_x = 512) in;
-#else
-// Few invocations, each taking several pairs per step: llvmpipe runs a work group on one thread and
-// switches between its SIMD groups of invocations at every barrier.
-const int kThreads = 64;
-layout(local_size_x = kThreads) in;
-#endif
+//   0: sorts each block of CLUSTERS_SORT_BLOCK (<= 1024) in shared memory;
+//   1: the narrow steps (j < the block) of merge u_k for each block, in shared memory;
+//   2: one wide step (u_k, u_j >= the block) across the whole buffer.
 layout(std430, binding = 5) buffer ClusterOrder { uvec2 cp_order[]; };
 uniform int u_size;  // a power of two
 uniform int u_k, u_j;
@@ -22,36 +14,58 @@ bool out_of_order(uvec2 a, uvec2 b, int i, int k) {
 }
 
 #if CLUSTERS_SORT_MODE == 2
+layout(local_size_x = 512) in;
 void main() {
   int t = int(gl_GlobalInvocationID.x);
   if (t >= u_size / 2) return;
-  int i = (t / u_j) * 2 * u_j + t % u_j, l = i + u_j;
+  int i = 2 * t - (t & (u_j - 1)), l = i + u_j;  // (t / j) 2j + t % j for j a power of two
   uvec2 a = cp_order[i], b = cp_order[l];
   if (out_of_order(a, b, i, u_k)) cp_order[i] = b, cp_order[l] = a;
 }
 #else
-shared uvec2 s_pairs[1024];
-void main() {
-  int block = int(gl_WorkGroupID.x) * 1024, t = int(gl_LocalInvocationID.x);
-  int n = min(u_size, 1024);
-  for (int e = t; e < n; e += kThreads) s_pairs[e] = cp_order[block + e];
-  barrier();
-#if CLUSTERS_SORT_MODE == 0
-  for (int k = 2; k <= n; k *= 2) {
-    for (int j = k / 2; j > 0; j /= 2) {
-#else
-  {
-    int k = u_k;
-    for (int j = 512; j > 0; j /= 2) {
-#endif
-      for (int q = t; q < n / 2; q += kThreads) {
-        int i = (q / j) * 2 * j + q % j, l = i + j;
-        uvec2 a = s_pairs[i], b = s_pairs[l];
-        if (out_of_order(a, b, block + i, k)) s_pairs[i] = b, s_pairs[l] = a;
-      }
-      barrier();
-    }
+// The steps run in rounds (CLUSTERS_SORT_ROUNDS, listed by src/placement.cpp). In a round each
+// invocation holds in registers the kPer pairs whose indices differ from one another only in a window
+// of kBits bits starting at `low`, and does every consecutive step that compares across those bits
+// (j = 2^(low + b)) there. Shared memory is read and written once per round instead of once per step:
+// llvmpipe reads and writes it one lane at a time.
+const int kBlock = CLUSTERS_SORT_BLOCK, kPer = CLUSTERS_SORT_PER, kBits = CLUSTERS_SORT_BITS;
+const int kThreads = kBlock / kPer;
+layout(local_size_x = kThreads) in;
+shared uvec2 s_pairs[kBlock];
+uvec2 r[kPer];
+int block, t;
+
+// The index of the invocation's m-th pair: m's bits inserted into t's at bit `low`.
+int window_index(int m, int low) {
+  int below = t & ((1 << low) - 1);
+  return ((t >> low) << (low + kBits)) | (m << low) | below;
+}
+void round_begin(int low) {
+  for (int m = 0; m < kPer; ++m) r[m] = s_pairs[window_index(m, low)];
+}
+void round_step(int k, int low, int b) {
+  const int d = 1 << b;
+  for (int m = 0; m < kPer; ++m) {
+    if ((m & d) != 0) continue;
+    uvec2 a = r[m], c = r[m + d];
+    bool swap = out_of_order(a, c, block + window_index(m, low), k);
+    r[m] = swap ? c : a;
+    r[m + d] = swap ? a : c;
   }
-  for (int e = t; e < n; e += kThreads) cp_order[block + e] = s_pairs[e];
+}
+void round_end(int low) {
+  for (int m = 0; m < kPer; ++m) s_pairs[window_index(m, low)] = r[m];
+  barrier();
+}
+#define SORT_ROUND_BEGIN(low) round_begin(low);
+#define SORT_STEP(k, low, b) round_step(k, low, b);
+#define SORT_ROUND_END(low) round_end(low);
+
+void main() {
+  block = int(gl_WorkGroupID.x) * kBlock, t = int(gl_LocalInvocationID.x);
+  for (int e = t; e < kBlock; e += kThreads) s_pairs[e] = cp_order[block + e];
+  barrier();
+  CLUSTERS_SORT_ROUNDS
+  for (int e = t; e < kBlock; e += kThreads) cp_order[block + e] = s_pairs[e];
 }
 #endif

@@ -240,6 +240,29 @@ TEST(CloudClusters, OrderIsSortedAcrossSeveralBlocksOfTheSort) {
   EXPECT_TRUE(std::is_sorted(keys.rbegin(), keys.rend()));
 }
 
+TEST(CloudClusters, OrderIsSortedWhenTheSortIsSmallerThanItsRegisterWindow) {
+  // 2 x 1, 2 x 3 and 2 x 7 puffs: sorts of 2, 8 and 16 slots, where each invocation's window of pairs
+  // (16) is clamped to the whole block.
+  for (int puffs_per_cluster : {1, 3, 7}) {
+    json c = kClusters;
+    c["clusters"] = 2, c["puffs_per_cluster"] = puffs_per_cluster;
+    Rendered r = render(cluster_scene(c, 40.0, {{"coverage", 1.0}}), 32, 18);
+    const std::vector<ClusterPuffGpu> puffs = read_puffs(r);
+    const std::vector<glm::uvec2> order = read_order(r);
+    ASSERT_EQ(order.size(), size_t(2 * puffs_per_cluster));
+    std::vector<int> seen(puffs.size(), 0);
+    std::vector<double> keys;
+    for (const glm::uvec2& o : order) {
+      ASSERT_LT(o.y, puffs.size());
+      ++seen[o.y];
+      keys.push_back(puffs[o.y].centre.w > 0.0f ? glm::length(glm::dvec3(puffs[o.y].centre)) : -1.0);
+    }
+    EXPECT_GE(live_puffs(puffs), size_t(puffs_per_cluster > 1 ? 2 : 1)) << puffs_per_cluster;
+    EXPECT_TRUE(std::is_sorted(keys.rbegin(), keys.rend())) << puffs_per_cluster;
+    EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int n) { return n == 1; })) << puffs_per_cluster;
+  }
+}
+
 TEST(CloudClusters, TheLightsQuadratureConvergesAsSamplesGrow) {
   auto frame = [](int samples) {
     json c = kClusters;
