@@ -1,7 +1,10 @@
 #include "welkin/gfx/debug_content.h"
 
 #include <cmath>
+#include <cstdint>
 #include <glm/gtc/constants.hpp>
+#include <map>
+#include <vector>
 
 #include "welkin/core/module.h"
 #include "welkin/core/world.h"
@@ -80,6 +83,30 @@ int sphere_slices(const FrameView& view, const glm::vec3& centre, float radius) 
   return std::clamp(2 * int(std::ceil(slices * 0.5f)), 8, 64);
 }
 
+// The spheres' grids as indexed triangles, an index buffer per slice count: llvmpipe shades each
+// vertex of an indexed batch once, where a plain triangle list shades it once per corner (six times).
+struct DebugShapeMeshes {
+  static constexpr std::string_view kTypeName = "core.DebugShapeMeshes";
+  GlVertexArrayName vao;
+  std::map<int, Buffer> sphere_indices;
+};
+
+// Vertex (i, j) of the grid is j (slices + 1) + i; two counter-clockwise triangles per quad (seen
+// from outside), as debug_shape.vert expects.
+const Buffer& sphere_indices(DebugShapeMeshes& meshes, int slices) {
+  auto it = meshes.sphere_indices.find(slices);
+  if (it != meshes.sphere_indices.end()) return it->second;
+  const int stacks = slices / 2, row = slices + 1;
+  std::vector<uint16_t> indices;
+  indices.reserve(size_t(slices) * size_t(stacks) * 6);
+  for (int j = 0; j < stacks; ++j)
+    for (int i = 0; i < slices; ++i) {
+      const uint16_t v00 = uint16_t(j * row + i), v10 = uint16_t(v00 + 1), v01 = uint16_t(v00 + row), v11 = uint16_t(v01 + 1);
+      indices.insert(indices.end(), {v00, v10, v11, v00, v11, v01});
+    }
+  return meshes.sphere_indices.emplace(slices, Buffer(indices.size() * sizeof(uint16_t), indices.data())).first->second;
+}
+
 void debug_shape_system(SystemContext& sc) {
   Registry& reg = sc.world.registry();
   auto& rc = sc.world.resource<RenderContext>();
@@ -97,6 +124,12 @@ void debug_shape_system(SystemContext& sc) {
     p.use();
     p.set("u_view_projection", rc.view.view_projection);
     world.resource<LightEnvironment>().bind();
+    auto& meshes = world.resource<DebugShapeMeshes>();
+    if (!meshes.vao) {
+      GLuint vao = 0;
+      glCreateVertexArrays(1, &vao);
+      meshes.vao = GlVertexArrayName(vao);
+    }
     for (const DebugShape& s : shapes) {
       // Camera-relative in double, then to float: precision independent of distance from the origin.
       glm::vec3 rel = glm::vec3(s.position_m - rc.view.camera_position_m);
@@ -106,11 +139,19 @@ void debug_shape_system(SystemContext& sc) {
       p.set("u_size", s.size_m);
       p.set("u_albedo", s.albedo);
       p.set("u_shape", int(s.shape));
-      glBindVertexArray(rc.empty_vao.id());
       p.set("u_slices", slices);
-      // Spheres: a latitude-longitude grid; boxes: 36 vertices. Both generated in the shader.
-      glDrawArrays(GL_TRIANGLES, 0, s.shape == ShapeKind::sphere ? slices * (slices / 2) * 6 : 36);
+      // Spheres: the grid's vertices, indexed; boxes: 36 vertices. Both generated in the shader.
+      if (s.shape == ShapeKind::sphere) {
+        const Buffer& indices = sphere_indices(meshes, slices);
+        glVertexArrayElementBuffer(meshes.vao.id(), indices.id());
+        glBindVertexArray(meshes.vao.id());
+        glDrawElements(GL_TRIANGLES, GLsizei(indices.size() / sizeof(uint16_t)), GL_UNSIGNED_SHORT, nullptr);
+      } else {
+        glBindVertexArray(rc.empty_vao.id());
+        glDrawArrays(GL_TRIANGLES, 0, 36);
+      }
     }
+    glBindVertexArray(rc.empty_vao.id());
     glDisable(GL_CULL_FACE);
   });
 }

@@ -2,18 +2,17 @@
 uniform mat4 u_view_projection;
 uniform vec3 u_center;  // camera-relative
 uniform vec3 u_size;
-uniform int u_shape;    // 0 sphere (a u_slices x u_slices / 2 grid), 1 box
+uniform int u_shape;    // 0 sphere (a u_slices x u_slices / 2 grid of quads), 1 box
 uniform int u_slices;
 out vec3 v_normal;
 out vec3 v_position;
 
+// Vertex id of the sphere's (u_slices + 1) x (u_slices / 2 + 1) grid, drawn indexed (the seam's
+// column twice).
 vec3 sphere_vertex(int id, out vec3 n) {
   int slices = u_slices, stacks = u_slices / 2;
-  int quad = id / 6, corner = id % 6;
-  int i = quad % slices, j = quad / slices;
-  // Two counter-clockwise triangles per quad (seen from outside).
-  const ivec2 offs[6] = ivec2[](ivec2(0, 0), ivec2(1, 0), ivec2(1, 1), ivec2(0, 0), ivec2(1, 1), ivec2(0, 1));
-  vec2 uv = vec2(i + offs[corner].x, j + offs[corner].y) / vec2(slices, stacks);
+  int i = id % (slices + 1), j = id / (slices + 1);
+  vec2 uv = vec2(i, j) / vec2(slices, stacks);
   float phi = uv.x * 6.28318531, theta = uv.y * 3.14159265;
   n = vec3(sin(theta) * cos(phi), sin(theta) * sin(phi), -cos(theta));
   return n * u_size.x;
