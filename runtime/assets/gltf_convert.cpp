@@ -230,7 +230,7 @@ class Converter {
     for (size_t i = 0; i < gm_.meshes.size(); ++i) {
       Mesh mesh;
       mesh.name = gm_.meshes[i].name;
-      for (size_t j = 0; j < gm_.meshes[i].primitives.size(); ++j) {
+      for (size_t j = 0; src_.options.decode_meshes && j < gm_.meshes[i].primitives.size(); ++j) {
         const std::string pp = "/meshes/" + std::to_string(i) + "/primitives/" + std::to_string(j);
         Primitive p;
         if (primitive(gm_.meshes[i].primitives[j], doc_["meshes"][i]["primitives"][j], pp, p))

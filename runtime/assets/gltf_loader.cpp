@@ -289,7 +289,9 @@ fs::path resolve_external(const Source& src, const std::string& uri, const std::
 std::vector<uint8_t> read_file_limited(const Source& src, const fs::path& file, uint64_t max_bytes,
                                        const std::string& path) {
   try {
-    return read_file_bytes(file.string(), max_bytes);  // regular files only, never past max_bytes
+    std::vector<uint8_t> bytes = read_file_bytes(file.string(), max_bytes);  // regular files only, never past max_bytes
+    src.content_hash = DiskCache::hash({reinterpret_cast<const char*>(bytes.data()), bytes.size()}, src.content_hash);
+    return bytes;
   } catch (const Error& e) {
     fail(src, path, "a readable regular file of at most " + std::to_string(max_bytes) + " bytes",
          file.string() + ": " + e.info().message);
@@ -348,6 +350,7 @@ Model load_checked(std::span<const uint8_t> bytes, const Source& src) {
   }
   Model m = convert_model(gm, doc, src);
   m.file = src.name;
+  m.content_hash = src.content_hash;
   return m;
 }
 
@@ -369,6 +372,7 @@ Model load_gltf_memory(std::span<const uint8_t> bytes, const std::string& name, 
   if (bytes.size() > options.limits.max_file_bytes)
     detail::fail(src, "", "at most " + std::to_string(options.limits.max_file_bytes) + " bytes",
                  std::to_string(bytes.size()) + " bytes");
+  src.content_hash = DiskCache::hash({reinterpret_cast<const char*>(bytes.data()), bytes.size()}, src.content_hash);
   return detail::load(bytes, src);
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "welkin/assets/gltf_loader.h"
+#include "welkin/core/disk_cache.h"
 #include "welkin/core/error.h"
 
 namespace tinygltf {
@@ -23,6 +24,8 @@ struct Source {
   std::string name;
   std::string base_dir;  // "" refuses every external URI
   LoadOptions options;
+  // FNV-1a chained over every file's bytes as they are read (Model::content_hash).
+  mutable uint64_t content_hash = DiskCache::hash({});
 };
 
 [[noreturn]] void fail(const Source& src, const std::string& path, const std::string& expected,

@@ -1,5 +1,8 @@
 #include "terrain_gpu.h"
 
+#include <algorithm>
+
+#include "welkin/core/disk_cache.h"
 #include "welkin/core/error.h"
 
 namespace welkin::terrain {
@@ -52,13 +55,47 @@ Texture& TerrainCache::shadow_map(int size) {
   return *shadow_atlas;
 }
 
+std::shared_ptr<const assets::Model> TerrainCache::load_mesh(const Terrain& s, TerrainMesh& mesh) {
+  const DiskCache disk = DiskCache::from_environment();
+  if (!disk.enabled()) {
+    std::shared_ptr<const assets::Model> model = assets.load(s.file);
+    mesh = build_terrain_mesh(*model, s);
+    return model;
+  }
+  // The file without its geometry (its bytes hashed), then the mesh from the cache when it is there.
+  std::shared_ptr<const assets::Model> model = assets_without_geometry.load(s.file);
+  const std::string key = mesh_cache_key(model->content_hash, s);
+  // A bound before anything is read: far above any terrain this engine admits (assets::LoadLimits).
+  constexpr size_t kMaxMeshBytes = size_t(4) << 30;
+  std::optional<TerrainMesh> cached;
+  if (auto counts = disk.read(key + "counts", 4 * sizeof(uint64_t)))
+    if (auto size = mesh_body_size(*counts, kMaxMeshBytes))
+      if (auto body = disk.read(key + "body", *size)) cached = mesh_from_bytes(*counts, *body);
+  const auto materials_known = [&](const TerrainMesh& t) {
+    return std::all_of(t.chunks.begin(), t.chunks.end(), [&](const Chunk& c) { return c.material < int(model->materials.size()); });
+  };
+  if (cached && materials_known(*cached)) {
+    mesh = std::move(*cached);
+    ++mesh_cache_reads;
+    return model;
+  }
+  {
+    std::shared_ptr<const assets::Model> geometry = assets_without_images.load(s.file);
+    mesh = build_terrain_mesh(*geometry, s);
+  }
+  assets_without_images.evict_unused();
+  if (mesh.normals.size() == mesh.positions.size() && mesh.uvs.size() == mesh.positions.size() &&
+      disk.write(key + "body", mesh_body_bytes(mesh)))
+    disk.write(key + "counts", mesh_counts_bytes(mesh));
+  return model;
+}
+
 GpuTerrain& TerrainCache::get(const Terrain& s) {
   auto& slot = terrains[cache_key(s)];
   if (slot) return *slot;
   if (s.file.empty()) throw Error(ErrorInfo{.path = "terrain.Terrain/file", .expected = "a .glb or .gltf file", .found = "nothing"});
-  std::shared_ptr<const assets::Model> model = assets.load(s.file);
   auto gpu = std::make_unique<GpuTerrain>();
-  gpu->mesh = build_terrain_mesh(*model, s);
+  std::shared_ptr<const assets::Model> model = load_mesh(s, gpu->mesh);
   const TerrainMesh& m = gpu->mesh;
   gpu->positions = upload(m.positions);
   gpu->normals = upload(m.normals);
@@ -101,6 +138,7 @@ GpuTerrain& TerrainCache::get(const Terrain& s) {
   // with other settings reads the file again).
   model.reset();
   assets.evict_unused();
+  assets_without_geometry.evict_unused();
   slot = std::move(gpu);
   return *slot;
 }

@@ -42,9 +42,18 @@ struct TerrainCache {
   } cascade_block;
   std::unique_ptr<Buffer> cascade_buffer;
   assets::AssetCache assets;
+  // With the disk cache on: the file read for its materials and images, and (only when the built mesh
+  // is not on disk) again for its geometry.
+  assets::AssetCache assets_without_geometry{assets::LoadOptions{.decode_meshes = false}};
+  assets::AssetCache assets_without_images{assets::LoadOptions{.decode_images = false}};
   std::map<std::string, std::unique_ptr<GpuTerrain>> terrains;  // key: file + build settings
+  size_t mesh_cache_reads = 0;  // meshes read from the disk cache instead of built (tests)
   // Loads (or returns) the GPU terrain for these settings; throws welkin::Error naming the file.
   GpuTerrain& get(const Terrain& settings);
+
+ private:
+  // The built mesh (from the disk cache when it holds it) and the model its materials come from.
+  std::shared_ptr<const assets::Model> load_mesh(const Terrain& settings, TerrainMesh& mesh);
 };
 
 }  // namespace welkin::terrain

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "welkin/assets/subdivision.h"
 #include "welkin/core/error.h"
@@ -148,6 +149,130 @@ int select_lod(const Chunk& chunk, double distance_m, double pixels_per_radian, 
   for (int l = 1; l < int(chunk.lods.size()); ++l)
     if (chunk.lods[size_t(l)].error_m / std::max(distance_m, 1e-3) * pixels_per_radian <= pixel_error) chosen = l;
   return chosen;
+}
+
+namespace {
+
+// Counts in the cache's counts entry, in this order.
+enum CountIndex { kVertices, kIndices, kChunks, kLods, kCountFields };
+struct ChunkRecord {
+  glm::vec3 min, max;
+  int32_t material;
+  uint32_t lods;
+};
+struct LodRecord {
+  uint32_t first_index, index_count;
+  float error_m;
+};
+struct MeshRecord {
+  glm::vec3 min, max;
+  uint64_t full_triangles;
+};
+static_assert(sizeof(ChunkRecord) == 32 && sizeof(LodRecord) == 12 && sizeof(MeshRecord) == 32);
+
+template <class T> void append(std::string& out, const T* data, size_t count) {
+  out.append(reinterpret_cast<const char*>(data), count * sizeof(T));
+}
+
+// Reads `count` values of T at `at`, advancing it; the caller has checked the sizes.
+template <class T> std::vector<T> take(std::span<const uint8_t> bytes, size_t& at, size_t count) {
+  std::vector<T> v(count);
+  if (count) std::memcpy(v.data(), bytes.data() + at, count * sizeof(T));
+  at += count * sizeof(T);
+  return v;
+}
+
+std::optional<size_t> body_size(const uint64_t (&c)[kCountFields], size_t max_bytes) {
+  // Each count alone within the limit first, so that the sum cannot overflow.
+  const uint64_t limit = max_bytes;
+  if (c[kVertices] > limit / 32 || c[kIndices] > limit / 4 || c[kChunks] > limit / sizeof(ChunkRecord) ||
+      c[kLods] > limit / sizeof(LodRecord))
+    return std::nullopt;
+  const uint64_t size = c[kVertices] * (2 * sizeof(glm::vec3) + sizeof(glm::vec2)) + c[kIndices] * sizeof(uint32_t) +
+                        c[kChunks] * sizeof(ChunkRecord) + c[kLods] * sizeof(LodRecord) + sizeof(MeshRecord);
+  if (size > limit) return std::nullopt;
+  return size_t(size);
+}
+
+bool read_counts(std::span<const uint8_t> bytes, uint64_t (&c)[kCountFields]) {
+  if (bytes.size() != sizeof(c)) return false;
+  std::memcpy(c, bytes.data(), sizeof(c));
+  return true;
+}
+
+}  // namespace
+
+std::string mesh_cache_key(uint64_t content_hash, const Terrain& s) {
+  return "welkin terrain: mesh, version " + std::to_string(kMeshCacheVersion) + ", meshoptimizer " +
+         std::to_string(MESHOPTIMIZER_VERSION) + "\nfile " + std::to_string(content_hash) + "\nchunks per side " +
+         std::to_string(s.chunks_per_side) + ", lod levels " + std::to_string(s.lod_levels) + ", refine " +
+         std::to_string(int(s.refine)) + " " + std::to_string(s.refine_levels) + " " + std::to_string(s.refine_max_triangles) + "\n";
+}
+
+std::string mesh_counts_bytes(const TerrainMesh& m) {
+  uint64_t c[kCountFields] = {m.positions.size(), m.indices.size(), m.chunks.size(), 0};
+  for (const Chunk& chunk : m.chunks) c[kLods] += chunk.lods.size();
+  std::string out;
+  append(out, c, kCountFields);
+  return out;
+}
+
+std::string mesh_body_bytes(const TerrainMesh& m) {
+  std::string out;
+  append(out, m.positions.data(), m.positions.size());
+  append(out, m.normals.data(), m.normals.size());
+  append(out, m.uvs.data(), m.uvs.size());
+  append(out, m.indices.data(), m.indices.size());
+  for (const Chunk& chunk : m.chunks) {
+    const ChunkRecord r{chunk.min, chunk.max, chunk.material, uint32_t(chunk.lods.size())};
+    append(out, &r, 1);
+  }
+  for (const Chunk& chunk : m.chunks)
+    for (const LodRange& l : chunk.lods) {
+      const LodRecord r{l.first_index, l.index_count, l.error_m};
+      append(out, &r, 1);
+    }
+  const MeshRecord r{m.min, m.max, uint64_t(m.full_triangles)};
+  append(out, &r, 1);
+  return out;
+}
+
+std::optional<size_t> mesh_body_size(std::span<const uint8_t> counts, size_t max_bytes) {
+  uint64_t c[kCountFields];
+  if (!read_counts(counts, c)) return std::nullopt;
+  return body_size(c, max_bytes);
+}
+
+std::optional<TerrainMesh> mesh_from_bytes(std::span<const uint8_t> counts, std::span<const uint8_t> body) {
+  uint64_t c[kCountFields];
+  if (!read_counts(counts, c)) return std::nullopt;
+  const std::optional<size_t> size = body_size(c, body.size());
+  if (!size || *size != body.size()) return std::nullopt;
+  TerrainMesh m;
+  size_t at = 0;
+  m.positions = take<glm::vec3>(body, at, c[kVertices]);
+  m.normals = take<glm::vec3>(body, at, c[kVertices]);
+  m.uvs = take<glm::vec2>(body, at, c[kVertices]);
+  m.indices = take<uint32_t>(body, at, c[kIndices]);
+  const std::vector<ChunkRecord> chunks = take<ChunkRecord>(body, at, c[kChunks]);
+  const std::vector<LodRecord> lods = take<LodRecord>(body, at, c[kLods]);
+  const MeshRecord mesh = take<MeshRecord>(body, at, 1)[0];
+  if (std::any_of(m.indices.begin(), m.indices.end(), [&](uint32_t i) { return i >= c[kVertices]; })) return std::nullopt;
+  size_t next_lod = 0;
+  for (const ChunkRecord& r : chunks) {
+    if (r.lods > lods.size() - next_lod) return std::nullopt;
+    Chunk chunk{.min = r.min, .max = r.max, .material = r.material};
+    for (uint32_t k = 0; k < r.lods; ++k) {
+      const LodRecord& l = lods[next_lod++];
+      if (uint64_t(l.first_index) + l.index_count > m.indices.size() || l.index_count % 3 != 0) return std::nullopt;
+      chunk.lods.push_back(LodRange{.first_index = l.first_index, .index_count = l.index_count, .error_m = l.error_m});
+    }
+    m.chunks.push_back(std::move(chunk));
+  }
+  if (next_lod != lods.size()) return std::nullopt;
+  m.min = mesh.min, m.max = mesh.max;
+  m.full_triangles = size_t(mesh.full_triangles);
+  return m;
 }
 
 }  // namespace welkin::terrain

@@ -2,7 +2,10 @@
 // CPU side of a terrain: the glTF model flattened into the scene's z-up frame, split into chunks,
 // each with simplified levels of detail whose chunk borders are locked (so neighbours at different
 // levels still meet without cracks).
+#include <cstdint>
 #include <glm/glm.hpp>
+#include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -35,6 +38,22 @@ struct TerrainMesh {
 glm::vec3 gltf_to_scene(const glm::vec3& p);
 
 TerrainMesh build_terrain_mesh(const assets::Model& model, const Terrain& settings);
+
+// The built mesh in the disk cache (welkin/core/disk_cache.h): what it depends on is the file's
+// bytes (Model::content_hash, read without decoding its geometry) and the build settings, so a start
+// that finds it neither decodes the geometry (Draco) nor refines or simplifies it. Bump
+// kMeshCacheVersion when build_terrain_mesh changes what it makes.
+inline constexpr int kMeshCacheVersion = 1;
+std::string mesh_cache_key(uint64_t content_hash, const Terrain& settings);
+// Two entries: the counts (fixed size), then the arrays and chunks they size.
+std::string mesh_counts_bytes(const TerrainMesh& mesh);
+std::string mesh_body_bytes(const TerrainMesh& mesh);
+// The size of the body the counts describe; nullopt when they are not counts of a mesh (a damaged or
+// foreign entry) or would exceed max_bytes.
+std::optional<size_t> mesh_body_size(std::span<const uint8_t> counts, size_t max_bytes);
+// The mesh back; nullopt unless every range is consistent: the chunks' levels inside the indices and
+// every index inside the vertices (the cache folder is input like any other).
+std::optional<TerrainMesh> mesh_from_bytes(std::span<const uint8_t> counts, std::span<const uint8_t> body);
 
 // The finest level whose projected error stays within `pixel_error` for a chunk at `distance_m`
 // seen by a camera with `pixels_per_radian` (height / vertical field of view); coarser when far.

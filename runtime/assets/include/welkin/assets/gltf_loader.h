@@ -40,6 +40,9 @@ struct LoadLimits {
 struct LoadOptions {
   LoadLimits limits;
   bool decode_images = true;  // false: images keep name/mime type but no pixels (and are not read)
+  // false: meshes keep their names but no primitives, and Draco does not run; for a user that keeps
+  // what it builds from the geometry elsewhere, keyed by Model::content_hash.
+  bool decode_meshes = true;
 };
 
 // Loads `path` (.glb when it starts with the GLB magic, JSON otherwise). Throws welkin::Error.
