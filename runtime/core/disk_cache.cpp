@@ -83,7 +83,10 @@ std::optional<std::vector<uint8_t>> DiskCache::read(std::string_view key, size_t
     log::warn("disk cache: " + path + " is damaged (checksum); computing it again");
     return std::nullopt;
   }
-  return std::vector<uint8_t>(payload, payload + size);
+  // The payload moved to the front of the file's own buffer: a large entry is never held twice.
+  file.erase(file.begin(), file.begin() + std::ptrdiff_t(payload - p));
+  file.resize(size);
+  return file;
 }
 
 bool DiskCache::write(std::string_view key, std::string_view bytes) const {

@@ -9,10 +9,10 @@ namespace welkin::terrain {
 
 namespace {
 
-template <class T> GlBufferName upload(const std::vector<T>& data) {
+GlBufferName upload(std::span<const uint8_t> bytes) {
   GLuint id = 0;
   glCreateBuffers(1, &id);
-  glNamedBufferStorage(id, GLsizeiptr(std::max<size_t>(1, data.size()) * sizeof(T)), data.empty() ? nullptr : data.data(), 0);
+  glNamedBufferStorage(id, GLsizeiptr(std::max<size_t>(1, bytes.size())), bytes.empty() ? nullptr : bytes.data(), 0);
   return GlBufferName(id);
 }
 
@@ -55,39 +55,44 @@ Texture& TerrainCache::shadow_map(int size) {
   return *shadow_atlas;
 }
 
-std::shared_ptr<const assets::Model> TerrainCache::load_mesh(const Terrain& s, TerrainMesh& mesh) {
+TerrainCache::LoadedMesh TerrainCache::load_mesh(const Terrain& s, TerrainMesh& mesh) {
   const DiskCache disk = DiskCache::from_environment();
+  LoadedMesh loaded;
   if (!disk.enabled()) {
-    std::shared_ptr<const assets::Model> model = assets.load(s.file);
-    mesh = build_terrain_mesh(*model, s);
-    return model;
+    loaded.model = assets.load(s.file);
+    mesh = build_terrain_mesh(*loaded.model, s);
+    loaded.arrays = mesh_arrays(mesh);
+    return loaded;
   }
   // The file without its geometry (its bytes hashed), then the mesh from the cache when it is there.
-  std::shared_ptr<const assets::Model> model = assets_without_geometry.load(s.file);
-  const std::string key = mesh_cache_key(model->content_hash, s);
+  loaded.model = assets_without_geometry.load(s.file);
+  const std::string key = mesh_cache_key(loaded.model->content_hash, s);
   // A bound before anything is read: far above any terrain this engine admits (assets::LoadLimits).
   constexpr size_t kMaxMeshBytes = size_t(4) << 30;
   std::optional<TerrainMesh> cached;
   if (auto counts = disk.read(key + "counts", 4 * sizeof(uint64_t)))
     if (auto size = mesh_body_size(*counts, kMaxMeshBytes))
-      if (auto body = disk.read(key + "body", *size)) cached = mesh_from_bytes(*counts, *body);
-  const auto materials_known = [&](const TerrainMesh& t) {
-    return std::all_of(t.chunks.begin(), t.chunks.end(), [&](const Chunk& c) { return c.material < int(model->materials.size()); });
-  };
-  if (cached && materials_known(*cached)) {
+      if (auto body = disk.read(key + "body", *size)) {
+        loaded.body = std::move(*body);
+        cached = mesh_from_bytes(*counts, loaded.body, loaded.arrays);
+      }
+  const size_t materials = loaded.model->materials.size();
+  if (cached && std::all_of(cached->chunks.begin(), cached->chunks.end(), [&](const Chunk& c) { return c.material < int(materials); })) {
     mesh = std::move(*cached);
     ++mesh_cache_reads;
-    return model;
+    return loaded;
   }
+  loaded.body = {};
   {
     std::shared_ptr<const assets::Model> geometry = assets_without_images.load(s.file);
     mesh = build_terrain_mesh(*geometry, s);
   }
   assets_without_images.evict_unused();
+  loaded.arrays = mesh_arrays(mesh);
   if (mesh.normals.size() == mesh.positions.size() && mesh.uvs.size() == mesh.positions.size() &&
       disk.write(key + "body", mesh_body_bytes(mesh)))
     disk.write(key + "counts", mesh_counts_bytes(mesh));
-  return model;
+  return loaded;
 }
 
 GpuTerrain& TerrainCache::get(const Terrain& s) {
@@ -95,12 +100,11 @@ GpuTerrain& TerrainCache::get(const Terrain& s) {
   if (slot) return *slot;
   if (s.file.empty()) throw Error(ErrorInfo{.path = "terrain.Terrain/file", .expected = "a .glb or .gltf file", .found = "nothing"});
   auto gpu = std::make_unique<GpuTerrain>();
-  std::shared_ptr<const assets::Model> model = load_mesh(s, gpu->mesh);
-  const TerrainMesh& m = gpu->mesh;
-  gpu->positions = upload(m.positions);
-  gpu->normals = upload(m.normals);
-  gpu->uvs = upload(m.uvs);
-  gpu->indices = upload(m.indices);
+  LoadedMesh loaded = load_mesh(s, gpu->mesh);
+  gpu->positions = upload(loaded.arrays.positions);
+  gpu->normals = upload(loaded.arrays.normals);
+  gpu->uvs = upload(loaded.arrays.uvs);
+  gpu->indices = upload(loaded.arrays.indices);
   GLuint vao = 0;
   glCreateVertexArrays(1, &vao);
   gpu->vao = GlVertexArrayName(vao);
@@ -116,9 +120,12 @@ GpuTerrain& TerrainCache::get(const Terrain& s) {
   glVertexArrayElementBuffer(vao, gpu->indices.id());
   // The GPU holds the geometry: only the chunks' bounds and levels stay on the CPU, freed before the
   // images are uploaded so that the two copies never coexist.
+  loaded.arrays = {};
+  loaded.body = {};
   gpu->mesh.positions = {}, gpu->mesh.normals = {};
   gpu->mesh.uvs = {};
   gpu->mesh.indices = {};
+  std::shared_ptr<const assets::Model> model = std::move(loaded.model);
   for (const assets::Material& mat : model->materials) {
     GpuMaterial g;
     g.base_color_factor = mat.base_color_factor;

@@ -52,8 +52,14 @@ struct TerrainCache {
   GpuTerrain& get(const Terrain& settings);
 
  private:
-  // The built mesh (from the disk cache when it holds it) and the model its materials come from.
-  std::shared_ptr<const assets::Model> load_mesh(const Terrain& settings, TerrainMesh& mesh);
+  // The built mesh (from the disk cache when it holds it: `body`, its arrays read in place), its arrays
+  // as bytes, and the model its materials come from.
+  struct LoadedMesh {
+    std::shared_ptr<const assets::Model> model;
+    std::vector<uint8_t> body;
+    MeshArrays arrays;
+  };
+  LoadedMesh load_mesh(const Terrain& settings, TerrainMesh& mesh);
 };
 
 }  // namespace welkin::terrain

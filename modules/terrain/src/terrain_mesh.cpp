@@ -243,28 +243,44 @@ std::optional<size_t> mesh_body_size(std::span<const uint8_t> counts, size_t max
   return body_size(c, max_bytes);
 }
 
-std::optional<TerrainMesh> mesh_from_bytes(std::span<const uint8_t> counts, std::span<const uint8_t> body) {
+MeshArrays mesh_arrays(const TerrainMesh& m) {
+  auto bytes = [](const auto& v) { return std::span(reinterpret_cast<const uint8_t*>(v.data()), v.size() * sizeof(v[0])); };
+  return {bytes(m.positions), bytes(m.normals), bytes(m.uvs), bytes(m.indices)};
+}
+
+std::optional<TerrainMesh> mesh_from_bytes(std::span<const uint8_t> counts, std::span<const uint8_t> body, MeshArrays& arrays) {
   uint64_t c[kCountFields];
   if (!read_counts(counts, c)) return std::nullopt;
   const std::optional<size_t> size = body_size(c, body.size());
   if (!size || *size != body.size()) return std::nullopt;
   TerrainMesh m;
   size_t at = 0;
-  m.positions = take<glm::vec3>(body, at, c[kVertices]);
-  m.normals = take<glm::vec3>(body, at, c[kVertices]);
-  m.uvs = take<glm::vec2>(body, at, c[kVertices]);
-  m.indices = take<uint32_t>(body, at, c[kIndices]);
+  auto skip = [&](size_t bytes) {
+    const std::span<const uint8_t> s = body.subspan(at, bytes);
+    at += bytes;
+    return s;
+  };
+  arrays.positions = skip(c[kVertices] * sizeof(glm::vec3));
+  arrays.normals = skip(c[kVertices] * sizeof(glm::vec3));
+  arrays.uvs = skip(c[kVertices] * sizeof(glm::vec2));
+  arrays.indices = skip(c[kIndices] * sizeof(uint32_t));
   const std::vector<ChunkRecord> chunks = take<ChunkRecord>(body, at, c[kChunks]);
   const std::vector<LodRecord> lods = take<LodRecord>(body, at, c[kLods]);
   const MeshRecord mesh = take<MeshRecord>(body, at, 1)[0];
-  if (std::any_of(m.indices.begin(), m.indices.end(), [&](uint32_t i) { return i >= c[kVertices]; })) return std::nullopt;
+  uint32_t largest = 0;
+  for (size_t k = 0; k < c[kIndices]; ++k) {
+    uint32_t i;
+    std::memcpy(&i, arrays.indices.data() + k * sizeof(uint32_t), sizeof(i));
+    largest = std::max(largest, i);
+  }
+  if (c[kIndices] > 0 && largest >= c[kVertices]) return std::nullopt;
   size_t next_lod = 0;
   for (const ChunkRecord& r : chunks) {
     if (r.lods > lods.size() - next_lod) return std::nullopt;
     Chunk chunk{.min = r.min, .max = r.max, .material = r.material};
     for (uint32_t k = 0; k < r.lods; ++k) {
       const LodRecord& l = lods[next_lod++];
-      if (uint64_t(l.first_index) + l.index_count > m.indices.size() || l.index_count % 3 != 0) return std::nullopt;
+      if (uint64_t(l.first_index) + l.index_count > c[kIndices] || l.index_count % 3 != 0) return std::nullopt;
       chunk.lods.push_back(LodRange{.first_index = l.first_index, .index_count = l.index_count, .error_m = l.error_m});
     }
     m.chunks.push_back(std::move(chunk));

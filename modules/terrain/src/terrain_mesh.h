@@ -51,9 +51,16 @@ std::string mesh_body_bytes(const TerrainMesh& mesh);
 // The size of the body the counts describe; nullopt when they are not counts of a mesh (a damaged or
 // foreign entry) or would exceed max_bytes.
 std::optional<size_t> mesh_body_size(std::span<const uint8_t> counts, size_t max_bytes);
-// The mesh back; nullopt unless every range is consistent: the chunks' levels inside the indices and
-// every index inside the vertices (the cache folder is input like any other).
-std::optional<TerrainMesh> mesh_from_bytes(std::span<const uint8_t> counts, std::span<const uint8_t> body);
+// A mesh's vertex and index arrays as bytes, for upload: a built mesh's vectors, or ranges of a body
+// read from the cache (read in place, never copied into vectors).
+struct MeshArrays {
+  std::span<const uint8_t> positions, normals, uvs, indices;
+};
+MeshArrays mesh_arrays(const TerrainMesh& mesh);
+// The mesh's chunks and bounds back, its arrays left empty and found in `body` (`arrays`); nullopt
+// unless every range is consistent: the chunks' levels inside the indices and every index inside the
+// vertices (the cache folder is input like any other).
+std::optional<TerrainMesh> mesh_from_bytes(std::span<const uint8_t> counts, std::span<const uint8_t> body, MeshArrays& arrays);
 
 // The finest level whose projected error stays within `pixel_error` for a chunk at `distance_m`
 // seen by a camera with `pixels_per_radian` (height / vertical field of view); coarser when far.

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "terrain_mesh.h"
 
@@ -76,6 +77,85 @@ TEST(TerrainMesh, LodSelectionCoarsensWithDistance) {
   EXPECT_EQ(select_lod(c, 120.0, ppr, 1.5), 1);
   EXPECT_EQ(select_lod(c, 1000.0, ppr, 1.5), 2);
   EXPECT_EQ(select_lod(c, 1e6, ppr, 1.5), 3);
+}
+
+// The disk cache's bytes of a mesh give back the same mesh: its arrays read in place, its chunks,
+// levels and bounds exact.
+TEST(TerrainMesh, CacheBytesGiveBackTheSameMesh) {
+  Terrain s;
+  s.chunks_per_side = 3;
+  s.lod_levels = 3;
+  const TerrainMesh m = build_terrain_mesh(grid_model(32, 800.0f), s);
+  const std::string counts = mesh_counts_bytes(m), body = mesh_body_bytes(m);
+  auto span_of = [](const std::string& b) { return std::span(reinterpret_cast<const uint8_t*>(b.data()), b.size()); };
+  ASSERT_EQ(mesh_body_size(span_of(counts), 1u << 30), body.size());
+  const std::vector<uint8_t> body_bytes(body.begin(), body.end());
+  MeshArrays arrays;
+  const std::optional<TerrainMesh> back = mesh_from_bytes(span_of(counts), body_bytes, arrays);
+  ASSERT_TRUE(back);
+  const MeshArrays built = mesh_arrays(m);
+  auto same = [](std::span<const uint8_t> a, std::span<const uint8_t> b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size()) == 0;
+  };
+  EXPECT_TRUE(same(arrays.positions, built.positions));
+  EXPECT_TRUE(same(arrays.normals, built.normals));
+  EXPECT_TRUE(same(arrays.uvs, built.uvs));
+  EXPECT_TRUE(same(arrays.indices, built.indices));
+  ASSERT_EQ(back->chunks.size(), m.chunks.size());
+  for (size_t c = 0; c < m.chunks.size(); ++c) {
+    EXPECT_EQ(back->chunks[c].min, m.chunks[c].min);
+    EXPECT_EQ(back->chunks[c].max, m.chunks[c].max);
+    EXPECT_EQ(back->chunks[c].material, m.chunks[c].material);
+    ASSERT_EQ(back->chunks[c].lods.size(), m.chunks[c].lods.size());
+    for (size_t l = 0; l < m.chunks[c].lods.size(); ++l) {
+      EXPECT_EQ(back->chunks[c].lods[l].first_index, m.chunks[c].lods[l].first_index);
+      EXPECT_EQ(back->chunks[c].lods[l].index_count, m.chunks[c].lods[l].index_count);
+      EXPECT_EQ(back->chunks[c].lods[l].error_m, m.chunks[c].lods[l].error_m);
+    }
+  }
+  EXPECT_EQ(back->min, m.min);
+  EXPECT_EQ(back->max, m.max);
+  EXPECT_EQ(back->full_triangles, m.full_triangles);
+  // Settings that change the mesh change the key; the file's bytes too.
+  Terrain other = s;
+  other.lod_levels = 4;
+  EXPECT_NE(mesh_cache_key(1, s), mesh_cache_key(1, other));
+  EXPECT_NE(mesh_cache_key(1, s), mesh_cache_key(2, s));
+}
+
+// Bytes that a checksum would pass but that do not describe a mesh (a crafted or foreign cache file)
+// are refused before anything is drawn from them.
+TEST(TerrainMesh, CacheBytesOutOfRangeAreRefused) {
+  Terrain s;
+  s.chunks_per_side = 2;
+  s.lod_levels = 2;
+  const TerrainMesh m = build_terrain_mesh(grid_model(8, 100.0f), s);
+  const std::string counts = mesh_counts_bytes(m), body = mesh_body_bytes(m);
+  auto bytes = [](const std::string& b) { return std::vector<uint8_t>(b.begin(), b.end()); };
+  MeshArrays arrays;
+  // An index past the vertices.
+  std::vector<uint8_t> bad = bytes(body);
+  const size_t first_index = m.positions.size() * (2 * sizeof(glm::vec3) + sizeof(glm::vec2));
+  const uint32_t past = uint32_t(m.positions.size());
+  std::memcpy(bad.data() + first_index, &past, sizeof past);
+  EXPECT_FALSE(mesh_from_bytes(bytes(counts), bad, arrays));
+  // A level reaching past the indices (the first chunk's first level made longer).
+  bad = bytes(body);
+  const size_t first_lod = first_index + m.indices.size() * sizeof(uint32_t) + m.chunks.size() * 32;
+  const uint32_t too_many = uint32_t(m.indices.size() + 3);
+  std::memcpy(bad.data() + first_lod + 4, &too_many, sizeof too_many);
+  EXPECT_FALSE(mesh_from_bytes(bytes(counts), bad, arrays));
+  // A body shorter than its counts say, and counts too large for any limit.
+  bad = bytes(body);
+  bad.pop_back();
+  EXPECT_FALSE(mesh_from_bytes(bytes(counts), bad, arrays));
+  std::vector<uint8_t> huge = bytes(counts);
+  const uint64_t vertices = uint64_t(1) << 60;
+  std::memcpy(huge.data(), &vertices, sizeof vertices);
+  EXPECT_FALSE(mesh_body_size(huge, size_t(4) << 30));
+  EXPECT_FALSE(mesh_body_size(std::vector<uint8_t>(7), size_t(4) << 30));
+  // Untouched, they pass.
+  EXPECT_TRUE(mesh_from_bytes(bytes(counts), bytes(body), arrays));
 }
 
 }  // namespace

@@ -5,6 +5,10 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
+
+#include "cache_folder.h"
+#include "terrain_gpu.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/gl_context.h"
 #include "welkin/gfx/renderer.h"
@@ -95,6 +99,38 @@ TEST_F(TerrainRender, SampleTerrainRendersWithItsMaterial) {
   const uint8_t* g = img.pixel(24, 22);
   EXPECT_GT(int(g[0]) + g[1] + g[2], 60);
   EXPECT_GE(g[1], g[2]) << "vegetation, not sky";
+}
+
+// A start that finds the built mesh in the disk cache reads it instead of decoding and building it,
+// and draws the same frame, bit for bit; other build settings miss it.
+TEST_F(TerrainRender, MeshReadFromTheDiskCacheBitForBit) {
+  const std::filesystem::path folder = std::filesystem::path(::testing::TempDir()) / "welkin-terrain-cache";
+  std::filesystem::remove_all(folder);
+  const welkin::testing::CacheFolder cache(folder.string());
+  auto render = [](int lod_levels, size_t& reads) {
+    World world;
+    world.modules().add_static(modules::terrain_module());
+    json doc{{"welkin_scene", 1},
+             {"entities",
+              json::array({json{{"components", {{"core.Camera", {{"position_m", {0, -2000, 600}}, {"pitch_deg", -8}, {"ev100", 14}}}}}},
+                           json{{"components", {{"core.DirectionalLight", {{"elevation_deg", 40}}}}}},
+                           json{{"components", {{"terrain.Terrain", {{"file", WELKIN_SOURCE_DIR "/assets/terrain/valley.glb"},
+                                                                      {"lod_levels", lod_levels}}}}}}})}};
+    load_scene(world, doc, "terrain.json");
+    Renderer r(world);
+    r.render_frame({}, 48, 27);
+    reads = world.resource<terrain::TerrainCache>().mesh_cache_reads;
+    return r.read_hdr();
+  };
+  size_t reads = 0;
+  const ImageF built = render(4, reads);
+  EXPECT_EQ(reads, 0u);
+  const ImageF read = render(4, reads);
+  EXPECT_EQ(reads, 1u);
+  EXPECT_EQ(read.rgba, built.rgba);
+  render(3, reads);
+  EXPECT_EQ(reads, 0u) << "other settings build their own mesh";
+  std::filesystem::remove_all(folder);
 }
 
 TEST_F(TerrainRender, DefaultDemoSceneMatchesGolden) {

@@ -210,6 +210,47 @@ TEST(GltfLoader, GltfWithExternalFilesBesideIt) {
   expect_grid(m, false);
 }
 
+// Without its geometry a file keeps its materials, images and nodes, its meshes keep their names,
+// and Draco does not run; the content hash is of every file read, so it follows a change in an
+// external buffer as well as in the file itself.
+TEST(GltfLoader, WithoutGeometryKeepsTheRestAndTheContentHashFollowsEveryFile) {
+  const fs::path dir = temp_dir("without-geometry");
+  GlbWriter w = textured_grid(true);
+  const fs::path glb = dir / "grid.glb";
+  w.write(glb.string());
+  const Model full = load_gltf(glb.string());
+  LoadOptions o;
+  o.decode_meshes = false;
+  const Model bare = load_gltf(glb.string(), o);
+  ASSERT_EQ(bare.meshes.size(), full.meshes.size());
+  EXPECT_EQ(bare.meshes[0].name, full.meshes[0].name);
+  EXPECT_TRUE(bare.meshes[0].primitives.empty());
+  EXPECT_FALSE(full.meshes[0].primitives.empty());
+  ASSERT_EQ(bare.materials.size(), full.materials.size());
+  ASSERT_EQ(bare.images.size(), full.images.size());
+  EXPECT_EQ(bare.images[0].rgba, full.images[0].rgba);
+  EXPECT_EQ(bare.nodes.size(), full.nodes.size());
+  EXPECT_EQ(bare.content_hash, full.content_hash) << "the same bytes were read";
+  EXPECT_NE(full.content_hash, 0u);
+
+  // A .gltf with an external buffer: one byte of the buffer changes the hash, and so does the JSON.
+  GlbWriter plain = textured_grid(false);
+  json doc = plain.document();
+  doc["buffers"] = json::array({json{{"uri", "grid.bin"}, {"byteLength", plain.bin().size()}}});
+  std::string bin(plain.bin().begin(), plain.bin().end());
+  write_bytes(dir / "grid.bin", bin);
+  write_bytes(dir / "grid.gltf", doc.dump(2));
+  const uint64_t before = load_gltf((dir / "grid.gltf").string(), o).content_hash;
+  EXPECT_EQ(load_gltf((dir / "grid.gltf").string(), o).content_hash, before);
+  bin[bin.size() / 2] = char(bin[bin.size() / 2] ^ 1);
+  write_bytes(dir / "grid.bin", bin);
+  const uint64_t buffer_changed = load_gltf((dir / "grid.gltf").string(), o).content_hash;
+  EXPECT_NE(buffer_changed, before);
+  doc["asset"]["generator"] = "another";
+  write_bytes(dir / "grid.gltf", doc.dump(2));
+  EXPECT_NE(load_gltf((dir / "grid.gltf").string(), o).content_hash, buffer_changed);
+}
+
 TEST(GltfLoader, MeshQuantizationIsDequantized) {
   GlbWriter w;
   const int16_t pos[] = {-32767, 0, 0, 0, 0, 32767, 0, 0, 32767, 0, 0};  // 3 x VEC3, stride 8
