@@ -78,6 +78,18 @@ TEST(DiskCache, DamagedFilesAreMisses) {
   EXPECT_EQ(as_string(*cache.read("k", payload.size())), payload);
 }
 
+TEST(DiskCache, PayloadChecksumIsCrc32) {
+  // The file ends with the payload's CRC-32 (8 bytes, little-endian): "123456789" has the published
+  // check value 0xCBF43926.
+  const welkin::DiskCache cache(fresh_dir("crc").string());
+  ASSERT_TRUE(cache.write("k", "123456789"));
+  const std::string file = slurp(cache.path_of("k"));
+  ASSERT_GE(file.size(), 8u);
+  uint64_t stored = 0;
+  for (int i = 0; i < 8; ++i) stored |= uint64_t(uint8_t(file[file.size() - 8 + size_t(i)])) << (8 * i);
+  EXPECT_EQ(stored, 0xCBF43926ull);
+}
+
 TEST(DiskCache, DisabledOrUnwritableStoresNothing) {
   const welkin::DiskCache off;
   EXPECT_FALSE(off.enabled());

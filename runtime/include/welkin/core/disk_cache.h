@@ -30,7 +30,7 @@ class DiskCache {
   // Stores `bytes` under `key` (atomically: files.h); false, with a warning logged, when it could not.
   bool write(std::string_view key, std::string_view bytes) const;
 
-  // FNV-1a, 64 bits: names the files and checks their contents.
+  // FNV-1a, 64 bits: names the files (their contents are checked by zlib's CRC-32).
   static uint64_t hash(std::string_view bytes, uint64_t seed = 14695981039346656037ull);
 
  private:
