@@ -79,13 +79,18 @@ TEST(TerrainMesh, LodSelectionCoarsensWithDistance) {
   EXPECT_EQ(select_lod(c, 1e6, ppr, 1.5), 3);
 }
 
+// A grid's mesh built with these chunks and levels.
+TerrainMesh grid_mesh(int n, float size, int chunks_per_side, int lod_levels) {
+  Terrain s;
+  s.chunks_per_side = chunks_per_side;
+  s.lod_levels = lod_levels;
+  return build_terrain_mesh(grid_model(n, size), s);
+}
+
 // The disk cache's bytes of a mesh give back the same mesh: its arrays read in place, its chunks,
 // levels and bounds exact.
 TEST(TerrainMesh, CacheBytesGiveBackTheSameMesh) {
-  Terrain s;
-  s.chunks_per_side = 3;
-  s.lod_levels = 3;
-  const TerrainMesh m = build_terrain_mesh(grid_model(32, 800.0f), s);
+  const TerrainMesh m = grid_mesh(32, 800.0f, 3, 3);
   const std::string counts = mesh_counts_bytes(m), body = mesh_body_bytes(m);
   auto span_of = [](const std::string& b) { return std::span(reinterpret_cast<const uint8_t*>(b.data()), b.size()); };
   ASSERT_EQ(mesh_body_size(span_of(counts), 1u << 30), body.size());
@@ -117,8 +122,8 @@ TEST(TerrainMesh, CacheBytesGiveBackTheSameMesh) {
   EXPECT_EQ(back->max, m.max);
   EXPECT_EQ(back->full_triangles, m.full_triangles);
   // Settings that change the mesh change the key; the file's bytes too.
-  Terrain other = s;
-  other.lod_levels = 4;
+  Terrain s, other;
+  other.lod_levels = s.lod_levels + 1;
   EXPECT_NE(mesh_cache_key(1, s), mesh_cache_key(1, other));
   EXPECT_NE(mesh_cache_key(1, s), mesh_cache_key(2, s));
 }
@@ -126,10 +131,7 @@ TEST(TerrainMesh, CacheBytesGiveBackTheSameMesh) {
 // Bytes that a checksum would pass but that do not describe a mesh (a crafted or foreign cache file)
 // are refused before anything is drawn from them.
 TEST(TerrainMesh, CacheBytesOutOfRangeAreRefused) {
-  Terrain s;
-  s.chunks_per_side = 2;
-  s.lod_levels = 2;
-  const TerrainMesh m = build_terrain_mesh(grid_model(8, 100.0f), s);
+  const TerrainMesh m = grid_mesh(8, 100.0f, 2, 2);
   const std::string counts = mesh_counts_bytes(m), body = mesh_body_bytes(m);
   auto bytes = [](const std::string& b) { return std::vector<uint8_t>(b.begin(), b.end()); };
   MeshArrays arrays;

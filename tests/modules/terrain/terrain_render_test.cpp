@@ -80,15 +80,21 @@ TEST_F(TerrainRender, FarObjectsTakeTheSkyColourWithDistanceAndHaze) {
   EXPECT_LT(hazy_gap, clear_gap) << "haze hides the same box at the same distance more";
 }
 
-TEST_F(TerrainRender, SampleTerrainRendersWithItsMaterial) {
-  World world;
+// The sample valley seen from 2 km south, 600 m up, under a plain light; `terrain` adds settings.
+void load_valley(World& world, json terrain = json::object()) {
   world.modules().add_static(modules::terrain_module());
+  terrain["file"] = WELKIN_SOURCE_DIR "/assets/terrain/valley.glb";
   json doc{{"welkin_scene", 1},
            {"entities",
             json::array({json{{"components", {{"core.Camera", {{"position_m", {0, -2000, 600}}, {"pitch_deg", -8}, {"ev100", 14}}}}}},
                          json{{"components", {{"core.DirectionalLight", {{"elevation_deg", 40}}}}}},
-                         json{{"components", {{"terrain.Terrain", {{"file", WELKIN_SOURCE_DIR "/assets/terrain/valley.glb"}}}}}}})}};
+                         json{{"components", {{"terrain.Terrain", terrain}}}}})}};
   load_scene(world, doc, "terrain.json");
+}
+
+TEST_F(TerrainRender, SampleTerrainRendersWithItsMaterial) {
+  World world;
+  load_valley(world);
   Renderer r(world);
   FrameResult fr = r.render_frame({}, 48, 27);
   bool drew = false;
@@ -109,14 +115,7 @@ TEST_F(TerrainRender, MeshReadFromTheDiskCacheBitForBit) {
   const welkin::testing::CacheFolder cache(folder.string());
   auto render = [](int lod_levels, size_t& reads) {
     World world;
-    world.modules().add_static(modules::terrain_module());
-    json doc{{"welkin_scene", 1},
-             {"entities",
-              json::array({json{{"components", {{"core.Camera", {{"position_m", {0, -2000, 600}}, {"pitch_deg", -8}, {"ev100", 14}}}}}},
-                           json{{"components", {{"core.DirectionalLight", {{"elevation_deg", 40}}}}}},
-                           json{{"components", {{"terrain.Terrain", {{"file", WELKIN_SOURCE_DIR "/assets/terrain/valley.glb"},
-                                                                      {"lod_levels", lod_levels}}}}}}})}};
-    load_scene(world, doc, "terrain.json");
+    load_valley(world, {{"lod_levels", lod_levels}});
     Renderer r(world);
     r.render_frame({}, 48, 27);
     reads = world.resource<terrain::TerrainCache>().mesh_cache_reads;
