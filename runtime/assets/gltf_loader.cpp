@@ -286,11 +286,18 @@ fs::path resolve_external(const Source& src, const std::string& uri, const std::
   return full;
 }
 
+void hash_content(const Source& src, std::span<const uint8_t> bytes) {
+  // The size first: bytes moved from one file to the next change the hash.
+  const uint64_t size = bytes.size();
+  src.content_hash = DiskCache::hash({reinterpret_cast<const char*>(&size), sizeof size}, src.content_hash);
+  src.content_hash = DiskCache::hash({reinterpret_cast<const char*>(bytes.data()), bytes.size()}, src.content_hash);
+}
+
 std::vector<uint8_t> read_file_limited(const Source& src, const fs::path& file, uint64_t max_bytes,
                                        const std::string& path) {
   try {
     std::vector<uint8_t> bytes = read_file_bytes(file.string(), max_bytes);  // regular files only, never past max_bytes
-    src.content_hash = DiskCache::hash({reinterpret_cast<const char*>(bytes.data()), bytes.size()}, src.content_hash);
+    hash_content(src, bytes);
     return bytes;
   } catch (const Error& e) {
     fail(src, path, "a readable regular file of at most " + std::to_string(max_bytes) + " bytes",
@@ -372,7 +379,7 @@ Model load_gltf_memory(std::span<const uint8_t> bytes, const std::string& name, 
   if (bytes.size() > options.limits.max_file_bytes)
     detail::fail(src, "", "at most " + std::to_string(options.limits.max_file_bytes) + " bytes",
                  std::to_string(bytes.size()) + " bytes");
-  src.content_hash = DiskCache::hash({reinterpret_cast<const char*>(bytes.data()), bytes.size()}, src.content_hash);
+  detail::hash_content(src, bytes);
   return detail::load(bytes, src);
 }
 

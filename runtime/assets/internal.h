@@ -80,6 +80,8 @@ std::filesystem::path resolve_external(const Source& src, const std::string& uri
 // True when `candidate` (any spelling) canonically lies inside the base folder; never throws.
 bool inside_base(const Source& src, const std::filesystem::path& candidate);
 // Reads a whole file of at most `max_bytes`. Throws Error at `path`.
+// Chains a file's size and bytes into src.content_hash.
+void hash_content(const Source& src, std::span<const uint8_t> bytes);
 std::vector<uint8_t> read_file_limited(const Source& src, const std::filesystem::path& file,
                                        uint64_t max_bytes, const std::string& path);
 

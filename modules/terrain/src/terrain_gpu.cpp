@@ -82,16 +82,18 @@ TerrainCache::LoadedMesh TerrainCache::load_mesh(const Terrain& s, TerrainMesh& 
     ++mesh_cache_reads;
     return loaded;
   }
+  // A miss: the whole file read again, and the mesh, its materials and its key all taken from that one
+  // read (the file may have changed since the first).
   loaded.body = {};
-  {
-    std::shared_ptr<const assets::Model> geometry = assets_without_images.load(s.file);
-    mesh = build_terrain_mesh(*geometry, s);
-  }
-  assets_without_images.evict_unused();
+  loaded.model.reset();
+  assets_without_geometry.evict_unused();
+  loaded.model = assets.load(s.file);
+  mesh = build_terrain_mesh(*loaded.model, s);
   loaded.arrays = mesh_arrays(mesh);
+  const std::string built_key = mesh_cache_key(loaded.model->content_hash, s);
   if (mesh.normals.size() == mesh.positions.size() && mesh.uvs.size() == mesh.positions.size() &&
-      disk.write(key + "body", mesh_body_bytes(mesh)))
-    disk.write(key + "counts", mesh_counts_bytes(mesh));
+      disk.write(built_key + "body", mesh_body_bytes(mesh)))
+    disk.write(built_key + "counts", mesh_counts_bytes(mesh));
   return loaded;
 }
 

@@ -42,10 +42,9 @@ struct TerrainCache {
   } cascade_block;
   std::unique_ptr<Buffer> cascade_buffer;
   assets::AssetCache assets;
-  // With the disk cache on: the file read for its materials and images, and (only when the built mesh
-  // is not on disk) again for its geometry.
+  // With the disk cache on: the file read for its materials and images only, and (only when the built
+  // mesh is not on disk) again whole (`assets`).
   assets::AssetCache assets_without_geometry{assets::LoadOptions{.decode_meshes = false}};
-  assets::AssetCache assets_without_images{assets::LoadOptions{.decode_images = false}};
   std::map<std::string, std::unique_ptr<GpuTerrain>> terrains;  // key: file + build settings
   size_t mesh_cache_reads = 0;  // meshes read from the disk cache instead of built (tests)
   // Loads (or returns) the GPU terrain for these settings; throws welkin::Error naming the file.

@@ -183,8 +183,8 @@ template <class T> std::vector<T> take(std::span<const uint8_t> bytes, size_t& a
 }
 
 std::optional<size_t> body_size(const uint64_t (&c)[kCountFields], size_t max_bytes) {
-  // Each count alone within the limit first, so that the sum cannot overflow.
-  const uint64_t limit = max_bytes;
+  // Each count alone within the limit first, so that the sum (at most 4 limits) cannot overflow.
+  const uint64_t limit = std::min<uint64_t>(max_bytes, uint64_t(1) << 60);
   if (c[kVertices] > limit / 32 || c[kIndices] > limit / 4 || c[kChunks] > limit / sizeof(ChunkRecord) ||
       c[kLods] > limit / sizeof(LodRecord))
     return std::nullopt;
@@ -276,7 +276,7 @@ std::optional<TerrainMesh> mesh_from_bytes(std::span<const uint8_t> counts, std:
   if (c[kIndices] > 0 && largest >= c[kVertices]) return std::nullopt;
   size_t next_lod = 0;
   for (const ChunkRecord& r : chunks) {
-    if (r.lods > lods.size() - next_lod) return std::nullopt;
+    if (r.lods == 0 || r.lods > lods.size() - next_lod) return std::nullopt;  // level 0 is the full mesh
     Chunk chunk{.min = r.min, .max = r.max, .material = r.material};
     for (uint32_t k = 0; k < r.lods; ++k) {
       const LodRecord& l = lods[next_lod++];

@@ -42,7 +42,8 @@ TerrainMesh build_terrain_mesh(const assets::Model& model, const Terrain& settin
 // The built mesh in the disk cache (welkin/core/disk_cache.h): what it depends on is the file's
 // bytes (Model::content_hash, read without decoding its geometry) and the build settings, so a start
 // that finds it neither decodes the geometry (Draco) nor refines or simplifies it. Bump
-// kMeshCacheVersion when build_terrain_mesh changes what it makes.
+// kMeshCacheVersion when what build_terrain_mesh makes changes: its own code, or the loader's
+// conversion or refinement (assets) that it builds on.
 inline constexpr int kMeshCacheVersion = 1;
 std::string mesh_cache_key(uint64_t content_hash, const Terrain& settings);
 // Two entries: the counts (fixed size), then the arrays and chunks they size.

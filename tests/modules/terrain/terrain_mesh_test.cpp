@@ -147,6 +147,16 @@ TEST(TerrainMesh, CacheBytesOutOfRangeAreRefused) {
   const uint32_t too_many = uint32_t(m.indices.size() + 3);
   std::memcpy(bad.data() + first_lod + 4, &too_many, sizeof too_many);
   EXPECT_FALSE(mesh_from_bytes(bytes(counts), bad, arrays));
+  // A chunk without levels (level 0, the full mesh, is always there): its level moved to the next chunk.
+  bad = bytes(body);
+  const size_t first_chunk = first_index + m.indices.size() * sizeof(uint32_t);
+  uint32_t lods_first = 0, lods_second = 0;
+  std::memcpy(&lods_first, bad.data() + first_chunk + 28, sizeof lods_first);
+  std::memcpy(&lods_second, bad.data() + first_chunk + 32 + 28, sizeof lods_second);
+  lods_second += lods_first, lods_first = 0;
+  std::memcpy(bad.data() + first_chunk + 28, &lods_first, sizeof lods_first);
+  std::memcpy(bad.data() + first_chunk + 32 + 28, &lods_second, sizeof lods_second);
+  EXPECT_FALSE(mesh_from_bytes(bytes(counts), bad, arrays));
   // A body shorter than its counts say, and counts too large for any limit.
   bad = bytes(body);
   bad.pop_back();

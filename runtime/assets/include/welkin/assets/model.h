@@ -123,8 +123,8 @@ struct Model {
   std::vector<std::string> extensions_used, extensions_required;
   Bounds bounds;                      // world-space box of every mesh instance in the scene
   std::vector<std::string> warnings;  // things skipped on purpose (e.g. line primitives)
-  // FNV-1a (DiskCache::hash) chained over the bytes of every file the load read, in the order read:
-  // the file, its external buffers, and its external images when they were decoded.
+  // FNV-1a (DiskCache::hash) chained over the size and bytes of every file the load read, in the order
+  // read: the file, its external buffers, and its external images when they were decoded.
   uint64_t content_hash = 0;
 
   size_t vertex_count() const;
