@@ -364,10 +364,24 @@ struct AfterLuts {
   ResourceHandle published(const char* name) const { return graph->blackboard.at(name); }
 };
 
+// The sky's shader: its mode (the sky-view LUT, the march from space, or method raymarch), and whether
+// the planet's ground gets the light environment's shadows and added light (when some term has them).
+ShaderDefines sky_defines(const GpuUniforms& u, bool space, bool raymarch, const LightEnvironment& env) {
+  ShaderDefines sky = moon_defines(u);
+  sky["ATM_SKY_MODE"] = raymarch ? "2" : space ? "1" : "0";
+  sky["ATM_SKY_GROUND_LIGHT"] = env.shades_surfaces() ? "1" : "0";
+  return sky;
+}
+
+bool raymarched(SystemContext& sc) {
+  Registry& reg = sc.world.registry();
+  return reg.get<Atmosphere>(reg.first<Atmosphere>())->method == SkyMethod::raymarch;
+}
+
 // The sky over the whole target, before the geometry (which covers it: cheaper than testing depth per
 // pixel afterwards; on a software rasteriser that test costs as much as a copy), and after the systems
-// that make what the light environment reads (cloud shadows), since the planet's ground is shaded
-// through it.
+// that make what the light environment reads (cloud shadows). The planet's ground shaded through the
+// light environment is drawn after the geometry (ground_light_pass), where little of it is left.
 void background_system(SystemContext& sc) {
   Registry& reg = sc.world.registry();
   const Atmosphere& atm = *reg.get<Atmosphere>(reg.first<Atmosphere>());
@@ -384,22 +398,16 @@ void background_system(SystemContext& sc) {
                        sky_view = f.published("atmosphere.sky_view");
   const GpuUniforms& u = gpu.uniforms;
   const bool space = f.space;
-  const bool raymarch = atm.method == SkyMethod::raymarch;
-  const ShaderDefines moon_defs = moon_defines(u);
   // The discs are hidden behind the geometry for free.
   const float pixel_angle = rc.view.vertical_fov_rad / float(std::max(rc.view.height, 1));
-  ShaderDefines sky = moon_defs;
-  sky["ATM_SKY_MODE"] = raymarch ? "2" : space ? "1" : "0";
-  // The ground gets the light environment's shadows and added light when some term has them.
   const LightEnvironment* env = &sc.world.resource<LightEnvironment>();
-  sky["ATM_SKY_GROUND_LIGHT"] = env->shades_surfaces() ? "1" : "0";
+  const ShaderDefines sky = sky_defines(u, space, atm.method == SkyMethod::raymarch, *env);
   ShaderDefines discs = sky;
   discs["ATM_SKY_DISCS"] = "1";
-  // With the ground's light: the sky without it everywhere, then the ground's shading over the part
-  // of the frame where rays can meet the ground (a branch would cost every pixel on a software rasteriser).
+  // With the ground's light: the sky without it everywhere here; the ground's shading comes after
+  // the geometry (a branch would cost every pixel on a software rasteriser).
   ShaderDefines open_sky = sky;
   open_sky["ATM_SKY_GROUND_LIGHT"] = "0";
-  const PixelRect ground = sky.at("ATM_SKY_GROUND_LIGHT") == "1" ? ground_pixel_rect(u, rc.view.width, rc.view.height) : PixelRect{};
   const bool any_disc = u.flags.x > 0.5f || u.flags.z > 0.5f;
   // Stars only while the sun is below the camera's horizon, or from space: in daylight the sky
   // outshines them, and the pass would cost every frame for nothing.
@@ -419,7 +427,7 @@ void background_system(SystemContext& sc) {
         b.read(t.color);
         b.write(t.color);
       },
-      [gp, rcp, env, t, pixel_angle, sky, open_sky, ground, discs, any_disc, draw_stars, stars_draw](PassContext& pc) {
+      [gp, rcp, env, t, pixel_angle, sky, open_sky, discs, any_disc, draw_stars, stars_draw](PassContext& pc) {
         Framebuffer fb(&pc.texture(t.color), nullptr);
         fb.bind();
         glDisable(GL_DEPTH_TEST);
@@ -429,13 +437,6 @@ void background_system(SystemContext& sc) {
         bind_for_materials(*gp);
         rcp->shaders.graphics("atmosphere/sky.vert", "atmosphere/sky.frag", ground_light ? open_sky : sky).use();
         rcp->draw_fullscreen_triangle();
-        if (!ground.empty()) {
-          glEnable(GL_SCISSOR_TEST);
-          glScissor(ground.x0, ground.y0, ground.x1 - ground.x0, ground.y1 - ground.y0);
-          rcp->shaders.graphics("atmosphere/sky.vert", "atmosphere/sky.frag", sky).use();
-          rcp->draw_fullscreen_triangle();
-          glDisable(GL_SCISSOR_TEST);
-        }
         if (any_disc) {
           // Overwrites its squares with sky + disc (no blending: the sum must be fitted to RGBA16F).
           const Program& d = rcp->shaders.graphics("atmosphere/sky.vert", "atmosphere/sky.frag", discs);
@@ -448,8 +449,54 @@ void background_system(SystemContext& sc) {
       });
 }
 
+// The planet's ground lit through the light environment (its shadows and added light), after the
+// geometry: over the part of the frame where rays can meet the ground, on the pixels the geometry left
+// open (the depth test, early) whose rays meet the ground (the rest keeps the sky, discs and stars).
+// Drawn before the geometry, every ground pixel paid the shading (11 copies in the default demo)
+// and the terrain then covered most of them.
+void ground_light_pass(SystemContext& sc, const AfterLuts& f) {
+  const LightEnvironment* env = &sc.world.resource<LightEnvironment>();
+  const GpuUniforms& u = f.gpu->uniforms;
+  ShaderDefines ground_only = sky_defines(u, f.space, raymarched(sc), *env);
+  if (ground_only.at("ATM_SKY_GROUND_LIGHT") != "1") return;
+  const PixelRect ground = ground_pixel_rect(u, f.rc->view.width, f.rc->view.height);
+  if (ground.empty()) return;
+  ground_only["ATM_SKY_GROUND_ONLY"] = "1";
+  const FrameTargets t = f.targets;
+  const ResourceHandle trans = f.trans, ms = f.published("atmosphere.multiscattering"),
+                       sky_view = f.published("atmosphere.sky_view");
+  sc.graph->add_pass(
+      "atmosphere.ground_light",
+      [&](PassBuilder& b) {
+        b.read(trans);
+        b.read(ms);
+        b.read(sky_view);
+        b.read(t.depth);
+        b.read(t.color);
+        b.write(t.color);
+      },
+      [gp = f.gpu, rcp = f.rc, env, t, ground, ground_only](PassContext& pc) {
+        Framebuffer fb(&pc.texture(t.color), &pc.texture(t.depth));
+        fb.bind();
+        glEnable(GL_DEPTH_TEST);
+        glDepthMask(GL_FALSE);
+        glDepthFunc(GL_GEQUAL);  // the triangle at depth 0 passes only where nothing was drawn
+        glDisable(GL_BLEND);
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(ground.x0, ground.y0, ground.x1 - ground.x0, ground.y1 - ground.y0);
+        env->bind();
+        bind_for_materials(*gp);
+        rcp->shaders.graphics("atmosphere/sky.vert", "atmosphere/sky.frag", ground_only).use();
+        rcp->draw_fullscreen_triangle();
+        glDisable(GL_SCISSOR_TEST);
+        glDepthMask(GL_TRUE);
+        glDisable(GL_DEPTH_TEST);
+      });
+}
+
 void sky_system(SystemContext& sc) {
   const AfterLuts f = AfterLuts::of(sc);
+  ground_light_pass(sc, f);
   AtmosphereGpu* gp = f.gpu;
   RenderContext* rcp = f.rc;
   const FrameTargets t = f.targets;

@@ -13,6 +13,11 @@
 #ifndef ATM_SKY_GROUND_LIGHT
 #define ATM_SKY_GROUND_LIGHT 0
 #endif
+// ATM_SKY_GROUND_ONLY (with the ground's light): only the rays that meet the ground are written, after
+// the geometry (src/passes.cpp, ground_light_pass); the others keep what the sky pass drew.
+#ifndef ATM_SKY_GROUND_ONLY
+#define ATM_SKY_GROUND_ONLY 0
+#endif
 #if ATM_SKY_GROUND_LIGHT
 #include "welkin/lighting.glsl"
 #endif
@@ -38,10 +43,11 @@ vec3 sky_luminance(vec3 v) {
 // sky. Where the light environment shadows a surface (cloud shadows, sky occlusion under a deck) or
 // adds light to it, the ground gets the same as any material: what the shadows take is removed and
 // what the terms add is added, through the transmittance from the camera to the ground.
+bool meets_ground(vec3 iv) { return iv.z >= 0.5 && iv.y > iv.x; }
 vec3 ground_light_change(vec3 v) {
   vec3 o = atm_camera();
   vec3 iv = atm_ray_interval(o, v, 1e30);
-  if (iv.z < 0.5 || iv.y <= iv.x) return vec3(0.0);
+  if (!meets_ground(iv)) return vec3(0.0);
   vec3 g = o + v * iv.y;  // km, planet-centred
   vec3 n = normalize(g);
   vec3 p = v * (iv.y * 1000.0);  // camera-relative metres
@@ -65,6 +71,9 @@ void main() {
   o_color = vec4(atm_sky_view_lookup_local(v_dir), 1.0);
 #else
   vec3 v = normalize(v_dir);
+#if ATM_SKY_GROUND_ONLY
+  if (!meets_ground(atm_ray_interval(atm_camera(), v, 1e30))) discard;
+#endif
   vec3 luminance = sky_luminance(v);
 #if ATM_SKY_GROUND_LIGHT
   luminance = max(luminance + ground_light_change(v), vec3(0.0));

@@ -304,5 +304,25 @@ TEST(CloudsGpu, TheAtmospheresGroundIsShadowedLikeAMaterial) {
   EXPECT_NEAR(planet, box, 0.25 * box);
 }
 
+// The ground's light is drawn after the geometry (atmosphere.ground_light) and only where none was
+// drawn: a red box on the ground keeps its own colour beside the grey planet.
+TEST(CloudsGpu, TheAtmospheresGroundLightLeavesGeometryAlone) {
+  json d = noon({{"layers", json::array({{{"genus", "stratus"}, {"coverage", 1.0}, {"base_altitude_m", 800}, {"thickness_m", 600}, {"density_per_m", 0.03}}})},
+                 {"temporal_upscaling", false}});
+  d["entities"].push_back({{"name", "red box"},
+                           {"components", {{"core.DebugShape", {{"shape", "box"}, {"position_m", {-200, -300, -0.5}}, {"size_m", {200, 300, 0.5}},
+                                                                {"albedo", {0.6, 0.05, 0.05}}}}}}});
+  for (auto& e : d["entities"])
+    if (e["components"].contains("core.Camera")) e["components"]["core.Camera"]["heading_deg"] = 180, e["components"]["core.Camera"]["pitch_deg"] = -45;
+  test::Rendered r = render(d, 48, 27);
+  ASSERT_TRUE(r.ran("atmosphere.ground_light"));
+  const ImageF im = r.renderer->read_hdr();
+  auto px = [&](int x, int y) { return glm::dvec3(im.rgba[(size_t(y) * 48 + size_t(x)) * 4], im.rgba[(size_t(y) * 48 + size_t(x)) * 4 + 1], im.rgba[(size_t(y) * 48 + size_t(x)) * 4 + 2]); };
+  const glm::dvec3 box = px(41, 20), planet = px(6, 20);
+  EXPECT_GT(box.r, 3.0 * box.g) << "the box keeps its red";
+  EXPECT_LT(planet.r, 1.5 * planet.g) << "the planet's ground stays grey";
+  EXPECT_GT(planet.g, 0.0);
+}
+
 }  // namespace
 }  // namespace welkin::clouds
