@@ -34,6 +34,10 @@ struct TerrainCache {
   // Cascades side by side in one depth atlas (kShadowCascades x 1), compared in the shader.
   std::unique_ptr<Texture> shadow_atlas;
   Texture& shadow_map(int cascade_size);
+  // Everything the atlas's depths depend on (cascades, casters, their placement relative to the
+  // camera, sizes) when it was last drawn: a frame with the same is not drawn again.
+  std::string shadow_inputs;
+  size_t shadow_draws = 0;  // times the atlas was drawn (tests)
   // This frame's cascades as the light term's std140 block (terrain/light_term.glsl), and its buffer.
   struct CascadeBlock {
     glm::mat4 light_view_projection[kShadowCascades];

@@ -91,6 +91,19 @@ bool outside_view(const glm::mat4& view_projection, const glm::vec3& lo, const g
   return false;
 }
 
+// The bytes of everything terrain.shadows draws from: the cascades, each caster's mesh and placement
+// as the shaders receive them (relative to the camera), and the chunks and levels it draws.
+std::string shadow_inputs(const Cascades& c, const std::vector<Placed>& placed, const FrameView& view, int size) {
+  std::string bytes;
+  auto put = [&bytes](const auto& v) { bytes.append(reinterpret_cast<const char*>(&v), sizeof v); };
+  put(c.light_view_projection), put(size);
+  for (const Placed& p : placed) {
+    put(p.gpu), put(glm::vec3(p.anchor_m - view.camera_position_m)), put(glm::vec2(p.anchor_m)), put(p.rotation), put(p.inverse_two_radius);
+    for (const Draw& d : p.shadow_draws) put(d.first), put(d.count), put(d.lo), put(d.hi);
+  }
+  return bytes;
+}
+
 }  // namespace
 
 glm::dvec3 anchor_position(World& world, const Terrain& t) {
@@ -193,7 +206,11 @@ void terrain_system(SystemContext& sc) {
     cache.cascade_block.far_m.w = 1.0f;
     shadow_handle = sc.graph->import("terrain.shadow_atlas", atlas);
     const int size = shadow_settings->shadow_map_size;
-    sc.graph->add_pass("terrain.shadows", [&](PassBuilder& b) { b.write(shadow_handle); }, [placed, cascades, shadow_handle, size, &rc](PassContext& pc) {
+    // A still camera under a still sun casts the same shadows: the atlas is kept, not drawn again.
+    std::string inputs = shadow_inputs(**cascades, *placed, view, size);
+    if (inputs != cache.shadow_inputs)
+    sc.graph->add_pass("terrain.shadows", [&](PassBuilder& b) { b.write(shadow_handle); },
+                       [placed, cascades, shadow_handle, size, &rc, &cache, inputs = std::move(inputs)](PassContext& pc) {
       Framebuffer fb(nullptr, &pc.texture(shadow_handle));
       fb.bind();
       glEnable(GL_DEPTH_TEST);
@@ -219,6 +236,8 @@ void terrain_system(SystemContext& sc) {
       glDisable(GL_POLYGON_OFFSET_FILL);
       glDepthFunc(GL_GREATER);  // back to the frame's reversed-Z convention
       glClearDepth(0.0);
+      cache.shadow_inputs = inputs;  // once drawn: a frame that failed before this draws again
+      ++cache.shadow_draws;
     });
   }
   sc.graph->add_pass("terrain", [&](PassBuilder& b) {

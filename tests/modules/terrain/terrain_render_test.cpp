@@ -10,6 +10,7 @@
 #include "cache_folder.h"
 #include "terrain_gpu.h"
 #include "welkin/core/world.h"
+#include "welkin/gfx/debug_content.h"
 #include "welkin/gfx/gl_context.h"
 #include "welkin/gfx/renderer.h"
 #include "welkin/scene/json_fields.h"
@@ -130,6 +131,32 @@ TEST_F(TerrainRender, MeshReadFromTheDiskCacheBitForBit) {
   render(3, reads);
   EXPECT_EQ(reads, 0u) << "other settings build their own mesh";
   std::filesystem::remove_all(folder);
+}
+
+// A still camera under a still sun casts the same shadows: the cascades are drawn once, and a frame
+// that keeps them is the frame that draws them afresh, bit for bit. A turn of the light draws them again.
+TEST_F(TerrainRender, ShadowCascadesAreDrawnAgainOnlyWhenTheirInputsChange) {
+  World world;
+  load_valley(world);
+  Renderer r(world);
+  auto& cache = world.resource<terrain::TerrainCache>();
+  r.render_frame({}, 48, 27);
+  EXPECT_EQ(cache.shadow_draws, 1u);
+  r.render_frame({}, 48, 27);
+  EXPECT_EQ(cache.shadow_draws, 1u) << "nothing moved";
+  const ImageF kept = r.read_hdr();
+  {
+    World fresh;
+    load_valley(fresh);
+    Renderer f(fresh);
+    f.render_frame({}, 48, 27);
+    EXPECT_EQ(f.read_hdr().rgba, kept.rgba);
+  }
+  Registry& reg = world.registry();
+  reg.get<DirectionalLight>(reg.first<DirectionalLight>())->azimuth_deg += 20.0f;
+  r.render_frame({}, 48, 27);
+  EXPECT_EQ(cache.shadow_draws, 2u) << "the light turned";
+  EXPECT_NE(r.read_hdr().rgba, kept.rgba);
 }
 
 TEST_F(TerrainRender, DefaultDemoSceneMatchesGolden) {
