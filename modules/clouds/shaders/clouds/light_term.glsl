@@ -18,8 +18,10 @@ layout(binding = WELKIN_UNIT_CLOUDS_SHADOW_MAP) uniform sampler2D cs_map;  // th
 // the depth into it, up to the column's total.
 float clouds_shadow_optical_depth(vec3 p) {
   int n = int(cs_up.w);
-  // The cascade is chosen first and read once: a software rasteriser would read every cascade a
-  // loop passes, taken or not.
+  // The cascade is chosen first and read once (a software rasteriser would read every cascade a loop
+  // passes, taken or not), by selects rather than branches: a material asks for this depth at the
+  // same point three times (the sun's visibility, the sky's, the added light), and as straight-line
+  // code the compiler computes it once.
   int chosen = -1;
   vec2 uv = vec2(0.0);
   for (int k = 0; k < CLOUDS_SHADOW_CASCADES; ++k) {
@@ -27,18 +29,18 @@ float clouds_shadow_optical_depth(vec3 p) {
     vec2 c = vec2(0.5 + dot(q, cs_axis_u[k].xyz), 0.5 + dot(q, cs_axis_v[k].xyz));
     float margin = k + 1 < n ? 0.0625 : 0.0;
     bool inside = all(greaterThanEqual(c, vec2(margin))) && all(lessThanEqual(c, vec2(1.0 - margin)));
-    if (chosen < 0 && k < n && inside) {
-      chosen = k;
-      uv = c;
-    }
+    bool take = chosen < 0 && k < n && inside;
+    chosen = take ? k : chosen;
+    uv = take ? c : uv;
   }
-  if (chosen < 0) return 0.0;
+  const bool found = chosen >= 0;
+  const int k = max(chosen, 0);
   // Kept half a texel inside the cascade's square: its neighbour in the texture is another cascade.
   float half_texel = 0.5 / float(textureSize(cs_map, 0).y);
   uv = clamp(uv, vec2(half_texel), vec2(1.0 - half_texel));
-  vec3 m = texture(cs_map, vec2((float(chosen) + uv.x) / float(n), uv.y)).xyz;  // front, mean extinction, total
-  float depth = cs_axis_u[chosen].w - dot(p - cs_origin[chosen].xyz, cs_light.xyz);
-  return min(m.z, m.y * max(depth - m.x, 0.0));
+  vec3 m = texture(cs_map, vec2((float(k) + uv.x) / float(max(n, 1)), uv.y)).xyz;  // front, mean extinction, total
+  float depth = cs_axis_u[k].w - dot(p - cs_origin[k].xyz, cs_light.xyz);
+  return found ? min(m.z, m.y * max(depth - m.x, 0.0)) : 0.0;
 }
 
 float clouds_light_visibility(vec3 p, vec3 n, int light) {
