@@ -366,17 +366,30 @@ struct AfterLuts {
 
 // The sky's shader: its mode (the sky-view LUT, the march from space, or method raymarch), and whether
 // the planet's ground gets the light environment's shadows and added light (when some term has them).
-ShaderDefines sky_defines(const GpuUniforms& u, bool space, bool raymarch, const LightEnvironment& env) {
-  ShaderDefines sky = moon_defines(u);
-  sky["ATM_SKY_MODE"] = raymarch ? "2" : space ? "1" : "0";
-  sky["ATM_SKY_GROUND_LIGHT"] = env.shades_surfaces() ? "1" : "0";
+ShaderDefines sky_defines(SystemContext& sc, const AfterLuts& f) {
+  Registry& reg = sc.world.registry();
+  const bool raymarch = reg.get<Atmosphere>(reg.first<Atmosphere>())->method == SkyMethod::raymarch;
+  ShaderDefines sky = moon_defines(f.gpu->uniforms);
+  sky["ATM_SKY_MODE"] = raymarch ? "2" : f.space ? "1" : "0";
+  sky["ATM_SKY_GROUND_LIGHT"] = sc.world.resource<LightEnvironment>().shades_surfaces() ? "1" : "0";
   return sky;
 }
 
-bool raymarched(SystemContext& sc) {
-  Registry& reg = sc.world.registry();
-  return reg.get<Atmosphere>(reg.first<Atmosphere>())->method == SkyMethod::raymarch;
-}
+// A full-screen triangle at depth 0 over the frame's depth, tested but not written: GL_LESS shades the
+// geometry, GL_GEQUAL the pixels it left open. The frame's defaults come back at the end of the scope.
+struct DepthTestedOverlay {
+  explicit DepthTestedOverlay(GLenum func) {
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glDepthFunc(func);
+  }
+  ~DepthTestedOverlay() {
+    glDepthMask(GL_TRUE);
+    glDisable(GL_DEPTH_TEST);
+  }
+  DepthTestedOverlay(const DepthTestedOverlay&) = delete;
+  DepthTestedOverlay& operator=(const DepthTestedOverlay&) = delete;
+};
 
 // The sky over the whole target, before the geometry (which covers it: cheaper than testing depth per
 // pixel afterwards; on a software rasteriser that test costs as much as a copy), and after the systems
@@ -384,7 +397,6 @@ bool raymarched(SystemContext& sc) {
 // light environment is drawn after the geometry (ground_light_pass), where little of it is left.
 void background_system(SystemContext& sc) {
   Registry& reg = sc.world.registry();
-  const Atmosphere& atm = *reg.get<Atmosphere>(reg.first<Atmosphere>());
   const Entity stars_e = reg.first<Stars>();
   const Stars* stars = stars_e.is_null() ? nullptr : reg.get<Stars>(stars_e);
   const AfterLuts f = AfterLuts::of(sc);
@@ -401,7 +413,7 @@ void background_system(SystemContext& sc) {
   // The discs are hidden behind the geometry for free.
   const float pixel_angle = rc.view.vertical_fov_rad / float(std::max(rc.view.height, 1));
   const LightEnvironment* env = &sc.world.resource<LightEnvironment>();
-  const ShaderDefines sky = sky_defines(u, space, atm.method == SkyMethod::raymarch, *env);
+  const ShaderDefines sky = sky_defines(sc, f);
   ShaderDefines discs = sky;
   discs["ATM_SKY_DISCS"] = "1";
   // With the ground's light: the sky without it everywhere here; the ground's shading comes after
@@ -457,7 +469,7 @@ void background_system(SystemContext& sc) {
 void ground_light_pass(SystemContext& sc, const AfterLuts& f) {
   const LightEnvironment* env = &sc.world.resource<LightEnvironment>();
   const GpuUniforms& u = f.gpu->uniforms;
-  ShaderDefines ground_only = sky_defines(u, f.space, raymarched(sc), *env);
+  ShaderDefines ground_only = sky_defines(sc, f);
   if (ground_only.at("ATM_SKY_GROUND_LIGHT") != "1") return;
   const PixelRect ground = ground_pixel_rect(u, f.rc->view.width, f.rc->view.height);
   if (ground.empty()) return;
@@ -478,9 +490,7 @@ void ground_light_pass(SystemContext& sc, const AfterLuts& f) {
       [gp = f.gpu, rcp = f.rc, env, t, ground, ground_only](PassContext& pc) {
         Framebuffer fb(&pc.texture(t.color), &pc.texture(t.depth));
         fb.bind();
-        glEnable(GL_DEPTH_TEST);
-        glDepthMask(GL_FALSE);
-        glDepthFunc(GL_GEQUAL);  // the triangle at depth 0 passes only where nothing was drawn
+        const DepthTestedOverlay open_pixels(GL_GEQUAL);
         glDisable(GL_BLEND);
         glEnable(GL_SCISSOR_TEST);
         glScissor(ground.x0, ground.y0, ground.x1 - ground.x0, ground.y1 - ground.y0);
@@ -489,8 +499,6 @@ void ground_light_pass(SystemContext& sc, const AfterLuts& f) {
         rcp->shaders.graphics("atmosphere/sky.vert", "atmosphere/sky.frag", ground_only).use();
         rcp->draw_fullscreen_triangle();
         glDisable(GL_SCISSOR_TEST);
-        glDepthMask(GL_TRUE);
-        glDisable(GL_DEPTH_TEST);
       });
 }
 
@@ -521,9 +529,7 @@ void sky_system(SystemContext& sc) {
         // GL 4.5 defines (9.3.1); GL_LESS against depth 0 passes only on geometry.
         Framebuffer fb(&pc.texture(t.color), &pc.texture(t.depth));
         fb.bind();
-        glEnable(GL_DEPTH_TEST);
-        glDepthMask(GL_FALSE);
-        glDepthFunc(GL_LESS);
+        const DepthTestedOverlay geometry(GL_LESS);
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_SRC1_COLOR);  // colour * transmittance + in-scattering
         bind_for_materials(*gp);
@@ -534,8 +540,6 @@ void sky_system(SystemContext& sc) {
         p.use();
         rcp->draw_fullscreen_triangle();
         glDisable(GL_BLEND);
-        glDepthMask(GL_TRUE);
-        glDisable(GL_DEPTH_TEST);
       });
 }
 

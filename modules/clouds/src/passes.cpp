@@ -182,8 +182,7 @@ ShaderDefines light_model_defines(const CloudsGpu& gpu) {
 
 ShaderDefines field_defines(const CloudsGpu& gpu) {
   constexpr int kLocalLayers = 4;
-  ShaderDefines d = light_model_defines(gpu);
-  d["CLOUDS_TURBULENCE"] = gpu.block.noise_mix.x > 0.0f ? "1" : "0";
+  ShaderDefines d = {{"CLOUDS_TURBULENCE", gpu.block.noise_mix.x > 0.0f ? "1" : "0"}};
   if (gpu.clusters_layer >= 0 || gpu.billboards_layer >= 0) d["CLOUDS_HANDOVER"] = "1";
   const std::vector<LayerBlock>& layers = gpu.layers;
   if (layers.empty() || layers.size() > size_t(kLocalLayers)) return d;
@@ -597,6 +596,7 @@ void clouds_system(SystemContext& sc) {
   const char* ap_mode = camera_in_space(world, gpu.block) ? "2" : clouds->aerial_perspective == CloudAerialPerspective::mean_depth ? "1" : "0";
   // The field's layers and what each uses are compiled in, turbulence only where it displaces anything.
   ShaderDefines defines = field_defines(gpu);
+  defines.merge(light_model_defines(gpu));
   defines["CLOUDS_AP_MODE"] = ap_mode;
   // The mesh clusters drawn just before: the march ends where they turn opaque.
   // (published on the graph's blackboard by clouds.clusters when it drew this frame).

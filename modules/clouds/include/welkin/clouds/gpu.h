@@ -320,8 +320,7 @@ void sort_far_to_near(ShaderLibrary& shaders, int size);
 std::vector<glm::vec4> puff_proxy_mesh(int level);
 // Binds the density field's block, layers and noise (shaders/clouds/density.glsl's bindings).
 void bind_field(const CloudsGpu& gpu);
-// The field's compile-time description for a shader that includes density.glsl (the light model's
-// included).
+// The field's compile-time description for a shader that includes density.glsl.
 ShaderDefines field_defines(const CloudsGpu& gpu);
 // The light model's choices (multiple scattering, powder, phase function) for a shader that includes
 // clouds/light_model.glsl: compiled in, since llvmpipe evaluates both sides of a uniform branch.
