@@ -1,5 +1,6 @@
 #include "welkin/gfx/camera.h"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -66,6 +67,51 @@ glm::vec3 pixel_direction(const FrameView& v, double x, double y) {
   double aspect = double(v.width) / v.height;
   glm::dvec3 d = glm::dvec3(v.forward) + ndc_x * t * aspect * glm::dvec3(v.right) + ndc_y * t * glm::dvec3(v.up);
   return glm::vec3(glm::normalize(d));
+}
+
+void PixelRect::include(const PixelRect& r) {
+  if (r.empty()) return;
+  if (empty()) {
+    *this = r;
+    return;
+  }
+  x0 = std::min(x0, r.x0), y0 = std::min(y0, r.y0), x1 = std::max(x1, r.x1), y1 = std::max(y1, r.y1);
+}
+
+PixelRect screen_rect(const FrameView& view, const glm::vec3& lo, const glm::vec3& hi) {
+  const PixelRect whole{0, 0, view.width, view.height};
+  glm::vec4 c[8];
+  for (int i = 0; i < 8; ++i)
+    c[i] = view.view_projection * glm::vec4(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z, 1.0f);
+  // The box's part in front of the near plane (clip w >= near in the reversed-Z infinite projection)
+  // is the hull of the corners there and of the edges' crossings of the plane.
+  const float near = view.near_m;
+  glm::vec2 lo_ndc(INFINITY), hi_ndc(-INFINITY);
+  auto add = [&](const glm::vec4& p) {
+    const glm::vec2 ndc = glm::vec2(p) / p.w;
+    lo_ndc = glm::min(lo_ndc, ndc), hi_ndc = glm::max(hi_ndc, ndc);
+  };
+  for (int i = 0; i < 8; ++i) {
+    if (c[i].w >= near) add(c[i]);
+    for (int axis = 1; axis < 8; axis <<= 1) {  // each edge once, from its corner with the bit clear
+      if (i & axis) continue;
+      const glm::vec4 &a = c[i], &b = c[i | axis];
+      if ((a.w < near) != (b.w < near)) add(glm::mix(a, b, (near - a.w) / (b.w - a.w)));
+    }
+  }
+  if (!(lo_ndc.x <= hi_ndc.x && lo_ndc.y <= hi_ndc.y)) {
+    const bool all_behind = std::all_of(c, c + 8, [&](const glm::vec4& p) { return p.w < near; });
+    return all_behind ? PixelRect{} : whole;  // NaN corners cannot be bounded
+  }
+  auto to_pixels = [](float ndc, int size, float rounding) {
+    const float px = rounding + (0.5f * ndc + 0.5f) * float(size);
+    return int(std::clamp(px, -1.0f, float(size) + 1.0f));
+  };
+  PixelRect r{to_pixels(lo_ndc.x, view.width, -1.0f), to_pixels(lo_ndc.y, view.height, -1.0f),
+              to_pixels(hi_ndc.x, view.width, 2.0f), to_pixels(hi_ndc.y, view.height, 2.0f)};
+  r.x0 = std::max(r.x0, 0), r.y0 = std::max(r.y0, 0);
+  r.x1 = std::min(r.x1, view.width), r.y1 = std::min(r.y1, view.height);
+  return r.empty() ? PixelRect{} : r;
 }
 
 }  // namespace welkin

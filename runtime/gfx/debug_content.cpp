@@ -112,6 +112,11 @@ void debug_shape_system(SystemContext& sc) {
   auto& rc = sc.world.resource<RenderContext>();
   std::vector<DebugShape> shapes;
   reg.each<DebugShape>([&](Entity, DebugShape& s) { shapes.push_back(s); });
+  for (const DebugShape& s : shapes) {
+    const glm::vec3 rel = glm::vec3(s.position_m - rc.view.camera_position_m);
+    const glm::vec3 half = s.shape == ShapeKind::sphere ? glm::vec3(s.size_m.x) : s.size_m;
+    sc.targets->geometry.include(screen_rect(rc.view, rel - glm::abs(half), rel + glm::abs(half)));
+  }
   const FrameTargets t = *sc.targets;
   sc.graph->add_pass("debug_shapes", [&](PassBuilder& pb) { pb.read(t.color); pb.write(t.color); pb.read(t.depth); pb.write(t.depth); },
                      [&rc, &world = sc.world, shapes, t](PassContext& pc) {

@@ -61,6 +61,12 @@ bool LightEnvironment::remove(std::string_view name) {
   return true;
 }
 
+void LightEnvironment::set_moon_lights_surfaces(bool on) {
+  if (on == moon_lights_surfaces_) return;
+  moon_lights_surfaces_ = on;
+  ++version_;
+}
+
 bool LightEnvironment::has(std::string_view name) const {
   return std::any_of(terms_.begin(), terms_.end(), [&](const LightTerm& t) { return t.name == name; });
 }
@@ -96,6 +102,7 @@ std::string LightEnvironment::composed_source() const {
   std::string s = "#pragma once\n// Composed by the runtime's light environment (welkin/gfx/light_environment.h) from the terms:";
   for (const LightTerm& t : terms_) s += " " + t.name;
   s += "\n";
+  s += std::string("#define WELKIN_MOON_LIGHT ") + (moon_lights_surfaces_ ? "1" : "0") + "\n";
   const LightTerm* lights = nullptr;
   const LightTerm* aerial = nullptr;
   const LightTerm* medium = nullptr;

@@ -90,6 +90,7 @@ FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height
   auto rendered = world_.scheduler().run(Phase::render, sctx);
   graph.set_system("");
   result.systems_run.insert(result.systems_run.end(), rendered.begin(), rendered.end());
+  result.geometry = targets.geometry;
 
   const FrameView& view = ctx_.view;
   graph.add_pass("tonemap", [&](PassBuilder& b) {

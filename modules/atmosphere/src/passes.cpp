@@ -20,11 +20,11 @@ namespace {
 
 // Shader permutations of one frame: software rasterisers run both sides of every branch, so
 // features a frame does not use are compiled out rather than branched around.
-ShaderDefines moon_defines(const GpuUniforms& u) {
-  const bool moon_lights_sky =
-      u.flags.w > 0.5f && glm::any(glm::greaterThan(glm::vec3(u.moon_illuminance), glm::vec3(0.0f)));
-  return {{"ATM_MOON_LIGHT", moon_lights_sky ? "1" : "0"}};
+bool moon_lights(const GpuUniforms& u) {
+  return u.flags.w > 0.5f && glm::any(glm::greaterThan(glm::vec3(u.moon_illuminance), glm::vec3(0.0f)));
 }
+
+ShaderDefines moon_defines(const GpuUniforms& u) { return {{"ATM_MOON_LIGHT", moon_lights(u) ? "1" : "0"}}; }
 
 bool in_space(const GpuUniforms& u) {
   return u.aerial_params.z > 0.5f;
@@ -201,6 +201,11 @@ void lut_system(SystemContext& sc) {
   if (!gpu.uniform_buffer) gpu.uniform_buffer = std::make_unique<Buffer>(sizeof(GpuUniforms));
   gpu.uniform_buffer->upload(&u, sizeof(u));
   gpu.uniforms = u;
+  // The moon reaches surfaces where it lights the sky (make_uniforms): by day, on any surface, it adds
+  // below a thousandth of what the sun and sky give (tested), and materials compile without it.
+  LightEnvironment& env = sc.world.resource<LightEnvironment>();
+  env.set_moon_lights_surfaces(moon_lights(u));
+  env.install(rc.shaders);
   const bool rebuild = resized || !gpu.luts_valid || luts_differ(u, gpu.lut_uniforms);
   const bool space = in_space(u);
   const bool raymarch = atm.method == SkyMethod::raymarch;
@@ -319,6 +324,9 @@ void lut_system(SystemContext& sc) {
           b.read(ms);
           b.write(ap_s);
           b.write(ap_t);
+          // Materials that write no depth (the clouds) read it through the light environment, which
+          // the graph does not see: it is made whenever it is stale, geometry or not.
+          b.side_effect();
         },
         [gp, rcp, q, moon_defs, u](PassContext&) {
           bind_for_materials(*gp);
@@ -430,6 +438,25 @@ void background_system(SystemContext& sc) {
   if (draw_stars) stars_draw = prepare_stars(gpu, *stars, rc.view);
   // The sky's first draw covers every pixel without blending: the frame's colour needs no clear.
   sc.targets->color_covered = true;
+  // What the sky and its discs are drawn from: the block (medium, view, sun, moon), the LUTs' builds,
+  // the shaders' permutations, the frame's size and format. While they stay the same (a still view
+  // under a still sun) the sky drawn last is copied in: exact, and a memory copy instead of a LUT
+  // lookup per pixel. The stars turn with the clock: a frame with them draws.
+  std::string inputs;
+  if (!draw_stars) {
+    auto put = [&inputs](const auto& v) { inputs.append(reinterpret_cast<const char*>(&v), sizeof v); };
+    put(u), put(gpu.sky_view_builds), put(gpu.lut_builds), put(gpu.lut_cache_reads), put(pixel_angle);
+    put(rc.view.width), put(rc.view.height), put(rc.full_precision);
+    for (const auto& [k, v] : discs) inputs += k + "=" + v + ";";
+  }
+  const TextureDesc color_desc{.width = rc.view.width, .height = rc.view.height, .format = rc.radiance_format()};
+  if (!gpu.kept_sky || !(gpu.kept_sky->desc() == color_desc)) {
+    gpu.kept_sky = std::make_unique<Texture>(color_desc);
+    gpu.kept_sky_inputs.clear();
+    gpu.drawn_sky_inputs.clear();
+  }
+  const ResourceHandle kept = g.import("atmosphere.kept_sky", *gpu.kept_sky);
+  const bool keep = !inputs.empty() && inputs == gpu.kept_sky_inputs;
   g.add_pass(
       "atmosphere.sky",
       [&](PassBuilder& b) {
@@ -438,9 +465,21 @@ void background_system(SystemContext& sc) {
         b.read(sky_view);
         b.read(t.color);
         b.write(t.color);
+        b.read(kept);
+        b.write(kept);
       },
-      [gp, rcp, env, t, pixel_angle, sky, open_sky, discs, any_disc, draw_stars, stars_draw](PassContext& pc) {
-        Framebuffer fb(&pc.texture(t.color), nullptr);
+      [gp, rcp, env, t, kept, keep, inputs = std::move(inputs), pixel_angle, sky, open_sky, discs, any_disc,
+       draw_stars, stars_draw](PassContext& pc) {
+        const Texture &color = pc.texture(t.color), &kept_sky = pc.texture(kept);
+        auto copy = [&](const Texture& from, const Texture& to) {
+          glCopyImageSubData(from.id(), GL_TEXTURE_2D, 0, 0, 0, 0, to.id(), GL_TEXTURE_2D, 0, 0, 0, 0,
+                             to.desc().width, to.desc().height, 1);
+        };
+        if (keep) {
+          copy(kept_sky, color);
+          return;
+        }
+        Framebuffer fb(&color, nullptr);
         fb.bind();
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_BLEND);
@@ -457,6 +496,13 @@ void background_system(SystemContext& sc) {
           glBindVertexArray(rcp->empty_vao.id());
           glDrawArraysInstanced(GL_TRIANGLES, 0, 6, 2);
         }
+        ++gp->sky_draws;
+        // Recorded only once drawn (a failed frame draws again); kept when drawn twice alike.
+        if (!inputs.empty() && inputs == gp->drawn_sky_inputs) {
+          copy(color, kept_sky);
+          gp->kept_sky_inputs = inputs;
+        }
+        gp->drawn_sky_inputs = inputs;
         if (draw_stars) draw_star_points(*rcp, *gp, stars_draw);
       });
 }
@@ -514,6 +560,9 @@ void sky_system(SystemContext& sc) {
   const bool space = f.space;
   ShaderDefines ap = moon_defines(u);
   ap["ATM_AP_MODE"] = space ? "1" : "0";
+  // Only where geometry may have written depth; without geometry there is nothing to apply it to.
+  const PixelRect geometry = t.geometry;
+  if (geometry.empty()) return;
   sc.graph->add_pass(
       "atmosphere.aerial_perspective_apply",
       [&](PassBuilder& b) {
@@ -524,12 +573,15 @@ void sky_system(SystemContext& sc) {
         b.read(t.color);
         b.write(t.color);
       },
-      [gp, rcp, t, ap](PassContext& pc) {
+      [gp, rcp, t, ap, geometry](PassContext& pc) {
         // Depth attached read-only and sampled with texelFetch at the fragment's own texel, which
         // GL 4.5 defines (9.3.1); GL_LESS against depth 0 passes only on geometry.
         Framebuffer fb(&pc.texture(t.color), &pc.texture(t.depth));
         fb.bind();
-        const DepthTestedOverlay geometry(GL_LESS);
+        const DepthTestedOverlay on_geometry(GL_LESS);
+        // llvmpipe runs the depth test for every block a triangle touches: the scissor skips the rest.
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(geometry.x0, geometry.y0, geometry.x1 - geometry.x0, geometry.y1 - geometry.y0);
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_SRC1_COLOR);  // colour * transmittance + in-scattering
         bind_for_materials(*gp);
@@ -539,6 +591,7 @@ void sky_system(SystemContext& sc) {
         p.set("u_depth", 0);
         p.use();
         rcp->draw_fullscreen_triangle();
+        glDisable(GL_SCISSOR_TEST);
         glDisable(GL_BLEND);
       });
 }

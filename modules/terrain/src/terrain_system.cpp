@@ -177,6 +177,7 @@ void terrain_system(SystemContext& sc) {
         p.shadow_draws.push_back({sl.first_index, sl.index_count, material, lo, hi});
       }
       if (outside_view(view.view_projection, lo, hi)) continue;
+      sc.targets->geometry.include(screen_rect(view, lo, hi));
       const LodRange& l = c.lods[size_t(lod)];
       p.draws.push_back({l.first_index, l.index_count, material});
       p.triangles += l.index_count / 3;

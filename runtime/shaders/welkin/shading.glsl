@@ -8,9 +8,12 @@ const float WELKIN_PI = 3.14159265358979;
 
 vec3 shade_lambert(vec3 albedo, vec3 normal, vec3 camera_relative_position) {
   vec3 p = camera_relative_position;
-  vec3 e = welkin_sun_irradiance(p) * (max(dot(normal, welkin_sun_direction()), 0.0) * welkin_light_visibility(p, normal, 0)) +
-           welkin_moon_irradiance(p) * (max(dot(normal, welkin_moon_direction()), 0.0) * welkin_light_visibility(p, normal, 1)) +
-           welkin_sky_irradiance(normal) * welkin_sky_visibility(p, normal) + welkin_added_irradiance(p, normal);
+  vec3 e = welkin_sun_irradiance(p) * (max(dot(normal, welkin_sun_direction()), 0.0) * welkin_light_visibility(p, normal, 0));
+#if WELKIN_MOON_LIGHT
+  e += welkin_moon_irradiance(p) * (max(dot(normal, welkin_moon_direction()), 0.0) * welkin_light_visibility(p, normal, 1));
+#endif
+  e += welkin_sky_irradiance(normal) * welkin_sky_visibility(p, normal);
+  e += welkin_added_irradiance(p, normal);
   return albedo / WELKIN_PI * e;
 }
 
@@ -29,15 +32,17 @@ vec3 pbr_direct(vec3 base_color, float metallic, float roughness, vec3 n, vec3 v
   return (diffuse + d * vis * f) * irradiance * n_dot_l;
 }
 
-// Sun, moon and sky light on a PBR surface, each scaled by the light environment's visibility
-// (shadow maps, cloud shadows, sky occlusion).
+// Sun, moon (where it reaches surfaces: WELKIN_MOON_LIGHT) and sky light on a PBR surface, each
+// scaled by the light environment's visibility (shadow maps, cloud shadows, sky occlusion).
 vec3 shade_pbr(vec3 base_color, float metallic, float roughness, float occlusion, vec3 n, vec3 camera_relative_position) {
   vec3 p = camera_relative_position;
   vec3 v = normalize(-p);
   vec3 c = pbr_direct(base_color, metallic, roughness, n, v, welkin_sun_direction(),
                       welkin_sun_irradiance(p) * welkin_light_visibility(p, n, 0));
+#if WELKIN_MOON_LIGHT
   c += pbr_direct(base_color, metallic, roughness, n, v, welkin_moon_direction(),
                   welkin_moon_irradiance(p) * welkin_light_visibility(p, n, 1));
+#endif
   // Sky light: diffuse from the irradiance, specular approximated by the irradiance toward the reflection.
   vec3 f0 = mix(vec3(0.04), base_color, metallic);
   vec3 sky_diffuse = (welkin_sky_irradiance(n) * welkin_sky_visibility(p, n) + welkin_added_irradiance(p, n)) *

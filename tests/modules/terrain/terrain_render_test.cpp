@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "cache_folder.h"
+#include "depth_readback.h"
 #include "terrain_gpu.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/debug_content.h"
@@ -91,6 +92,24 @@ void load_valley(World& world, json terrain = json::object()) {
                          json{{"components", {{"core.DirectionalLight", {{"elevation_deg", 40}}}}}},
                          json{{"components", {{"terrain.Terrain", terrain}}}}})}};
   load_scene(world, doc, "terrain.json");
+}
+
+// The terrain reports the pixels its chunks may cover (FrameTargets::geometry): the aerial
+// perspective is applied inside them only, so every pixel it wrote depth to must lie inside.
+TEST_F(TerrainRender, GeometryRectangleHoldsEveryPixelOfTheTerrain) {
+  World world;
+  load_valley(world);
+  auto depth = welkin::testing::read_depth_after_geometry(world);
+  Renderer r(world);
+  Camera& camera = *world.registry().get<Camera>(world.registry().first<Camera>());
+  for (float pitch : {-8.0f, 6.0f}) {  // looking down on it, and over it with sky above
+    camera.pitch_deg = pitch;
+    const FrameResult fr = r.render_frame({}, 64, 36);
+    ASSERT_EQ(depth->depth.size(), size_t(64 * 36));
+    EXPECT_GT(depth->covered(), 64 * 36 / 5) << pitch;
+    EXPECT_EQ(depth->outside(fr.geometry), 0) << pitch;
+    if (pitch > 0) EXPECT_LT(fr.geometry.y1, 36) << "the sky above the terrain is left out";
+  }
 }
 
 TEST_F(TerrainRender, SampleTerrainRendersWithItsMaterial) {

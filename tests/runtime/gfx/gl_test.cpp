@@ -6,8 +6,10 @@
 #include <cmath>
 #include <filesystem>
 
+#include "depth_readback.h"
 #include "golden.h"
 #include "welkin/core/error.h"
+#include "welkin/gfx/camera.h"
 #include "welkin/gfx/gl_context.h"
 #include "welkin/gfx/image.h"
 #include "welkin/gfx/renderer.h"
@@ -179,6 +181,84 @@ TEST_F(Gl, EachToneCurveIsItsOwnVariant) {
   EXPECT_NE(outputs[0].rgba, outputs[1].rgba);
   EXPECT_NE(outputs[0].rgba, outputs[2].rgba);
   EXPECT_NE(outputs[1].rgba, outputs[2].rgba);
+}
+
+// The rectangle a box can cover holds the projection of every point of the box in front of the near
+// plane (points on its corners, edges and faces, and inside), cut to the frame; boxes behind the
+// camera give nothing, one around the camera the whole frame.
+TEST(ScreenRect, HoldsEveryPointOfTheBoxInFrontOfTheNearPlane) {
+  Camera c;
+  c.heading_deg = 20, c.pitch_deg = -10, c.vertical_fov_deg = 50, c.near_m = 0.5f;
+  const FrameView view = make_frame_view(c, 160, 90);
+  uint32_t state = 12345;
+  auto uniform = [&state](float lo, float hi) {
+    state = state * 1664525u + 1013904223u;
+    return lo + (hi - lo) * float(state >> 8) / float(1u << 24);
+  };
+  int tested = 0, cut = 0;
+  for (int box = 0; box < 400; ++box) {
+    const glm::vec3 centre(uniform(-60, 60), uniform(-20, 80), uniform(-30, 30));
+    const glm::vec3 half(uniform(0.1f, 25), uniform(0.1f, 25), uniform(0.1f, 25));
+    const PixelRect r = screen_rect(view, centre - half, centre + half);
+    ASSERT_LE(r.x1, 160);
+    ASSERT_LE(r.y1, 90);
+    ASSERT_GE(r.x0, 0);
+    ASSERT_GE(r.y0, 0);
+    bool any_in_front = false;
+    for (int k = 0; k < 2000; ++k) {
+      // Corners, edges and faces are where the extremes lie: pull samples onto them.
+      glm::vec3 f(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
+      for (int a = 0; a < 3; ++a)
+        if (k % 4 > a) f[a] = f[a] < 0 ? -1.0f : 1.0f;
+      const glm::vec4 clip = view.view_projection * glm::vec4(centre + half * f, 1.0f);
+      if (clip.w < view.near_m) continue;
+      any_in_front = true;
+      const double px = (0.5 * clip.x / clip.w + 0.5) * 160, py = (0.5 * clip.y / clip.w + 0.5) * 90;
+      if (px < 0 || py < 0 || px >= 160 || py >= 90) continue;
+      ++tested;
+      ASSERT_FALSE(r.empty()) << "box " << box;
+      ASSERT_GE(px, r.x0) << "box " << box;
+      ASSERT_LT(px, r.x1) << "box " << box;
+      ASSERT_GE(py, r.y0) << "box " << box;
+      ASSERT_LT(py, r.y1) << "box " << box;
+    }
+    if (!any_in_front) EXPECT_TRUE(r.empty()) << "box " << box << " is behind the near plane";
+    cut += !r.empty() && !r.covers(160, 90);
+  }
+  EXPECT_GT(tested, 100000);
+  EXPECT_GT(cut, 100);  // most boxes get less than the whole frame
+  // Wholly behind the camera: nothing. Around the camera: everything.
+  EXPECT_TRUE(screen_rect(view, view.forward * -10.0f - glm::vec3(1), view.forward * -10.0f + glm::vec3(1)).empty());
+  EXPECT_TRUE(screen_rect(view, glm::vec3(-1), glm::vec3(1)).covers(160, 90));
+  // A unit cube 10 m ahead: its rectangle is within two pixels of its corners' projection.
+  const glm::vec3 ahead = view.forward * 10.0f;
+  const PixelRect r = screen_rect(view, ahead - glm::vec3(0.5f), ahead + glm::vec3(0.5f));
+  float lo_x = 1e9f, hi_x = -1e9f;
+  for (int i = 0; i < 8; ++i) {
+    const glm::vec3 corner = ahead + glm::vec3(i & 1 ? 0.5f : -0.5f, i & 2 ? 0.5f : -0.5f, i & 4 ? 0.5f : -0.5f);
+    const glm::vec4 clip = view.view_projection * glm::vec4(corner, 1.0f);
+    const float px = (0.5f * clip.x / clip.w + 0.5f) * 160;
+    lo_x = std::min(lo_x, px), hi_x = std::max(hi_x, px);
+  }
+  EXPECT_GE(float(r.x0), lo_x - 2.0f);
+  EXPECT_LE(float(r.x1), hi_x + 2.0f);
+}
+
+// FrameTargets::geometry, as the debug shapes report it, holds every pixel they wrote depth to (the
+// aerial perspective is applied inside it only).
+TEST_F(Gl, GeometryRectangleHoldsEveryPixelWithDepth) {
+  World world;
+  load_scene_file(world, WELKIN_SOURCE_DIR "/assets/scenes/debug.json");
+  auto depth = welkin::testing::read_depth_after_geometry(world);
+  Renderer r(world);
+  const FrameResult fr = r.render_frame({}, 160, 90);
+  ASSERT_EQ(depth->depth.size(), size_t(160 * 90));
+  EXPECT_EQ(depth->outside(fr.geometry), 0);
+  EXPECT_GT(depth->covered(), 200);
+  // And it is not the whole frame: the ball and the crate lie in a band near the horizon.
+  const int area = (fr.geometry.x1 - fr.geometry.x0) * (fr.geometry.y1 - fr.geometry.y0);
+  EXPECT_LT(area, 160 * 90 / 2);
+  EXPECT_LT(area, 4 * depth->covered());
 }
 
 TEST_F(Gl, SceneWithoutCameraIsAClearError) {

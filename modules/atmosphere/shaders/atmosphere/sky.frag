@@ -54,11 +54,15 @@ vec3 ground_light_change(vec3 v) {
   float r_c = length(o), r_g = atm_bottom() + atm_ground_albedo.w;
   vec3 t_view = min(atm_transmittance(r_g, -dot(n, v)) / max(atm_transmittance(r_c, -dot(o / r_c, v)), vec3(1e-12)), vec3(1.0));
   AtmLight l0 = atm_sun_light(), l1 = atm_moon_light_source();
-  float mu0 = dot(n, l0.direction), mu1 = dot(n, l1.direction);
+  float mu0 = dot(n, l0.direction);
   vec3 e_sun = l0.illuminance * atm_transmittance_to_light(r_g, mu0, l0.angular_radius) * max(mu0, 0.0);
+  vec3 e_direct_taken = e_sun * (1.0 - welkin_light_visibility(p, n, 0));
+#if ATM_MOON_LIGHT  // else the moon lights neither the sky nor surfaces
+  float mu1 = dot(n, l1.direction);
   vec3 e_moon = l1.illuminance * atm_transmittance_to_light(r_g, mu1, l1.angular_radius) * max(mu1, 0.0);
-  vec3 taken = atm_ground_albedo.rgb / ATM_PI *
-                   (e_sun * (1.0 - welkin_light_visibility(p, n, 0)) + e_moon * (1.0 - welkin_light_visibility(p, n, 1))) +
+  e_direct_taken += e_moon * (1.0 - welkin_light_visibility(p, n, 1));
+#endif
+  vec3 taken = atm_ground_albedo.rgb / ATM_PI * e_direct_taken +
                atm_ms_factor() * atm_ground_sky_light(g, l0, l1) * (1.0 - welkin_sky_visibility(p, n));
   vec3 added = atm_ground_albedo.rgb / ATM_PI * welkin_added_irradiance(p, n);
   return t_view * (added - taken);

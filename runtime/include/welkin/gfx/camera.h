@@ -49,4 +49,16 @@ float exposure_from_ev100(float ev100);
 // World-space (camera-relative) direction of a pixel centre; y grows downwards in images.
 glm::vec3 pixel_direction(const FrameView& view, double x, double y);
 
+// Pixels [x0, x1) x [y0, y1) in GL's window coordinates (origin at the bottom left).
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool empty() const { return x1 <= x0 || y1 <= y0; }
+  bool covers(int width, int height) const { return x0 <= 0 && y0 <= 0 && x1 >= width && y1 >= height; }
+  void include(const PixelRect& r);  // the smallest rectangle holding both
+  bool operator==(const PixelRect&) const = default;
+};
+// Every pixel a camera-relative box can cover, conservatively (a pixel of margin), its part nearer
+// than the near plane cut off: empty when all of it is, the whole view when it cannot be bounded.
+PixelRect screen_rect(const FrameView& view, const glm::vec3& lo, const glm::vec3& hi);
+
 }  // namespace welkin

@@ -77,6 +77,11 @@ class LightEnvironment {
   // The first texture unit the environment has not handed out: a material needing more than units
   // 0..7 takes units from here (they stay free until a term is added).
   GLuint free_unit() const { return next_unit_; }
+  // Whether the second light (the moon) reaches surfaces. The provider of the lights clears it where
+  // that light is negligible (the moon by day): every material then compiles without its terms
+  // (`#define WELKIN_MOON_LIGHT 0` in the composed file), which halves the direct light's cost.
+  void set_moon_lights_surfaces(bool on);
+  bool moon_lights_surfaces() const { return moon_lights_surfaces_; }
   // Bumped whenever the composed source or the bindings change.
   uint64_t version() const { return version_; }
 
@@ -95,6 +100,7 @@ class LightEnvironment {
   std::map<std::string, GLuint, std::less<>> units_, blocks_;
   GLuint next_unit_ = kFirstUnit, next_block_ = kFirstBlock;
   uint64_t version_ = 1;
+  bool moon_lights_surfaces_ = true;
 };
 
 class World;

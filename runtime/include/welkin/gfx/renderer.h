@@ -21,6 +21,10 @@ struct FrameTargets {
   // Set by a system whose first pass writes every pixel of `color` without reading it (a sky): the
   // frame's clear then clears only the depth (on llvmpipe the colour's clear is half of it).
   bool color_covered = false;
+  // Every pixel where a pass may write `depth` (geometry). A system whose pass writes the depth widens
+  // it, when it records the pass, by the pixels that pass may cover; the full-screen passes over the
+  // geometry (aerial perspective) then run inside it only, and not at all when it is empty.
+  PixelRect geometry;
 };
 
 // GL state shared by every render system of a world (a world resource).
@@ -46,6 +50,7 @@ struct FrameResult {
   std::vector<PassTiming> timings;
   std::vector<std::string> systems_run;
   std::vector<std::string> culled_passes;
+  PixelRect geometry;  // FrameTargets::geometry as the frame's systems left it
 };
 
 class Renderer {

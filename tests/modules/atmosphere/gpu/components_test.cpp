@@ -8,6 +8,7 @@
 #include "gpu_test_support.h"
 #include "welkin/atmosphere/presets.h"
 #include "welkin/core/error.h"
+#include "welkin/gfx/light_environment.h"
 #include "welkin/scene/json_fields.h"
 
 namespace welkin::atmosphere {
@@ -253,10 +254,18 @@ TEST(AtmosphereFrame, PassesAndBlackboard) {
   std::vector<std::string> names;
   for (const auto& t : r.last.timings) names.push_back(t.name);
   for (const char* p : {"atmosphere.transmittance", "atmosphere.multiscattering", "atmosphere.sky_view",
-                        "atmosphere.aerial_perspective", "atmosphere.sky_irradiance", "atmosphere.sky",
-                        "atmosphere.aerial_perspective_apply"})
+                        "atmosphere.aerial_perspective", "atmosphere.sky_irradiance", "atmosphere.sky"})
     EXPECT_NE(std::find(names.begin(), names.end(), p), names.end()) << p;
   EXPECT_TRUE(r.last.culled_passes.empty());
+  // The aerial perspective is applied where geometry is, and not at all without any.
+  const char* apply = "atmosphere.aerial_perspective_apply";
+  EXPECT_EQ(std::find(names.begin(), names.end(), apply), names.end());
+  json doc = test::scene(json::object(), json::object());
+  doc["entities"].push_back({{"name", "ball"}, {"components", {{"core.DebugShape", {{"position_m", {0, 30, 2}}}}}}});
+  auto with_geometry = test::render(doc, 16, 8);
+  names.clear();
+  for (const auto& t : with_geometry.last.timings) names.push_back(t.name);
+  EXPECT_NE(std::find(names.begin(), names.end(), apply), names.end());
 }
 
 TEST(AtmosphereFrame, SameImageWhereverThePlanetIs) {
@@ -343,6 +352,79 @@ TEST(AtmosphereFrame, DaylightDrownsTheFullMoonsSky) {
   std::printf("moonlit sky / sunlit sky, worst pixel: %.2e\n", worst);
   EXPECT_GT(worst, 0.0);
   EXPECT_LT(worst, 1e-3);
+}
+
+// The sky is drawn again only when something it is drawn from changed; a kept sky is the sky a
+// fresh world draws, bit for bit, and turning the camera or the sun draws it again.
+TEST(AtmosphereFrame, SkyIsKeptWhileItsInputsAreTheSame) {
+  auto doc = [](double heading, double sun_elevation) {
+    return test::scene({{"heading_deg", heading}, {"pitch_deg", 10}}, json::object(),
+                       {{"elevation_deg", sun_elevation}, {"azimuth_deg", 120}});
+  };
+  auto fresh = [&](double heading, double sun_elevation) {
+    return test::render(doc(heading, sun_elevation), 32, 18).renderer->read_hdr().rgba;
+  };
+  test::Rendered r = test::render(doc(0, 30), 32, 18, 5);
+  // The first frame draws; the second too (the sky-view LUT was built during the first), the third
+  // draws alike and keeps it; the rest copy it.
+  EXPECT_EQ(r.gpu().sky_draws, 3);
+  EXPECT_EQ(r.renderer->read_hdr().rgba, fresh(0, 30));
+  Registry& reg = r.world->registry();
+  reg.get<Camera>(reg.first<Camera>())->heading_deg = 40;
+  r.frame(32, 18);
+  EXPECT_EQ(r.gpu().sky_draws, 4) << "the camera turned";
+  EXPECT_EQ(r.renderer->read_hdr().rgba, fresh(40, 30));
+  r.frame(32, 18);
+  r.frame(32, 18);
+  r.frame(32, 18);
+  EXPECT_EQ(r.gpu().sky_draws, 5) << "the sky-view LUT is laid out around the camera's position: kept";
+  reg.get<Sun>(reg.first<Sun>())->elevation_deg = 20;
+  r.frame(32, 18);
+  EXPECT_EQ(r.gpu().sky_draws, 6) << "the sun moved";
+  for (int i = 0; i < 4; ++i) r.frame(32, 18);
+  EXPECT_EQ(r.gpu().sky_draws, 8) << "again after the sky-view LUT was built, then kept";
+  EXPECT_EQ(r.renderer->read_hdr().rgba, fresh(40, 20));
+  // A benchmark of the per-frame cost forgets it with the per-frame LUTs.
+  const int draws = r.gpu().sky_draws;
+  r.gpu().forget_per_frame_luts();
+  r.frame(32, 18);
+  EXPECT_EQ(r.gpu().sky_draws, draws + 1);
+}
+
+TEST(AtmosphereFrame, DaylightDrownsTheFullMoonsLightOnSurfaces) {
+  // Materials leave the moon out wherever it does not light the sky. The worst case by day: a sun
+  // just above the horizon behind a grey ball, a full moon 30 degrees up behind the camera, the
+  // face seen lit by the sky alone; the moon's light on that face (moon alone, sun far below) must
+  // stay below 1/1000 of it.
+  const json ball = {{"name", "ball"},
+                     {"components", {{"core.DebugShape", {{"shape", "sphere"}, {"position_m", {0, 20, 2}},
+                                                          {"size_m", {10, 10, 10}}, {"albedo", {0.5, 0.5, 0.5}}}}}}};
+  const json full_moon = {{"elevation_deg", 30}, {"azimuth_deg", 180}, {"illuminance_lux", 0.3}, {"disc", false}};
+  auto face = [&](double sun_elevation, const json* moon, bool moon_in_materials) {
+    json doc = test::scene({{"position_m", {0, 0, 2}}, {"pitch_deg", 0}, {"vertical_fov_deg", 10}}, json::object(),
+                           {{"elevation_deg", sun_elevation}, {"azimuth_deg", 0}, {"disc", false}}, moon);
+    doc["entities"].push_back(ball);
+    auto r = test::render(doc, 8, 8);
+    EXPECT_EQ(r.world->resource<LightEnvironment>().moon_lights_surfaces(), moon_in_materials)
+        << "sun at " << sun_elevation << (moon ? " with a moon" : "");
+    return r.renderer->read_hdr();
+  };
+  const ImageF by_sun = face(0.1, nullptr, false), by_moon = face(-90, &full_moon, true);
+  face(0.1, &full_moon, false);
+  double worst = 0.0;
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x)
+      for (int ch = 0; ch < 3; ++ch) {
+        ASSERT_GT(by_sun.pixel(x, y)[ch], 0.0f);
+        worst = std::max(worst, double(by_moon.pixel(x, y)[ch]) / by_sun.pixel(x, y)[ch]);
+      }
+  std::printf("moonlit face / sunlit face, worst pixel: %.2e\n", worst);
+  EXPECT_LT(worst, 1e-3);
+  // At night the moon is in the material: its direct light (0.3 lx at 60 degrees from the face's
+  // normal, some of it lost in the air) is most of the face's; the moonlit sky alone gives a tenth.
+  const double direct = 0.5 / M_PI * 0.3 * std::cos(glm::radians(30.0));
+  EXPECT_GT(by_moon.pixel(4, 4)[1], 0.5 * direct);
+  EXPECT_LT(by_moon.pixel(4, 4)[1], 1.3 * direct);
 }
 
 }  // namespace

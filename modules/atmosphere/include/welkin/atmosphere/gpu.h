@@ -3,6 +3,7 @@
 // a world keeps between frames, and the render system that fills them through the frame graph.
 #include <glm/glm.hpp>
 #include <memory>
+#include <string>
 #include <string_view>
 
 #include "welkin/atmosphere/components.h"
@@ -84,7 +85,17 @@ struct AtmosphereGpu {
   int sky_view_builds = 0, aerial_builds = 0;
   // The next frame remakes the per-frame LUTs as if the view and the sun had moved: what a benchmark
   // of the atmosphere's per-frame cost times (a still camera would otherwise reuse them).
-  void forget_per_frame_luts() { sky_view_valid = aerial_valid = false; }
+  void forget_per_frame_luts() {
+    sky_view_valid = aerial_valid = false;
+    kept_sky_inputs.clear();
+    drawn_sky_inputs.clear();
+  }
+  // The sky as the sky pass drew it (sky, discs), copied into the frame while everything it was
+  // drawn from is the same (background_system): a still view does not draw it again. It is kept
+  // from the second frame in a row drawn from the same inputs, so a moving view pays no copy.
+  std::unique_ptr<Texture> kept_sky;
+  std::string kept_sky_inputs, drawn_sky_inputs;
+  int sky_draws = 0;
   // Where the light environment put the block and the LUTs (add_light_term fills them).
   struct Bindings {
     GLuint block = 0, transmittance = 0, multiscattering = 0, sky_view = 0, aerial_inscattering = 0,
