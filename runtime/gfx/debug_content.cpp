@@ -115,7 +115,8 @@ void debug_shape_system(SystemContext& sc) {
   for (const DebugShape& s : shapes) {
     const glm::vec3 rel = glm::vec3(s.position_m - rc.view.camera_position_m);
     const glm::vec3 half = s.shape == ShapeKind::sphere ? glm::vec3(s.size_m.x) : s.size_m;
-    sc.targets->geometry.include(screen_rect(rc.view, rel - glm::abs(half), rel + glm::abs(half)));
+    sc.targets->add_geometry(screen_rect(rc.view, rel - glm::abs(half), rel + glm::abs(half)),
+                             fnv1a_64_of(s.size_m, fnv1a_64_of(s.position_m, fnv1a_64_of(int(s.shape)))));
   }
   const FrameTargets t = *sc.targets;
   sc.graph->add_pass("debug_shapes", [&](PassBuilder& pb) { pb.read(t.color); pb.write(t.color); pb.read(t.depth); pb.write(t.depth); },
@@ -163,6 +164,19 @@ void debug_shape_system(SystemContext& sc) {
 
 }  // namespace
 
+// The scene's first core.DirectionalLight (or its defaults) as welkin/default_lights.glsl's block.
+struct DefaultLightsBlock {
+  glm::vec4 direction, illuminance;
+};
+DefaultLightsBlock default_lights_block(World& world) {
+  DirectionalLight light;
+  const Registry& reg = world.registry();
+  if (const ComponentPool* pool = reg.pool(type_id<DirectionalLight>()); pool && !pool->empty())
+    light = *reg.get<DirectionalLight>(pool->entities()[0]);
+  return {glm::vec4(glm::vec3(direction_from_azimuth_elevation(light.azimuth_deg, light.elevation_deg)), 0.0f),
+          glm::vec4(light.color * light.illuminance_lux, light.ambient_fraction)};
+}
+
 void add_default_light_term(World& world) {
   auto buffer = std::make_shared<std::unique_ptr<Buffer>>();
   world.resource<LightEnvironment>().add(LightTerm{
@@ -172,15 +186,10 @@ void add_default_light_term(World& world) {
       .priority = 0,
       .blocks = {"core.default_lights"},
       .bind = [&world, buffer](const LightEnvironment& env) {
-        DirectionalLight light;
-        const Registry& reg = world.registry();
-        if (const ComponentPool* pool = reg.pool(type_id<DirectionalLight>()); pool && !pool->empty())
-          light = *reg.get<DirectionalLight>(pool->entities()[0]);
-        const glm::vec4 data[2] = {
-            glm::vec4(glm::vec3(direction_from_azimuth_elevation(light.azimuth_deg, light.elevation_deg)), 0.0f),
-            glm::vec4(light.color * light.illuminance_lux, light.ambient_fraction)};
-        env.bind_block("core.default_lights", *buffer, data, sizeof(data));
-      }});
+        const DefaultLightsBlock data = default_lights_block(world);
+        env.bind_block("core.default_lights", *buffer, &data, sizeof(data));
+      },
+      .state = [&world] { return fnv1a_64_of(default_lights_block(world)); }});
 }
 
 void register_debug_content(ModuleContext& ctx) {

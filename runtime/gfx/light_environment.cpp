@@ -4,6 +4,7 @@
 #include <cctype>
 
 #include "welkin/core/error.h"
+#include "welkin/core/type_id.h"
 #include "welkin/gfx/debug_content.h"
 #include "welkin/scene/field_path.h"
 
@@ -178,6 +179,15 @@ bool LightEnvironment::shades_surfaces() const {
   for (const LightTerm& t : terms_)
     if (!t.light_visibility.empty() || !t.sky_visibility.empty() || !t.added_irradiance.empty()) return true;
   return false;
+}
+
+std::optional<uint64_t> LightEnvironment::state() const {
+  uint64_t h = fnv1a_64_of(version_);
+  for (const LightTerm& t : terms_) {
+    if (!t.state) return std::nullopt;
+    h = fnv1a_64_of(t.state(), h);
+  }
+  return h;
 }
 
 void LightEnvironment::bind() const {

@@ -130,6 +130,14 @@ void bind_for_materials(const AtmosphereGpu& gpu) {
   bind(b.sky_irradiance, gpu.sky_irradiance);
 }
 
+// What materials read of the atmosphere: the block as this frame uploads it and which builds of the
+// LUTs (a LUT that this frame makes again is not valid until it runs; its build is counted then).
+uint64_t light_state(const AtmosphereGpu& gpu) {
+  const int builds[4] = {gpu.lut_builds, gpu.lut_cache_reads, gpu.sky_view_builds, gpu.aerial_builds};
+  const bool valid[3] = {gpu.luts_valid, gpu.sky_view_valid, gpu.aerial_valid};
+  return fnv1a_64_of(gpu.uniforms, fnv1a_64_of(builds, fnv1a_64_of(valid)));
+}
+
 void add_light_term(World& world) {
   LightEnvironment& env = world.resource<LightEnvironment>();
   env.add(LightTerm{.name = "atmosphere",
@@ -142,7 +150,8 @@ void add_light_term(World& world) {
                                  "atmosphere.aerial_inscattering", "atmosphere.aerial_transmittance",
                                  "atmosphere.sky_irradiance"},
                     .blocks = {"atmosphere"},
-                    .bind = [&world](const LightEnvironment&) { bind_for_materials(world.resource<AtmosphereGpu>()); }});
+                    .bind = [&world](const LightEnvironment&) { bind_for_materials(world.resource<AtmosphereGpu>()); },
+                    .state = [&world] { return light_state(world.resource<AtmosphereGpu>()); }});
   world.resource<AtmosphereGpu>().bindings = {.block = env.block("atmosphere"),
                                               .transmittance = env.unit("atmosphere.transmittance"),
                                               .multiscattering = env.unit("atmosphere.multiscattering"),

@@ -526,6 +526,12 @@ void add_light_term(World& world) {
         if (!gpu.shadow_map) s.up.w = 0.0f;
         env.bind_block("clouds.shadow", gpu.shadow_buffer, &s, sizeof(s));
         if (gpu.shadow_map) glBindTextureUnit(env.unit("clouds.shadow_map"), gpu.shadow_map->id());
+      },
+      // The block, the cascades remade so far and those this frame remakes.
+      .state = [&world] {
+        const CloudsGpu& gpu = world.resource<CloudsGpu>();
+        return fnv1a_64_of(gpu.shadow, fnv1a_64_of(gpu.shadow_builds, fnv1a_64_of(gpu.shadow_rebuild,
+                                                                                   fnv1a_64_of(uintptr_t(gpu.shadow_map.get())))));
       }});
 }
 
@@ -582,6 +588,9 @@ void shadow_system(SystemContext& sc) {
       });
 }
 
+void composite_clouds(RenderGraph& g, RenderContext& rc, const FrameTargets& t, ResourceHandle result,
+                      ResourceHandle clusters);
+
 // After the geometry and its aerial perspective: the march and the composite.
 void clouds_system(SystemContext& sc) {
   World& world = sc.world;
@@ -622,6 +631,38 @@ void clouds_system(SystemContext& sc) {
   // Bayer matrix (each next pixel as far as it can be from those marched just before).
   const bool partial = temporal && gpu.history_valid;
   const int n = partial ? resolve_quality(*clouds).temporal_block : 1;
+  const FrameTargets t = *sc.targets;
+  RenderGraph& g = *sc.graph;
+  ResourceHandle clusters = published("clouds.clusters");
+
+  // What the march and the resolve read, the frame's index aside (it only turns the jitter): the
+  // block and layers, the field's noise and map, the shaders, the light environment's state, the
+  // geometry's. Clusters and billboards drawn before the march are not followed: with them it marches.
+  const std::optional<uint64_t> light = world.resource<LightEnvironment>().state();
+  if (partial && light && !clusters.valid()) {
+    FrameBlock block = gpu.block;
+    block.frame.x = 0.0f;
+    uint64_t state = fnv1a_64_of(block, fnv1a_64_of(*light, fnv1a_64_of(t.geometry_state)));
+    state = fnv1a_64(std::string_view(reinterpret_cast<const char*>(gpu.layers.data()), gpu.layers.size() * sizeof(LayerBlock)), state);
+    const int field[6] = {gpu.noise_seed, gpu.noise_builds, gpu.noise_cache_reads, n, w, h};
+    state = fnv1a_64_of(gpu.coverage_map_revision, fnv1a_64_of(field, state));
+    state = fnv1a_64(gpu.coverage_map_file, state);
+    for (const auto& [k, v] : defines) state = fnv1a_64(k + "=" + v + ";", state);
+    if (state != gpu.march_state) gpu.march_state = state, gpu.march_state_frames = 0;
+  } else {
+    gpu.march_state_frames = 0, gpu.march_state = 0;
+  }
+  if (partial && gpu.march_state != 0 && gpu.march_state_frames >= n * n) {
+    // Kept: the history as the last frame's resolve left it.
+    const ResourceHandle kept = g.import("clouds.history_color", *gpu.history_color[1 - gpu.history_index]);
+    composite_clouds(g, rc, t, kept, {});
+    gpu.previous_view_projection = view.view_projection;
+    gpu.previous_camera_m = view.camera_position_m;
+    return;
+  }
+  if (gpu.march_state != 0) ++gpu.march_state_frames;
+  ++gpu.marches;
+
   const int qw = (w + n - 1) / n, qh = (h + n - 1) / n;
   static constexpr glm::ivec2 kOffsets2[4] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
   static constexpr glm::ivec2 kOffsets4[16] = {{0, 0}, {2, 2}, {2, 0}, {0, 2}, {1, 1}, {3, 3}, {3, 1}, {1, 3},
@@ -631,8 +672,6 @@ void clouds_system(SystemContext& sc) {
                                      : kOffsets2[gpu.temporal_frame++ % 4];
   const glm::ivec3 stride_offset(n, offset.x, offset.y);
 
-  const FrameTargets t = *sc.targets;
-  RenderGraph& g = *sc.graph;
   auto current = std::make_shared<std::array<ResourceHandle, 2>>();
   CloudsGpu* gp = &gpu;
   g.add_pass(
@@ -667,7 +706,6 @@ void clouds_system(SystemContext& sc) {
   // The mesh clusters (and billboards) drawn before the march lie behind it. At the march's resolution
   // the resolve lays them in as it writes (a read at a quarter of the frame's pixels); otherwise the
   // composite reads them at the frame's resolution.
-  ResourceHandle clusters = published("clouds.clusters");
   const bool merge_clusters = temporal && clusters.valid() && sc.graph->resource_desc(clusters).width == w &&
                               sc.graph->resource_desc(clusters).height == h;
   if (temporal) {
@@ -726,7 +764,12 @@ void clouds_system(SystemContext& sc) {
   }
   gpu.previous_view_projection = view.view_projection;
   gpu.previous_camera_m = view.camera_position_m;
+  composite_clouds(g, rc, t, result, clusters);
+}
 
+// The clouds (and the clusters or billboards behind them, where not merged already) over the frame.
+void composite_clouds(RenderGraph& g, RenderContext& rc, const FrameTargets& t, ResourceHandle result,
+                      ResourceHandle clusters) {
   g.add_pass(
       "clouds.composite",
       [&](PassBuilder& b) {

@@ -135,6 +135,13 @@ void add_light_term(World& world) {
         TerrainCache& cache = world.resource<TerrainCache>();
         env.bind_block("terrain.cascades", cache.cascade_buffer, &cache.cascade_block, sizeof(cache.cascade_block));
         if (cache.shadow_atlas) glBindTextureUnit(env.unit("terrain.shadow_atlas"), cache.shadow_atlas->id());
+      },
+      // The block as this frame set it, and the atlas's drawings: a frame that draws it again counts
+      // as changed in the next (its draw is recorded when it runs).
+      .state = [&world] {
+        const TerrainCache& cache = world.resource<TerrainCache>();
+        return fnv1a_64_of(cache.cascade_block,
+                           fnv1a_64_of(cache.shadow_draws, fnv1a_64_of(uintptr_t(cache.shadow_atlas.get()))));
       }});
 }
 
@@ -177,8 +184,12 @@ void terrain_system(SystemContext& sc) {
         p.shadow_draws.push_back({sl.first_index, sl.index_count, material, lo, hi});
       }
       if (outside_view(view.view_projection, lo, hi)) continue;
-      sc.targets->geometry.include(screen_rect(view, lo, hi));
       const LodRange& l = c.lods[size_t(lod)];
+      // What this chunk writes to the depth: its level's triangles, placed (the view aside).
+      const uint64_t placement = fnv1a_64_of(
+          p.inverse_two_radius, fnv1a_64_of(p.rotation, fnv1a_64_of(p.anchor_m, fnv1a_64(t.file, uintptr_t(p.gpu)))));
+      sc.targets->add_geometry(screen_rect(view, lo, hi),
+                               fnv1a_64_of(l.first_index, fnv1a_64_of(l.index_count, fnv1a_64_of(uintptr_t(p.gpu), placement))));
       p.draws.push_back({l.first_index, l.index_count, material});
       p.triangles += l.index_count / 3;
     }

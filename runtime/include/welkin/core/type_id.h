@@ -3,6 +3,7 @@
 // executable and in every plugin (a per-library template counter would not be).
 #include <cstdint>
 #include <string_view>
+#include <type_traits>
 
 namespace welkin {
 
@@ -16,6 +17,12 @@ constexpr uint64_t fnv1a_64(std::string_view bytes, uint64_t h = kFnv1aOffset) {
     h *= 1099511628211ull;
   }
   return h;
+}
+
+// The same over a value's bytes (a type without padding, so that every byte is defined).
+template <class T> uint64_t fnv1a_64_of(const T& value, uint64_t h = kFnv1aOffset) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  return fnv1a_64(std::string_view(reinterpret_cast<const char*>(&value), sizeof value), h);
 }
 
 constexpr TypeId type_id_of_name(std::string_view name) { return fnv1a_64(name); }

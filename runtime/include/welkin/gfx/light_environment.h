@@ -49,6 +49,11 @@ struct LightTerm {
   std::vector<std::string> blocks;    // names; each gets a binding: #define WELKIN_BLOCK_<NAME>
   // Binds the term's textures and blocks at the units the environment assigned.
   std::function<void(const LightEnvironment&)> bind;
+  // A digest of everything the term's functions read this frame (its blocks' bytes, which builds of
+  // its textures), known once the frame's render systems before the caller have recorded their
+  // passes. What reads the light may be kept from an earlier frame while the digest holds; a term
+  // without one changes every frame.
+  std::function<uint64_t()> state;
 };
 
 class LightEnvironment {
@@ -85,6 +90,9 @@ class LightEnvironment {
   // Bumped whenever the composed source or the bindings change.
   uint64_t version() const { return version_; }
 
+  // The digest of every term's state, or nothing when a term has none (then nothing that reads the
+  // light can be kept between frames).
+  std::optional<uint64_t> state() const;
   // Binds every term's resources: call in a material pass before drawing.
   void bind() const;
   // For a term's bind: uploads `bytes` of a std140 block into `buffer` (made on first use) and binds it

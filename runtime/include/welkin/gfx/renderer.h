@@ -21,10 +21,17 @@ struct FrameTargets {
   // Set by a system whose first pass writes every pixel of `color` without reading it (a sky): the
   // frame's clear then clears only the depth (on llvmpipe the colour's clear is half of it).
   bool color_covered = false;
-  // Every pixel where a pass may write `depth` (geometry). A system whose pass writes the depth widens
-  // it, when it records the pass, by the pixels that pass may cover; the full-screen passes over the
-  // geometry (aerial perspective) then run inside it only, and not at all when it is empty.
+  // Every pixel where a pass may write `depth` (geometry), and a digest of what the geometry is
+  // drawn from. A system whose pass writes the depth calls add_geometry when it records the pass,
+  // with the pixels that pass may cover and a digest of its inputs (what it draws, where): the
+  // full-screen passes over the geometry (aerial perspective) run inside the rectangle only, and
+  // what reads the depth may be kept from an earlier frame while the digest holds.
   PixelRect geometry;
+  uint64_t geometry_state = kFnv1aOffset;
+  void add_geometry(const PixelRect& pixels, uint64_t state) {
+    geometry.include(pixels);
+    geometry_state = fnv1a_64_of(state, geometry_state);
+  }
 };
 
 // GL state shared by every render system of a world (a world resource).

@@ -8,6 +8,8 @@
 #include "cache_folder.h"
 #include "clouds_test_support.h"
 #include "validation/cloud_field.h"
+#include "welkin/atmosphere/components.h"
+#include "welkin/gfx/debug_content.h"
 #include "welkin/gfx/light_environment.h"
 #include "welkin/scene/field_path.h"
 
@@ -197,6 +199,44 @@ TEST(CloudsGpu, FirstTemporalFrameMarchesEveryPixel) {
 
 namespace welkin::clouds {
 namespace {
+
+// A still view keeps its clouds: once every pixel of the upscaling's blocks was marched under the
+// same inputs, the frames after composite the history as it is, the same frame bit for bit; a change
+// to anything the march reads marches again: the sun, the air (through the light environment's
+// state), the geometry in front (through the frame's geometry digest), the clouds.
+TEST(CloudsGpu, AStillViewKeepsItsCloudsUntilSomethingTheMarchReadsChanges) {
+  nlohmann::json doc = test::noon({{"quality", "high"}});  // 2 x 2 blocks
+  doc["entities"].push_back({{"name", "ball"},
+                             {"components", {{"core.DebugShape", {{"position_m", {-300, -500, 300}}, {"size_m", {40, 40, 40}}}}}}});
+  test::Rendered r = test::render(doc, 32, 18);  // every pixel, then one of each block per frame
+  CloudsGpu& gpu = r.world->resource<CloudsGpu>();
+  for (int i = 0; i < 4; ++i) r.frame(32, 18);
+  EXPECT_EQ(gpu.marches, 5);
+  const ImageF marched = r.renderer->read_hdr();
+  r.frame(32, 18);
+  r.frame(32, 18);
+  EXPECT_EQ(gpu.marches, 5) << "kept";
+  EXPECT_FALSE(r.ran("clouds.march"));
+  EXPECT_TRUE(r.ran("clouds.composite"));
+  EXPECT_EQ(r.renderer->read_hdr().rgba, marched.rgba);
+  Registry& reg = r.world->registry();
+  auto marches_after = [&](const char* what, auto&& change) {
+    change();
+    const int before = gpu.marches;
+    r.frame(32, 18);
+    EXPECT_EQ(gpu.marches, before + 1) << what;
+    // A whole cycle again (one more frame where the change rebuilt a LUT of the light's), then kept.
+    for (int i = 0; i < 6; ++i) r.frame(32, 18);
+    EXPECT_GE(gpu.marches, before + 4) << what;
+    EXPECT_LE(gpu.marches, before + 5) << what;
+    EXPECT_FALSE(r.ran("clouds.march")) << what;
+  };
+  marches_after("the sun", [&] { reg.get<atmosphere::Sun>(reg.first<atmosphere::Sun>())->elevation_deg = 35.0f; });
+  marches_after("the air", [&] { reg.get<atmosphere::Atmosphere>(reg.first<atmosphere::Atmosphere>())->ground_albedo = {0.1f, 0.1f, 0.1f}; });
+  marches_after("the geometry", [&] { reg.get<DebugShape>(reg.first<DebugShape>())->position_m.x += 50.0; });
+  marches_after("the clouds", [&] { r.clouds().layers[0].coverage *= 0.9f; });
+  marches_after("the camera", [&] { r.camera().heading_deg += 1.0f; });
+}
 
 // Temporal upscaling with 4 x 4 blocks: after the clouds change (here their density, with clipping
 // off so that stale history would stay as it was), each of the next 16 frames marches one pixel of

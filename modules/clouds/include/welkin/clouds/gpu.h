@@ -263,6 +263,13 @@ struct CloudsGpu {
   glm::mat4 previous_view_projection{1.0f};
   glm::dvec3 previous_camera_m{0.0};
   uint64_t temporal_frame = 0;
+  // A still view keeps its clouds: the digest of everything the march and the resolve read
+  // (clouds_system), and how many frames in a row marched under it. After a whole cycle of the
+  // upscaling's blocks every pixel of the history was marched under it, and the frames after
+  // composite the history as it is instead of marching again.
+  uint64_t march_state = 0;
+  int march_state_frames = 0;
+  int marches = 0;  // frames that marched (tests, stats)
   bool has_layers = false;  // some layer can hold cloud this frame
   CloudsContext context;    // this frame's
   int clusters_layer = -1;  // the packed layer the mesh clusters draw (-1: none)
