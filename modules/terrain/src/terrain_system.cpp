@@ -165,6 +165,8 @@ void terrain_system(SystemContext& sc) {
     double radius_m = (planet_radius_km > 0 ? planet_radius_km : t.planet_radius_km) * 1000.0;
     p.inverse_two_radius = t.follow_curvature ? float(0.5 / radius_m) : 0.0f;
     const glm::vec3 rel = glm::vec3(p.anchor_m - view.camera_position_m);
+    const uint64_t placement = fnv1a_64_of(
+        p.inverse_two_radius, fnv1a_64_of(p.rotation, fnv1a_64_of(p.anchor_m, fnv1a_64(t.file, uintptr_t(p.gpu)))));
     for (const Chunk& c : p.gpu->mesh.chunks) {
       // Chunk box, camera-relative (rotation applied to the corners' hull; curvature lowers it a little).
       glm::vec3 lo(INFINITY), hi(-INFINITY);
@@ -186,10 +188,8 @@ void terrain_system(SystemContext& sc) {
       if (outside_view(view.view_projection, lo, hi)) continue;
       const LodRange& l = c.lods[size_t(lod)];
       // What this chunk writes to the depth: its level's triangles, placed (the view aside).
-      const uint64_t placement = fnv1a_64_of(
-          p.inverse_two_radius, fnv1a_64_of(p.rotation, fnv1a_64_of(p.anchor_m, fnv1a_64(t.file, uintptr_t(p.gpu)))));
       sc.targets->add_geometry(screen_rect(view, lo, hi),
-                               fnv1a_64_of(l.first_index, fnv1a_64_of(l.index_count, fnv1a_64_of(uintptr_t(p.gpu), placement))));
+                               fnv1a_64_of(l.first_index, fnv1a_64_of(l.index_count, placement)));
       p.draws.push_back({l.first_index, l.index_count, material});
       p.triangles += l.index_count / 3;
     }
