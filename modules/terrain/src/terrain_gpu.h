@@ -2,6 +2,7 @@
 // GPU copies of terrain meshes and their material textures, owned by the world and shared by every
 // entity that shows the same file with the same build settings.
 #include <map>
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -34,10 +35,10 @@ struct TerrainCache {
   // Cascades side by side in one depth atlas (kShadowCascades x 1), compared in the shader.
   std::unique_ptr<Texture> shadow_atlas;
   Texture& shadow_map(int cascade_size);
-  // Everything the atlas's depths depend on (cascades, casters, their placement relative to the
-  // camera, sizes) when it was last drawn: a frame with the same is not drawn again.
-  std::string shadow_inputs;
-  size_t shadow_draws = 0;  // times the atlas was drawn (tests)
+  // What each cascade's depths were last drawn from (terrain_system.cpp, cascade_inputs): a cascade
+  // whose inputs are the same is not drawn again.
+  std::array<std::string, kShadowCascades> cascade_inputs;
+  size_t cascade_draws = 0;  // cascades drawn (tests, stats)
   // This frame's cascades as the light term's std140 block (terrain/light_term.glsl), and its buffer.
   struct CascadeBlock {
     glm::mat4 light_view_projection[kShadowCascades];

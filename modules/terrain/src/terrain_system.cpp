@@ -23,15 +23,22 @@ struct Cascades {
   std::array<glm::mat4, 3> light_view_projection;  // camera-relative world -> cascade clip space
   std::array<float, 3> far_m;                       // each cascade covers view distances up to this
   std::array<float, 3> extent_m;                    // side of each cascade's square, for texel-sized biases
+  std::array<glm::dvec3, 3> centre_m;               // in the scene frame, on the cascade's grid
 };
 
-// Orthographic cascades around slices of the view frustum (bounding spheres, so they do not swim
-// as the camera turns); each reaches `reach_m` toward the sun to catch mountains behind the view.
+// Orthographic cascades around slices of the view frustum; each reaches `reach_m` toward the sun to
+// catch mountains behind the view. A slice's bounding sphere keeps its size as the camera turns; its
+// centre is put on a grid fixed in the scene (in the light's axes, steps of an eighth of the radius,
+// the radius grown by one step so that the slice stays inside), so a cascade stays where it is, and
+// its depths stay what they were, while the camera turns or moves within a step: 12.5% coarser texels
+// for cascades that are drawn again only when they move (or their casters or the sun do).
 Cascades make_cascades(const FrameView& v, const glm::vec3& sun, float distance_m, float reach_m) {
   Cascades c;
   const float splits[4] = {v.near_m, distance_m * 0.03f, distance_m * 0.2f, distance_m};
   const float ty = std::tan(v.vertical_fov_rad * 0.5f), tx = ty * float(v.width) / float(v.height);
   glm::vec3 up = std::abs(sun.z) > 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1);
+  // The light's axes (those of glm::lookAt toward -sun with `up`).
+  const glm::dvec3 f = -glm::dvec3(sun), s = glm::normalize(glm::cross(f, glm::dvec3(up))), u = glm::cross(s, f);
   for (int i = 0; i < 3; ++i) {
     glm::vec3 corners[8];
     for (int k = 0; k < 8; ++k) {
@@ -42,11 +49,18 @@ Cascades make_cascades(const FrameView& v, const glm::vec3& sun, float distance_
     for (const auto& p : corners) centre += p / 8.0f;
     float radius = 0.0f;
     for (const auto& p : corners) radius = std::max(radius, glm::length(p - centre));
-    glm::mat4 view = glm::lookAt(centre + sun * (radius + reach_m), centre, up);
+    const double step = radius / 8.0;
+    const glm::dvec3 world = v.camera_position_m + glm::dvec3(centre);
+    auto snap = [step](double x) { return std::round(x / step) * step; };
+    const glm::dvec3 snapped = s * snap(glm::dot(world, s)) + u * snap(glm::dot(world, u)) + f * snap(glm::dot(world, f));
+    radius += float(step);
+    const glm::vec3 rel = glm::vec3(snapped - v.camera_position_m);
+    glm::mat4 view = glm::lookAt(rel + sun * (radius + reach_m), rel, up);
     glm::mat4 proj = glm::orthoRH_ZO(-radius, radius, -radius, radius, 0.0f, 2.0f * radius + reach_m);
     c.light_view_projection[size_t(i)] = proj * view;
     c.far_m[size_t(i)] = splits[i + 1];
     c.extent_m[size_t(i)] = 2.0f * radius;
+    c.centre_m[size_t(i)] = snapped;
   }
   return c;
 }
@@ -54,7 +68,12 @@ Cascades make_cascades(const FrameView& v, const glm::vec3& sun, float distance_
 struct Draw {
   uint32_t first, count;
   int material;
-  glm::vec3 lo{0.0f}, hi{0.0f};  // camera-relative bounds, for culling against each shadow cascade
+};
+
+// A chunk that casts shadows, with its camera-relative bounds (culled against each cascade).
+struct Caster {
+  size_t chunk;
+  glm::vec3 lo, hi;
 };
 
 struct Placed {
@@ -63,7 +82,9 @@ struct Placed {
   glm::mat3 rotation;   // heading
   float inverse_two_radius;
   std::vector<Draw> draws;
-  std::vector<Draw> shadow_draws;  // every chunk (casters outside the view still cast), coarser
+  float lod_pixel_error;
+  std::vector<Caster> casters;  // every chunk (casters outside the view still cast)
+  std::array<std::vector<Draw>, 3> shadow_draws;  // per cascade: the casters it sees, at its level
   size_t triangles = 0;
 };
 
@@ -91,15 +112,16 @@ bool outside_view(const glm::mat4& view_projection, const glm::vec3& lo, const g
   return false;
 }
 
-// The bytes of everything terrain.shadows draws from: the cascades, each caster's mesh and placement
-// as the shaders receive them (relative to the camera), and the chunks and levels it draws.
-std::string shadow_inputs(const Cascades& c, const std::vector<Placed>& placed, const FrameView& view, int size) {
+// What one cascade's depths are drawn from, in the scene's frame (the camera's position aside: a
+// cascade that stays put keeps its depths as the camera moves): where it is, the sun, the atlas's
+// size, and each caster's mesh, placement and the levels drawn.
+std::string cascade_inputs(const Cascades& c, int i, const glm::vec3& sun, const std::vector<Placed>& placed, int size) {
   std::string bytes;
   auto put = [&bytes](const auto& v) { bytes.append(reinterpret_cast<const char*>(&v), sizeof v); };
-  put(c.light_view_projection), put(size);
+  put(c.centre_m[size_t(i)]), put(c.extent_m[size_t(i)]), put(sun), put(size);
   for (const Placed& p : placed) {
-    put(p.gpu), put(glm::vec3(p.anchor_m - view.camera_position_m)), put(glm::vec2(p.anchor_m)), put(p.rotation), put(p.inverse_two_radius);
-    for (const Draw& d : p.shadow_draws) put(d.first), put(d.count), put(d.lo), put(d.hi);
+    put(p.gpu), put(p.anchor_m), put(p.rotation), put(p.inverse_two_radius);
+    for (const Draw& d : p.shadow_draws[size_t(i)]) put(d.first), put(d.count);
   }
   return bytes;
 }
@@ -141,7 +163,7 @@ void add_light_term(World& world) {
       .state = [&world] {
         const TerrainCache& cache = world.resource<TerrainCache>();
         return fnv1a_64_of(cache.cascade_block,
-                           fnv1a_64_of(cache.shadow_draws, fnv1a_64_of(uintptr_t(cache.shadow_atlas.get()))));
+                           fnv1a_64_of(cache.cascade_draws, fnv1a_64_of(uintptr_t(cache.shadow_atlas.get()))));
       }});
 }
 
@@ -164,6 +186,7 @@ void terrain_system(SystemContext& sc) {
     p.rotation = glm::mat3(glm::vec3(std::cos(h), -std::sin(h), 0), glm::vec3(std::sin(h), std::cos(h), 0), glm::vec3(0, 0, 1));
     double radius_m = (planet_radius_km > 0 ? planet_radius_km : t.planet_radius_km) * 1000.0;
     p.inverse_two_radius = t.follow_curvature ? float(0.5 / radius_m) : 0.0f;
+    p.lod_pixel_error = t.lod_pixel_error;
     const glm::vec3 rel = glm::vec3(p.anchor_m - view.camera_position_m);
     const uint64_t placement = fnv1a_64_of(
         p.inverse_two_radius, fnv1a_64_of(p.rotation, fnv1a_64_of(p.anchor_m, fnv1a_64(t.file, uintptr_t(p.gpu)))));
@@ -180,11 +203,7 @@ void terrain_system(SystemContext& sc) {
       double distance = glm::length(glm::max(glm::max(lo, -hi), glm::vec3(0.0f)));
       int lod = select_lod(c, distance, pixels_per_radian, t.lod_pixel_error);
       int material = c.material < 0 ? int(p.gpu->materials.size()) - 1 : c.material;
-      if (t.cast_shadows) {
-        // Shadows tolerate coarser geometry: two levels coarser than the view uses.
-        const LodRange& sl = c.lods[size_t(std::min<int>(lod + 2, int(c.lods.size()) - 1))];
-        p.shadow_draws.push_back({sl.first_index, sl.index_count, material, lo, hi});
-      }
+      if (t.cast_shadows) p.casters.push_back({size_t(&c - p.gpu->mesh.chunks.data()), lo, hi});
       if (outside_view(view.view_projection, lo, hi)) continue;
       const LodRange& l = c.lods[size_t(lod)];
       // What this chunk writes to the depth: its level's triangles, placed (the view aside).
@@ -209,47 +228,68 @@ void terrain_system(SystemContext& sc) {
   cache.cascade_block.far_m.w = 0.0f;  // until a cascade is made this frame
   if (sun && shadow_settings) {
     *cascades = make_cascades(view, *sun, shadow_settings->shadow_distance_m, 20000.0f);
-    Texture& atlas = cache.shadow_map(shadow_settings->shadow_map_size);
+    const Cascades& cs = **cascades;
+    const int size = shadow_settings->shadow_map_size;
+    Texture& atlas = cache.shadow_map(size);
     for (int i = 0; i < kShadowCascades; ++i) {
-      cache.cascade_block.light_view_projection[i] = (**cascades).light_view_projection[size_t(i)];
-      cache.cascade_block.far_m[i] = (**cascades).far_m[size_t(i)];
-      cache.cascade_block.texel_m[i] = (**cascades).extent_m[size_t(i)] / float(shadow_settings->shadow_map_size);
+      cache.cascade_block.light_view_projection[i] = cs.light_view_projection[size_t(i)];
+      cache.cascade_block.far_m[i] = cs.far_m[size_t(i)];
+      cache.cascade_block.texel_m[i] = cs.extent_m[size_t(i)] / float(size);
     }
     cache.cascade_block.far_m.w = 1.0f;
+    // Each cascade draws the casters its square sees, at the level whose error stays within the
+    // terrain's pixel error in the cascade's texels: the far cascades draw coarse levels.
+    for (Placed& p : *placed)
+      for (int i = 0; i < kShadowCascades; ++i) {
+        const double texels_per_m = size / double(cs.extent_m[size_t(i)]);
+        for (const Caster& k : p.casters) {
+          if (outside_view(cs.light_view_projection[size_t(i)], k.lo, k.hi)) continue;
+          const Chunk& c = p.gpu->mesh.chunks[k.chunk];
+          const LodRange& l = c.lods[size_t(select_lod(c, 1.0, texels_per_m, p.lod_pixel_error))];
+          const int material = c.material < 0 ? int(p.gpu->materials.size()) - 1 : c.material;
+          p.shadow_draws[size_t(i)].push_back({l.first_index, l.index_count, material});
+        }
+      }
     shadow_handle = sc.graph->import("terrain.shadow_atlas", atlas);
-    const int size = shadow_settings->shadow_map_size;
-    // A still camera under a still sun casts the same shadows: the atlas is kept, not drawn again.
-    std::string inputs = shadow_inputs(**cascades, *placed, view, size);
-    if (inputs != cache.shadow_inputs)
+    // A cascade whose place, sun and casters are those of its last drawing keeps its depths.
+    auto inputs = std::make_shared<std::array<std::string, kShadowCascades>>();
+    std::vector<int> stale;
+    for (int i = 0; i < kShadowCascades; ++i) {
+      (*inputs)[size_t(i)] = cascade_inputs(cs, i, *sun, *placed, size);
+      if ((*inputs)[size_t(i)] != cache.cascade_inputs[size_t(i)]) stale.push_back(i);
+    }
+    if (!stale.empty())
     sc.graph->add_pass("terrain.shadows", [&](PassBuilder& b) { b.write(shadow_handle); },
-                       [placed, cascades, shadow_handle, size, &rc, &cache, inputs = std::move(inputs)](PassContext& pc) {
+                       [placed, cascades, shadow_handle, size, &rc, &cache, inputs, stale](PassContext& pc) {
       Framebuffer fb(nullptr, &pc.texture(shadow_handle));
       fb.bind();
       glEnable(GL_DEPTH_TEST);
       glDepthFunc(GL_LESS);
       glDepthMask(GL_TRUE);
       glClearDepth(1.0);
-      glClear(GL_DEPTH_BUFFER_BIT);
+      glEnable(GL_SCISSOR_TEST);
       glEnable(GL_POLYGON_OFFSET_FILL);
       glPolygonOffset(2.0f, 4.0f);  // slope-scaled bias against self-shadowing acne
       const Program& prog = rc.shaders.graphics("terrain/terrain.vert", "terrain/depth.frag");
       prog.use();
-      for (int i = 0; i < kShadowCascades; ++i) {
+      for (int i : stale) {
         glViewport(i * size, 0, size, size);
-        const glm::mat4& light_vp = (**cascades).light_view_projection[size_t(i)];
-        prog.set("u_view_projection", light_vp);
+        glScissor(i * size, 0, size, size);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        prog.set("u_view_projection", (**cascades).light_view_projection[size_t(i)]);
         for (const Placed& p : *placed) {
           bind_placement(prog, p, rc.view);
-          for (const Draw& d : p.shadow_draws)
-            if (!outside_view(light_vp, d.lo, d.hi))
-              glDrawElements(GL_TRIANGLES, GLsizei(d.count), GL_UNSIGNED_INT, reinterpret_cast<const void*>(uintptr_t(d.first) * 4));
+          for (const Draw& d : p.shadow_draws[size_t(i)])
+            glDrawElements(GL_TRIANGLES, GLsizei(d.count), GL_UNSIGNED_INT, reinterpret_cast<const void*>(uintptr_t(d.first) * 4));
         }
+        // Once drawn: a frame that failed before this draws it again.
+        cache.cascade_inputs[size_t(i)] = (*inputs)[size_t(i)];
+        ++cache.cascade_draws;
       }
+      glDisable(GL_SCISSOR_TEST);
       glDisable(GL_POLYGON_OFFSET_FILL);
       glDepthFunc(GL_GREATER);  // back to the frame's reversed-Z convention
       glClearDepth(0.0);
-      cache.shadow_inputs = inputs;  // once drawn: a frame that failed before this draws again
-      ++cache.shadow_draws;
     });
   }
   sc.graph->add_pass("terrain", [&](PassBuilder& b) {
