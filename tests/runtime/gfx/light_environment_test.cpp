@@ -49,6 +49,28 @@ TEST(LightEnvironment, VisibilitiesMultiplyAndTermsComeAndGo) {
   EXPECT_NE(s.find("vec3 welkin_sun_irradiance(vec3 p) { return vec3(0.0); }"), std::string::npos);
 }
 
+// The environment's state follows every term's, and the composed source; a term that reports none
+// leaves the environment without one (nothing may then be kept between frames). The moon's switch
+// is in the composed source.
+TEST(LightEnvironment, StateFollowsEveryTermAndTheSource) {
+  LightEnvironment env;
+  uint64_t a = 1, b = 2;
+  env.add({.name = "a", .include = "a.glsl", .lights = "a", .state = [&a] { return a; }});
+  env.add({.name = "b", .include = "b.glsl", .light_visibility = "b_vis", .state = [&b] { return b; }});
+  const std::optional<uint64_t> first = env.state();
+  ASSERT_TRUE(first.has_value());
+  EXPECT_EQ(env.state(), first) << "nothing changed";
+  b = 3;
+  const std::optional<uint64_t> second = env.state();
+  EXPECT_NE(second, first);
+  EXPECT_NE(env.composed_source().find("#define WELKIN_MOON_LIGHT 1"), std::string::npos);
+  env.set_moon_lights_surfaces(false);
+  EXPECT_NE(env.composed_source().find("#define WELKIN_MOON_LIGHT 0"), std::string::npos);
+  EXPECT_NE(env.state(), second) << "the composed source changed";
+  env.add({.name = "c", .include = "c.glsl", .sky_visibility = "c_vis"});
+  EXPECT_FALSE(env.state().has_value());
+}
+
 TEST(LightEnvironment, BindingsAreAssignedOnceAndNeverMove) {
   LightEnvironment env;
   env.add({.name = "a", .textures = {"a.lut", "a.map"}, .blocks = {"a"}});
