@@ -16,7 +16,11 @@ GlBufferName upload(std::span<const uint8_t> bytes) {
   return GlBufferName(id);
 }
 
-// Base colour and emissive are sRGB-encoded in glTF; data textures (normal, metallic-roughness) are linear.
+// `v = {}` assigns an empty list and keeps the capacity: an empty vector swapped in gives it back.
+template <class T> void release(std::vector<T>& v) { std::vector<T>().swap(v); }
+
+// Base colour and emissive are sRGB-encoded in glTF; data textures (normal, metallic-roughness) are
+// linear. Level 0 only: the levels below are made once the decoded images are freed (make_mipmaps).
 GlTextureName upload_image(const assets::Model& model, const assets::TextureRef& ref, bool srgb) {
   if (!ref.valid() || size_t(ref.texture) >= model.textures.size()) return {};
   const assets::Texture& tex = model.textures[size_t(ref.texture)];
@@ -28,7 +32,6 @@ GlTextureName upload_image(const assets::Model& model, const assets::TextureRef&
   int levels = 1 + int(std::floor(std::log2(std::max(img.width, img.height))));
   glTextureStorage2D(id, levels, srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, img.width, img.height);
   glTextureSubImage2D(id, 0, 0, 0, img.width, img.height, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba.data());
-  glGenerateTextureMipmap(id);
   glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTextureParameteri(id, GL_TEXTURE_WRAP_S, tex.sampler.wrap_s);
@@ -84,7 +87,7 @@ TerrainCache::LoadedMesh TerrainCache::load_mesh(const Terrain& s, TerrainMesh& 
   }
   // A miss: the whole file read again, and the mesh, its materials and its key all taken from that one
   // read (the file may have changed since the first).
-  loaded.body = {};
+  release(loaded.body);
   loaded.model.reset();
   assets_without_geometry.evict_unused();
   loaded.model = assets.load(s.file);
@@ -123,10 +126,10 @@ GpuTerrain& TerrainCache::get(const Terrain& s) {
   // The GPU holds the geometry: only the chunks' bounds and levels stay on the CPU, freed before the
   // images are uploaded so that the two copies never coexist.
   loaded.arrays = {};
-  loaded.body = {};
-  gpu->mesh.positions = {}, gpu->mesh.normals = {};
-  gpu->mesh.uvs = {};
-  gpu->mesh.indices = {};
+  release(loaded.body);
+  release(gpu->mesh.positions), release(gpu->mesh.normals);
+  release(gpu->mesh.uvs);
+  release(gpu->mesh.indices);
   std::shared_ptr<const assets::Model> model = std::move(loaded.model);
   for (const assets::Material& mat : model->materials) {
     GpuMaterial g;
@@ -144,10 +147,14 @@ GpuTerrain& TerrainCache::get(const Terrain& s) {
   gpu->materials.emplace_back();  // primitives without a material: glTF's default (white, rough, dielectric)
   gpu->materials.back().metallic = 0.0f;
   // The decoded model leaves the asset cache now that its images are uploaded (a terrain built again
-  // with other settings reads the file again).
+  // with other settings reads the file again), before the images' levels are made: the decoded
+  // images and the levels never coexist.
   model.reset();
   assets.evict_unused();
   assets_without_geometry.evict_unused();
+  for (const GpuMaterial& m : gpu->materials)
+    for (const GlTextureName* t : {&m.base_color, &m.metallic_roughness, &m.occlusion, &m.emissive_map})
+      if (*t) glGenerateTextureMipmap(t->id());
   slot = std::move(gpu);
   return *slot;
 }
