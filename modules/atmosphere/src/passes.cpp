@@ -132,7 +132,7 @@ void bind_for_materials(const AtmosphereGpu& gpu) {
 
 // What materials read of the atmosphere: the block as this frame uploads it and which builds of the
 // LUTs (a LUT that this frame makes again is not valid until it runs; its build is counted then).
-uint64_t light_state(const AtmosphereGpu& gpu) {
+static uint64_t light_state(const AtmosphereGpu& gpu) {
   const int builds[4] = {gpu.lut_builds, gpu.lut_cache_reads, gpu.sky_view_builds, gpu.aerial_builds};
   const bool valid[3] = {gpu.luts_valid, gpu.sky_view_valid, gpu.aerial_valid};
   return fnv1a_64_of(gpu.uniforms, fnv1a_64_of(builds, fnv1a_64_of(valid)));

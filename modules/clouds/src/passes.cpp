@@ -588,8 +588,8 @@ void shadow_system(SystemContext& sc) {
       });
 }
 
-void composite_clouds(RenderGraph& g, RenderContext& rc, const FrameTargets& t, ResourceHandle result,
-                      ResourceHandle clusters);
+static void composite_clouds(RenderGraph& g, RenderContext& rc, const FrameTargets& t, ResourceHandle result,
+                             ResourceHandle clusters);
 
 // After the geometry and its aerial perspective: the march and the composite.
 void clouds_system(SystemContext& sc) {
@@ -768,8 +768,8 @@ void clouds_system(SystemContext& sc) {
 }
 
 // The clouds (and the clusters or billboards behind them, where not merged already) over the frame.
-void composite_clouds(RenderGraph& g, RenderContext& rc, const FrameTargets& t, ResourceHandle result,
-                      ResourceHandle clusters) {
+static void composite_clouds(RenderGraph& g, RenderContext& rc, const FrameTargets& t, ResourceHandle result,
+                             ResourceHandle clusters) {
   g.add_pass(
       "clouds.composite",
       [&](PassBuilder& b) {
