@@ -392,15 +392,20 @@ ShaderDefines sky_defines(SystemContext& sc, const AfterLuts& f) {
   return sky;
 }
 
-// A full-screen triangle at depth 0 over the frame's depth, tested but not written: GL_LESS shades the
-// geometry, GL_GEQUAL the pixels it left open. The frame's defaults come back at the end of the scope.
+// A full-screen triangle at depth 0 over the frame's depth, tested but not written, inside a
+// rectangle of the frame (llvmpipe runs the depth test for every block a triangle touches, rejected or
+// not; the scissor skips the rest): GL_LESS shades the geometry, GL_GEQUAL the pixels it left open.
+// The frame's defaults come back at the end of the scope.
 struct DepthTestedOverlay {
-  explicit DepthTestedOverlay(GLenum func) {
+  DepthTestedOverlay(GLenum func, const PixelRect& inside) {
     glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     glDepthFunc(func);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(inside.x0, inside.y0, inside.x1 - inside.x0, inside.y1 - inside.y0);
   }
   ~DepthTestedOverlay() {
+    glDisable(GL_SCISSOR_TEST);
     glDepthMask(GL_TRUE);
     glDisable(GL_DEPTH_TEST);
   }
@@ -545,15 +550,12 @@ void ground_light_pass(SystemContext& sc, const AfterLuts& f) {
       [gp = f.gpu, rcp = f.rc, env, t, ground, ground_only](PassContext& pc) {
         Framebuffer fb(&pc.texture(t.color), &pc.texture(t.depth));
         fb.bind();
-        const DepthTestedOverlay open_pixels(GL_GEQUAL);
+        const DepthTestedOverlay open_pixels(GL_GEQUAL, ground);
         glDisable(GL_BLEND);
-        glEnable(GL_SCISSOR_TEST);
-        glScissor(ground.x0, ground.y0, ground.x1 - ground.x0, ground.y1 - ground.y0);
         env->bind();
         bind_for_materials(*gp);
         rcp->shaders.graphics("atmosphere/sky.vert", "atmosphere/sky.frag", ground_only).use();
         rcp->draw_fullscreen_triangle();
-        glDisable(GL_SCISSOR_TEST);
       });
 }
 
@@ -587,10 +589,7 @@ void sky_system(SystemContext& sc) {
         // GL 4.5 defines (9.3.1); GL_LESS against depth 0 passes only on geometry.
         Framebuffer fb(&pc.texture(t.color), &pc.texture(t.depth));
         fb.bind();
-        const DepthTestedOverlay on_geometry(GL_LESS);
-        // llvmpipe runs the depth test for every block a triangle touches: the scissor skips the rest.
-        glEnable(GL_SCISSOR_TEST);
-        glScissor(geometry.x0, geometry.y0, geometry.x1 - geometry.x0, geometry.y1 - geometry.y0);
+        const DepthTestedOverlay on_geometry(GL_LESS, geometry);
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_SRC1_COLOR);  // colour * transmittance + in-scattering
         bind_for_materials(*gp);
@@ -600,7 +599,6 @@ void sky_system(SystemContext& sc) {
         p.set("u_depth", 0);
         p.use();
         rcp->draw_fullscreen_triangle();
-        glDisable(GL_SCISSOR_TEST);
         glDisable(GL_BLEND);
       });
 }
