@@ -144,20 +144,26 @@ class Converter {
       Image img;
       img.name = gi.name;
       img.mime_type = gi.mimeType;
-      if (src_.options.decode_images) {
-        if (gi.bufferView >= 0) {
-          img = decode_image(view_bytes(gi.bufferView, path + "/bufferView"), src_, path + "/bufferView",
-                             total);
-        } else if (gi.bits == 0 && !gi.image.empty()) {
-          img = decode_image(gi.image, src_, path + "/uri", total);
-        } else {
-          const auto file = resolve_external(src_, gi.uri, path + "/uri");
-          img = decode_image(read_file_limited(src_, file, src_.options.limits.max_file_bytes, path + "/uri"),
-                             src_, path + "/uri", total);
-        }
-        img.name = gi.name;
-        img.mime_type = gi.mimeType;
+      // The encoded bytes are read (and hashed) whether or not they are decoded: the hash names what
+      // is derived from them in caches, and a missing external image is an error either way.
+      std::vector<uint8_t> external;
+      std::span<const uint8_t> encoded;
+      std::string where;
+      if (gi.bufferView >= 0) {
+        where = path + "/bufferView";
+        encoded = view_bytes(gi.bufferView, where);
+      } else if (gi.bits == 0 && !gi.image.empty()) {
+        where = path + "/uri";
+        encoded = gi.image;
+      } else {
+        where = path + "/uri";
+        external = read_file_limited(src_, resolve_external(src_, gi.uri, where), src_.options.limits.max_file_bytes, where);
+        encoded = external;
       }
+      if (src_.options.decode_images) img = decode_image(encoded, src_, where, total);
+      img.name = gi.name;
+      img.mime_type = gi.mimeType;
+      img.encoded_hash = DiskCache::hash({reinterpret_cast<const char*>(encoded.data()), encoded.size()});
       m_.images.push_back(std::move(img));
     }
   }

@@ -1,6 +1,11 @@
 #include "terrain_gpu.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <optional>
+
+#include "welkin/assets/block_compression.h"
 
 #include "welkin/core/disk_cache.h"
 #include "welkin/core/error.h"
@@ -19,29 +24,79 @@ GlBufferName upload(std::span<const uint8_t> bytes) {
 // `v = {}` assigns an empty list and keeps the capacity: an empty vector swapped in gives it back.
 template <class T> void release(std::vector<T>& v) { std::vector<T>().swap(v); }
 
-// Base colour and emissive are sRGB-encoded in glTF; data textures (normal, metallic-roughness) are
-// linear. Level 0 only: the levels below are made once the decoded images are freed (make_mipmaps).
-GlTextureName upload_image(const assets::Model& model, const assets::TextureRef& ref, bool srgb) {
-  if (!ref.valid() || size_t(ref.texture) >= model.textures.size()) return {};
-  const assets::Texture& tex = model.textures[size_t(ref.texture)];
-  if (tex.image < 0 || size_t(tex.image) >= model.images.size()) return {};
-  const assets::Image& img = model.images[size_t(tex.image)];
-  if (img.rgba.empty()) return {};
-  GLuint id = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &id);
-  int levels = 1 + int(std::floor(std::log2(std::max(img.width, img.height))));
-  glTextureStorage2D(id, levels, srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, img.width, img.height);
-  glTextureSubImage2D(id, 0, 0, 0, img.width, img.height, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba.data());
+void sampler_parameters(GLuint id, const assets::Sampler& sampler) {
   glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTextureParameteri(id, GL_TEXTURE_WRAP_S, tex.sampler.wrap_s);
-  glTextureParameteri(id, GL_TEXTURE_WRAP_T, tex.sampler.wrap_t);
+  glTextureParameteri(id, GL_TEXTURE_WRAP_S, sampler.wrap_s);
+  glTextureParameteri(id, GL_TEXTURE_WRAP_T, sampler.wrap_t);
   // No anisotropic filtering: on llvmpipe it multiplies the cost of every terrain pixel several times.
+}
+
+// RGBA8 with the levels made on the CPU (for_each_mip_level): they hold level 0's mean light.
+GlTextureName upload_rgba(const assets::Image& img, const assets::Sampler& sampler, bool srgb) {
+  GLuint id = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &id);
+  glTextureStorage2D(id, assets::mip_level_count(img.width, img.height), srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8,
+                     img.width, img.height);
+  assets::for_each_mip_level(img, srgb, assets::mip_edge_of_gl_wrap(sampler.wrap_s), assets::mip_edge_of_gl_wrap(sampler.wrap_t),
+                             [&](int level, int w, int h, const uint8_t* rgba) {
+                               glTextureSubImage2D(id, level, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+                             });
+  sampler_parameters(id, sampler);
   return GlTextureName(id);
 }
 
+GlTextureName upload_bc1(const assets::Bc1Chain& chain, const assets::Sampler& sampler, bool srgb) {
+  const GLenum format = srgb ? GL_COMPRESSED_SRGB_S3TC_DXT1_EXT : GL_COMPRESSED_RGB_S3TC_DXT1_EXT;
+  GLuint id = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &id);
+  glTextureStorage2D(id, GLsizei(chain.levels.size()), format, chain.width, chain.height);
+  for (size_t l = 0; l < chain.levels.size(); ++l) {
+    const assets::Bc1Level& lv = chain.levels[l];
+    glCompressedTextureSubImage2D(id, GLint(l), 0, 0, lv.width, lv.height, format, GLsizei(lv.size),
+                                  chain.blocks.data() + lv.offset);
+  }
+  sampler_parameters(id, sampler);
+  return GlTextureName(id);
+}
+
+// GL 4.5 core does not require S3TC; llvmpipe and desktop GPUs have it (and its sRGB forms).
+bool bc1_supported() {
+  return epoxy_has_gl_extension("GL_EXT_texture_compression_s3tc") &&
+         (epoxy_has_gl_extension("GL_EXT_texture_sRGB") || epoxy_has_gl_extension("GL_EXT_texture_compression_s3tc_srgb"));
+}
+
+// The compressed chain of one image as the disk cache keeps it: its size, then its blocks. The key is
+// the encoded image's hash with everything else the levels depend on.
+std::string bc1_cache_key(const assets::Image& img, const assets::Sampler& sampler, bool srgb) {
+  char key[96];
+  std::snprintf(key, sizeof key, "terrain-bc1-v1|%016llx|%d|%d|%d|", static_cast<unsigned long long>(img.encoded_hash),
+                int(srgb), sampler.wrap_s, sampler.wrap_t);
+  return key;
+}
+
+std::optional<assets::Bc1Chain> read_bc1(const DiskCache& disk, const std::string& key) {
+  const auto size = disk.read(key + "size", 2 * sizeof(int32_t));
+  if (!size) return std::nullopt;
+  int32_t wh[2];
+  std::memcpy(wh, size->data(), sizeof wh);
+  const assets::LoadLimits limits;
+  if (wh[0] < 1 || wh[1] < 1 || wh[0] > limits.max_image_side || wh[1] > limits.max_image_side) return std::nullopt;
+  assets::Bc1Chain chain = assets::bc1_layout(wh[0], wh[1]);
+  auto blocks = disk.read(key + "blocks", chain.levels.back().offset + chain.levels.back().size);
+  if (!blocks) return std::nullopt;
+  chain.blocks = std::move(*blocks);
+  return chain;
+}
+
+void write_bc1(const DiskCache& disk, const std::string& key, const assets::Bc1Chain& chain) {
+  const int32_t wh[2] = {chain.width, chain.height};
+  if (disk.write(key + "blocks", {reinterpret_cast<const char*>(chain.blocks.data()), chain.blocks.size()}))
+    disk.write(key + "size", {reinterpret_cast<const char*>(wh), sizeof wh});
+}
+
 std::string cache_key(const Terrain& s) {
-  return s.file + "|" + std::to_string(s.chunks_per_side) + "|" + std::to_string(s.lod_levels) + "|" +
+  return s.file + "|" + std::to_string(s.compress_images) + "|" + std::to_string(s.chunks_per_side) + "|" + std::to_string(s.lod_levels) + "|" +
          std::to_string(s.refine) + "|" + std::to_string(s.refine_levels) + "|" + std::to_string(s.refine_max_triangles);
 }
 
@@ -68,7 +123,8 @@ TerrainCache::LoadedMesh TerrainCache::load_mesh(const Terrain& s, TerrainMesh& 
     return loaded;
   }
   // The file without its geometry (its bytes hashed), then the mesh from the cache when it is there.
-  loaded.model = assets_without_geometry.load(s.file);
+  // Compressed images come from the disk cache too: then the images are not decoded either.
+  loaded.model = (s.compress_images && bc1_supported() ? assets_bare : assets_without_geometry).load(s.file);
   const std::string key = mesh_cache_key(loaded.model->content_hash, s);
   // A bound before anything is read: far above any terrain this engine admits (assets::LoadLimits).
   constexpr size_t kMaxMeshBytes = size_t(4) << 30;
@@ -90,6 +146,7 @@ TerrainCache::LoadedMesh TerrainCache::load_mesh(const Terrain& s, TerrainMesh& 
   release(loaded.body);
   loaded.model.reset();
   assets_without_geometry.evict_unused();
+  assets_bare.evict_unused();
   loaded.model = assets.load(s.file);
   mesh = build_terrain_mesh(*loaded.model, s);
   loaded.arrays = mesh_arrays(mesh);
@@ -131,32 +188,65 @@ GpuTerrain& TerrainCache::get(const Terrain& s) {
   release(gpu->mesh.uvs);
   release(gpu->mesh.indices);
   std::shared_ptr<const assets::Model> model = std::move(loaded.model);
-  for (const assets::Material& mat : model->materials) {
+  gpu->materials = upload_materials(s, *model);
+  // The decoded model leaves the asset cache now that its images are uploaded (a terrain built again
+  // with other settings reads the file again).
+  model.reset();
+  assets.evict_unused();
+  assets_without_geometry.evict_unused();
+  assets_bare.evict_unused();
+  slot = std::move(gpu);
+  return *slot;
+}
+
+std::vector<GpuMaterial> TerrainCache::upload_materials(const Terrain& s, const assets::Model& model) {
+  const bool compress = s.compress_images && bc1_supported();
+  const DiskCache disk = compress ? DiskCache::from_environment() : DiskCache();
+  // Decoded on the first image whose compressed levels are not on disk, when `model` has no pixels.
+  std::shared_ptr<const assets::Model> decoded;
+  auto pixels = [&](int image) -> const assets::Image& {
+    const assets::Image& img = model.images[size_t(image)];
+    if (!img.rgba.empty()) return img;
+    if (!decoded) decoded = assets_without_geometry.load(s.file);
+    if (size_t(image) >= decoded->images.size() || decoded->images[size_t(image)].encoded_hash != img.encoded_hash)
+      throw Error(ErrorInfo{.file = s.file, .path = "/images/" + std::to_string(image),
+                            .message = "the file changed while it was being read; load it again"});
+    return decoded->images[size_t(image)];
+  };
+  // Base colour and emissive are sRGB-encoded in glTF; data textures (metallic-roughness, occlusion) linear.
+  auto texture = [&](const assets::TextureRef& ref, bool srgb) -> GlTextureName {
+    if (!ref.valid() || size_t(ref.texture) >= model.textures.size()) return {};
+    const assets::Texture& tex = model.textures[size_t(ref.texture)];
+    if (tex.image < 0 || size_t(tex.image) >= model.images.size()) return {};
+    if (!compress) return upload_rgba(pixels(tex.image), tex.sampler, srgb);
+    const std::string key = bc1_cache_key(model.images[size_t(tex.image)], tex.sampler, srgb);
+    std::optional<assets::Bc1Chain> chain;
+    if (disk.enabled() && (chain = read_bc1(disk, key))) {
+      ++image_cache_reads;
+    } else {
+      chain = assets::compress_bc1(pixels(tex.image), srgb, assets::mip_edge_of_gl_wrap(tex.sampler.wrap_s),
+                                    assets::mip_edge_of_gl_wrap(tex.sampler.wrap_t));
+      if (disk.enabled()) write_bc1(disk, key, *chain);
+    }
+    return upload_bc1(*chain, tex.sampler, srgb);
+  };
+  std::vector<GpuMaterial> materials;
+  for (const assets::Material& mat : model.materials) {
     GpuMaterial g;
     g.base_color_factor = mat.base_color_factor;
     g.metallic = mat.metallic_factor;
     g.roughness = mat.roughness_factor;
     g.emissive = mat.emissive_factor * mat.emissive_strength;
-    g.base_color = upload_image(*model, mat.base_color, true);
-    g.metallic_roughness = upload_image(*model, mat.metallic_roughness, false);
-    g.occlusion = upload_image(*model, mat.occlusion, false);
-    g.emissive_map = upload_image(*model, mat.emissive, true);
+    g.base_color = texture(mat.base_color, true);
+    g.metallic_roughness = texture(mat.metallic_roughness, false);
+    g.occlusion = texture(mat.occlusion, false);
+    g.emissive_map = texture(mat.emissive, true);
     if (mat.base_color.transform.present) g.uv_transform = mat.base_color.transform.matrix();
-    gpu->materials.push_back(std::move(g));
+    materials.push_back(std::move(g));
   }
-  gpu->materials.emplace_back();  // primitives without a material: glTF's default (white, rough, dielectric)
-  gpu->materials.back().metallic = 0.0f;
-  // The decoded model leaves the asset cache now that its images are uploaded (a terrain built again
-  // with other settings reads the file again), before the images' levels are made: the decoded
-  // images and the levels never coexist.
-  model.reset();
-  assets.evict_unused();
-  assets_without_geometry.evict_unused();
-  for (const GpuMaterial& m : gpu->materials)
-    for (const GlTextureName* t : {&m.base_color, &m.metallic_roughness, &m.occlusion, &m.emissive_map})
-      if (*t) glGenerateTextureMipmap(t->id());
-  slot = std::move(gpu);
-  return *slot;
+  materials.emplace_back();  // primitives without a material: glTF's default (white, rough, dielectric)
+  materials.back().metallic = 0.0f;
+  return materials;
 }
 
 }  // namespace welkin::terrain

@@ -50,8 +50,12 @@ struct TerrainCache {
   // With the disk cache on: the file read for its materials and images only, and (only when the built
   // mesh is not on disk) again whole (`assets`).
   assets::AssetCache assets_without_geometry{assets::LoadOptions{.decode_meshes = false}};
+  // With the disk cache on and images compressed: the file read for its materials and its images'
+  // hashes only, the compressed levels coming from the disk cache (images decoded only on a miss).
+  assets::AssetCache assets_bare{assets::LoadOptions{.decode_images = false, .decode_meshes = false}};
   std::map<std::string, std::unique_ptr<GpuTerrain>> terrains;  // key: file + build settings
   size_t mesh_cache_reads = 0;  // meshes read from the disk cache instead of built (tests)
+  size_t image_cache_reads = 0;  // compressed images read from the disk cache instead of made (tests)
   // Loads (or returns) the GPU terrain for these settings; throws welkin::Error naming the file.
   GpuTerrain& get(const Terrain& settings);
 
@@ -64,6 +68,7 @@ struct TerrainCache {
     MeshArrays arrays;
   };
   LoadedMesh load_mesh(const Terrain& settings, TerrainMesh& mesh);
+  std::vector<GpuMaterial> upload_materials(const Terrain& settings, const assets::Model& model);
 };
 
 }  // namespace welkin::terrain

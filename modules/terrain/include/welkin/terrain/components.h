@@ -25,6 +25,7 @@ struct Terrain {
   int chunks_per_side = 16;         // spatial chunks for culling and level of detail
   int lod_levels = 4;               // each level about a quarter of the triangles of the one before
   float lod_pixel_error = 1.5f;     // a coarser level is used while its error stays under this many pixels
+  bool compress_images = true;      // BC1 on the GPU (1/8 of RGBA8's memory, alpha dropped), kept on disk
   bool cast_shadows = true;         // cascaded shadow maps from the sun
   int shadow_map_size = 1024;       // per cascade (three cascades)
   float shadow_distance_m = 30000.0f;  // beyond it the terrain is unshadowed

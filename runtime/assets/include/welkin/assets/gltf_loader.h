@@ -39,7 +39,7 @@ struct LoadLimits {
 
 struct LoadOptions {
   LoadLimits limits;
-  bool decode_images = true;  // false: images keep name/mime type but no pixels (and are not read)
+  bool decode_images = true;  // false: images keep name, mime type and encoded_hash, but no pixels
   // false: meshes keep their names but no primitives, and Draco does not run; for a user that keeps
   // what it builds from the geometry elsewhere, keyed by Model::content_hash.
   bool decode_meshes = true;

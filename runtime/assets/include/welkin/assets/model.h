@@ -67,6 +67,7 @@ struct Image {
   std::string mime_type;
   int width = 0, height = 0;
   std::vector<uint8_t> rgba;
+  uint64_t encoded_hash = 0;  // DiskCache::hash of its PNG or JPEG bytes, decoded or not
 };
 
 // GL enum values as glTF stores them (9729 LINEAR, 10497 REPEAT, ...); 0 = unspecified.
@@ -124,7 +125,7 @@ struct Model {
   Bounds bounds;                      // world-space box of every mesh instance in the scene
   std::vector<std::string> warnings;  // things skipped on purpose (e.g. line primitives)
   // FNV-1a (DiskCache::hash) chained over the size and bytes of every file the load read, in the order
-  // read: the file, its external buffers, and its external images when they were decoded.
+  // read: the file, its external buffers, and its external images.
   uint64_t content_hash = 0;
 
   size_t vertex_count() const;
