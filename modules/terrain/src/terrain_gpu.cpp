@@ -170,12 +170,14 @@ GpuTerrain& TerrainCache::get(const Terrain& s) {
   GLuint vao = 0;
   glCreateVertexArrays(1, &vao);
   gpu->vao = GlVertexArrayName(vao);
+  // Positions and uvs as floats, normals packed (pack_normal: 4 bytes, normalized by GL).
   const GLuint buffers[] = {gpu->positions.id(), gpu->normals.id(), gpu->uvs.id()};
-  const GLint sizes[] = {3, 3, 2};
-  const GLsizei strides[] = {sizeof(glm::vec3), sizeof(glm::vec3), sizeof(glm::vec2)};
+  const GLint sizes[] = {3, 4, 2};
+  const GLenum types[] = {GL_FLOAT, GL_INT_2_10_10_10_REV, GL_FLOAT};
+  const GLsizei strides[] = {sizeof(glm::vec3), sizeof(uint32_t), sizeof(glm::vec2)};
   for (GLuint a = 0; a < 3; ++a) {
     glVertexArrayVertexBuffer(vao, a, buffers[a], 0, strides[a]);
-    glVertexArrayAttribFormat(vao, a, sizes[a], GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribFormat(vao, a, sizes[a], types[a], types[a] != GL_FLOAT, 0);
     glVertexArrayAttribBinding(vao, a, a);
     glEnableVertexArrayAttrib(vao, a);
   }

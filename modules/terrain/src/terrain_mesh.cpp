@@ -67,6 +67,17 @@ Flat flatten(const assets::Primitive& prim, const glm::mat4& node_world, const T
 
 }  // namespace
 
+uint32_t pack_normal(const glm::vec3& n) {
+  auto q = [](float v) { return uint32_t(int32_t(std::lround(std::clamp(v, -1.0f, 1.0f) * 511.0f))) & 0x3FFu; };
+  return q(n.x) | q(n.y) << 10 | q(n.z) << 20;
+}
+
+glm::vec3 unpack_normal(uint32_t p) {
+  // Sign-extended from 10 bits, then as GL normalizes signed values: max(c / 511, -1).
+  auto f = [](uint32_t bits) { return std::max(float(int32_t(bits << 22) >> 22) / 511.0f, -1.0f); };
+  return {f(p), f(p >> 10), f(p >> 20)};
+}
+
 TerrainMesh build_terrain_mesh(const assets::Model& model, const Terrain& s) {
   TerrainMesh out;
   out.min = glm::vec3(INFINITY);
@@ -77,14 +88,10 @@ TerrainMesh build_terrain_mesh(const assets::Model& model, const Terrain& s) {
     for (const assets::Primitive& prim : model.meshes[size_t(node.mesh)].primitives) {
       Flat f = flatten(prim, node.world, s);
       if (f.indices.empty()) continue;
-      const uint32_t base = uint32_t(out.positions.size());
       glm::vec3 lo(INFINITY), hi(-INFINITY);
       for (const auto& p : f.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
       out.min = glm::min(out.min, lo);
       out.max = glm::max(out.max, hi);
-      out.positions.insert(out.positions.end(), f.positions.begin(), f.positions.end());
-      out.normals.insert(out.normals.end(), f.normals.begin(), f.normals.end());
-      out.uvs.insert(out.uvs.end(), f.uvs.begin(), f.uvs.end());
       out.full_triangles += f.indices.size() / 3;
       // Bucket triangles by centroid on an n x n grid over the primitive's ground footprint.
       std::vector<std::vector<uint32_t>> buckets(size_t(n) * n);
@@ -96,48 +103,57 @@ TerrainMesh build_terrain_mesh(const assets::Model& model, const Terrain& s) {
         auto& b = buckets[size_t(cy) * n + cx];
         b.insert(b.end(), {f.indices[t], f.indices[t + 1], f.indices[t + 2]});
       }
-      // Each chunk is simplified on its own compact vertex set (cost proportional to the chunk).
+      // Each chunk is simplified on its own compact vertex set (cost proportional to the chunk), which
+      // is also what it draws from. A cell whose triangles use more than kMaxChunkVertices vertices is
+      // split into chunks of consecutive triangles.
       std::vector<int32_t> to_local(f.positions.size(), -1);
-      for (auto& b : buckets) {
-        if (b.empty()) continue;
-        std::vector<uint32_t> global;
-        std::vector<glm::vec3> local_pos;
-        std::vector<uint32_t> local_idx;
-        for (uint32_t i : b) {
-          if (to_local[i] < 0) {
-            to_local[i] = int32_t(global.size());
-            global.push_back(i);
-            local_pos.push_back(f.positions[i]);
+      for (const auto& b : buckets)
+        for (size_t start = 0; start < b.size();) {
+          std::vector<uint32_t> global;
+          std::vector<glm::vec3> local_pos;
+          std::vector<uint32_t> local_idx;
+          Chunk chunk;
+          chunk.material = f.material;
+          chunk.min = glm::vec3(INFINITY);
+          chunk.max = glm::vec3(-INFINITY);
+          size_t end = start;
+          for (; end < b.size() && global.size() + 3 <= kMaxChunkVertices; end += 3)
+            for (size_t k = end; k < end + 3; ++k) {
+              const uint32_t i = b[k];
+              if (to_local[i] < 0) {
+                to_local[i] = int32_t(global.size());
+                global.push_back(i);
+                local_pos.push_back(f.positions[i]);
+              }
+              local_idx.push_back(uint32_t(to_local[i]));
+              chunk.min = glm::min(chunk.min, f.positions[i]), chunk.max = glm::max(chunk.max, f.positions[i]);
+            }
+          start = end;
+          for (uint32_t g : global) to_local[g] = -1;
+          chunk.base_vertex = uint32_t(out.positions.size());
+          out.positions.insert(out.positions.end(), local_pos.begin(), local_pos.end());
+          for (uint32_t g : global) out.normals.push_back(pack_normal(f.normals[g])), out.uvs.push_back(f.uvs[g]);
+          // meshopt reports error relative to the extent of the vertices it was given.
+          const float scale = meshopt_simplifyScale(&local_pos[0].x, local_pos.size(), sizeof(glm::vec3));
+          std::vector<uint32_t> level = local_idx;
+          for (int l = 0; l < std::max(1, s.lod_levels); ++l) {
+            float error = 0.0f;
+            if (l > 0) {
+              std::vector<uint32_t> coarser(level.size());
+              size_t target = std::max<size_t>(3, level.size() / 4 / 3 * 3);
+              // Borders locked: the chunk's outline stays identical at every level, so no cracks.
+              coarser.resize(meshopt_simplify(coarser.data(), level.data(), level.size(), &local_pos[0].x, local_pos.size(),
+                                              sizeof(glm::vec3), target, 1.0f, meshopt_SimplifyLockBorder, &error));
+              if (coarser.size() >= level.size()) break;  // nothing left to remove
+              level = std::move(coarser);
+            }
+            LodRange r{uint32_t(out.indices.size()), uint32_t(level.size()),
+                       std::max(error * scale, chunk.lods.empty() ? 0.0f : chunk.lods.back().error_m)};
+            for (uint32_t i : level) out.indices.push_back(uint16_t(i));
+            chunk.lods.push_back(r);
           }
-          local_idx.push_back(uint32_t(to_local[i]));
+          out.chunks.push_back(std::move(chunk));
         }
-        for (uint32_t g : global) to_local[g] = -1;
-        // meshopt reports error relative to the extent of the vertices it was given.
-        const float scale = meshopt_simplifyScale(&local_pos[0].x, local_pos.size(), sizeof(glm::vec3));
-        Chunk chunk;
-        chunk.material = f.material;
-        chunk.min = glm::vec3(INFINITY);
-        chunk.max = glm::vec3(-INFINITY);
-        for (uint32_t i : b) chunk.min = glm::min(chunk.min, f.positions[i]), chunk.max = glm::max(chunk.max, f.positions[i]);
-        std::vector<uint32_t> level = local_idx;
-        for (int l = 0; l < std::max(1, s.lod_levels); ++l) {
-          float error = 0.0f;
-          if (l > 0) {
-            std::vector<uint32_t> coarser(level.size());
-            size_t target = std::max<size_t>(3, level.size() / 4 / 3 * 3);
-            // Borders locked: the chunk's outline stays identical at every level, so no cracks.
-            coarser.resize(meshopt_simplify(coarser.data(), level.data(), level.size(), &local_pos[0].x, local_pos.size(),
-                                            sizeof(glm::vec3), target, 1.0f, meshopt_SimplifyLockBorder, &error));
-            if (coarser.size() >= level.size()) break;  // nothing left to remove
-            level = std::move(coarser);
-          }
-          LodRange r{uint32_t(out.indices.size()), uint32_t(level.size()),
-                     std::max(error * scale, chunk.lods.empty() ? 0.0f : chunk.lods.back().error_m)};
-          for (uint32_t i : level) out.indices.push_back(base + global[i]);
-          chunk.lods.push_back(r);
-        }
-        out.chunks.push_back(std::move(chunk));
-      }
     }
   }
   if (out.positions.empty()) throw Error(ErrorInfo{.file = model.file, .message = "the model has no triangles to draw"});
@@ -159,6 +175,7 @@ struct ChunkRecord {
   glm::vec3 min, max;
   int32_t material;
   uint32_t lods;
+  uint32_t base_vertex;
 };
 struct LodRecord {
   uint32_t first_index, index_count;
@@ -168,7 +185,10 @@ struct MeshRecord {
   glm::vec3 min, max;
   uint64_t full_triangles;
 };
-static_assert(sizeof(ChunkRecord) == 32 && sizeof(LodRecord) == 12 && sizeof(MeshRecord) == 32);
+static_assert(sizeof(ChunkRecord) == 36 && sizeof(LodRecord) == 12 && sizeof(MeshRecord) == 32);
+
+// A vertex's bytes in the body: position, packed normal, uv.
+constexpr size_t kVertexBytes = sizeof(glm::vec3) + sizeof(uint32_t) + sizeof(glm::vec2);
 
 template <class T> void append(std::string& out, const T* data, size_t count) {
   out.append(reinterpret_cast<const char*>(data), count * sizeof(T));
@@ -185,10 +205,10 @@ template <class T> std::vector<T> take(std::span<const uint8_t> bytes, size_t& a
 std::optional<size_t> body_size(const uint64_t (&c)[kCountFields], size_t max_bytes) {
   // Each count alone within the limit first, so that the sum (at most 4 limits) cannot overflow.
   const uint64_t limit = std::min<uint64_t>(max_bytes, uint64_t(1) << 60);
-  if (c[kVertices] > limit / 32 || c[kIndices] > limit / 4 || c[kChunks] > limit / sizeof(ChunkRecord) ||
+  if (c[kVertices] > limit / kVertexBytes || c[kIndices] > limit / sizeof(uint16_t) || c[kChunks] > limit / sizeof(ChunkRecord) ||
       c[kLods] > limit / sizeof(LodRecord))
     return std::nullopt;
-  const uint64_t size = c[kVertices] * (2 * sizeof(glm::vec3) + sizeof(glm::vec2)) + c[kIndices] * sizeof(uint32_t) +
+  const uint64_t size = c[kVertices] * kVertexBytes + c[kIndices] * sizeof(uint16_t) +
                         c[kChunks] * sizeof(ChunkRecord) + c[kLods] * sizeof(LodRecord) + sizeof(MeshRecord);
   if (size > limit) return std::nullopt;
   return size_t(size);
@@ -224,7 +244,7 @@ std::string mesh_body_bytes(const TerrainMesh& m) {
   append(out, m.uvs.data(), m.uvs.size());
   append(out, m.indices.data(), m.indices.size());
   for (const Chunk& chunk : m.chunks) {
-    const ChunkRecord r{chunk.min, chunk.max, chunk.material, uint32_t(chunk.lods.size())};
+    const ChunkRecord r{chunk.min, chunk.max, chunk.material, uint32_t(chunk.lods.size()), chunk.base_vertex};
     append(out, &r, 1);
   }
   for (const Chunk& chunk : m.chunks)
@@ -261,26 +281,30 @@ std::optional<TerrainMesh> mesh_from_bytes(std::span<const uint8_t> counts, std:
     return s;
   };
   arrays.positions = skip(c[kVertices] * sizeof(glm::vec3));
-  arrays.normals = skip(c[kVertices] * sizeof(glm::vec3));
+  arrays.normals = skip(c[kVertices] * sizeof(uint32_t));
   arrays.uvs = skip(c[kVertices] * sizeof(glm::vec2));
-  arrays.indices = skip(c[kIndices] * sizeof(uint32_t));
+  arrays.indices = skip(c[kIndices] * sizeof(uint16_t));
   const std::vector<ChunkRecord> chunks = take<ChunkRecord>(body, at, c[kChunks]);
   const std::vector<LodRecord> lods = take<LodRecord>(body, at, c[kLods]);
   const MeshRecord mesh = take<MeshRecord>(body, at, 1)[0];
-  uint32_t largest = 0;
-  for (size_t k = 0; k < c[kIndices]; ++k) {
-    uint32_t i;
-    std::memcpy(&i, arrays.indices.data() + k * sizeof(uint32_t), sizeof(i));
-    largest = std::max(largest, i);
-  }
-  if (c[kIndices] > 0 && largest >= c[kVertices]) return std::nullopt;
+  // Every index of every level, counted from its chunk's first vertex, inside the vertices.
+  auto inside = [&](const LodRecord& l, uint32_t base_vertex) {
+    uint16_t largest = 0;
+    for (size_t k = l.first_index; k < size_t(l.first_index) + l.index_count; ++k) {
+      uint16_t i;
+      std::memcpy(&i, arrays.indices.data() + k * sizeof(uint16_t), sizeof(i));
+      largest = std::max(largest, i);
+    }
+    return l.index_count == 0 || uint64_t(base_vertex) + largest < c[kVertices];
+  };
   size_t next_lod = 0;
   for (const ChunkRecord& r : chunks) {
     if (r.lods == 0 || r.lods > lods.size() - next_lod) return std::nullopt;  // level 0 is the full mesh
-    Chunk chunk{.min = r.min, .max = r.max, .material = r.material};
+    Chunk chunk{.min = r.min, .max = r.max, .material = r.material, .base_vertex = r.base_vertex};
     for (uint32_t k = 0; k < r.lods; ++k) {
       const LodRecord& l = lods[next_lod++];
       if (uint64_t(l.first_index) + l.index_count > c[kIndices] || l.index_count % 3 != 0) return std::nullopt;
+      if (!inside(l, r.base_vertex)) return std::nullopt;
       chunk.lods.push_back(LodRange{.first_index = l.first_index, .index_count = l.index_count, .error_m = l.error_m});
     }
     m.chunks.push_back(std::move(chunk));

@@ -22,13 +22,24 @@ struct LodRange {
 struct Chunk {
   glm::vec3 min{0.0f}, max{0.0f};  // bounds in the model's z-up frame
   int material = -1;
+  uint32_t base_vertex = 0;        // the chunk's own vertices start here; its indices count from it
   std::vector<LodRange> lods;      // lods[0] is the full mesh
 };
 
+// A chunk holds at most this many vertices (its indices are 16-bit); a cell with more is split.
+inline constexpr size_t kMaxChunkVertices = 65536;
+
+// Signed normalized 10-10-10-2 (GL_INT_2_10_10_10_REV): x in the low bits, 1/511 steps (0.1 degree).
+uint32_t pack_normal(const glm::vec3& n);
+glm::vec3 unpack_normal(uint32_t packed);
+
 struct TerrainMesh {
-  std::vector<glm::vec3> positions, normals;  // z-up, metres from the model origin
+  // Each chunk's vertices together (a vertex on a chunk border is in each chunk that uses it), so that
+  // indices fit in 16 bits: half the bytes of 32-bit ones, and normals in 4 bytes instead of 12.
+  std::vector<glm::vec3> positions;  // z-up, metres from the model origin
+  std::vector<uint32_t> normals;     // pack_normal
   std::vector<glm::vec2> uvs;
-  std::vector<uint32_t> indices;              // all chunks and levels, one buffer
+  std::vector<uint16_t> indices;     // all chunks and levels, one buffer; each from its chunk's base_vertex
   std::vector<Chunk> chunks;
   glm::vec3 min{0.0f}, max{0.0f};
   size_t full_triangles = 0;
@@ -44,7 +55,7 @@ TerrainMesh build_terrain_mesh(const assets::Model& model, const Terrain& settin
 // that finds it neither decodes the geometry (Draco) nor refines or simplifies it. Bump
 // kMeshCacheVersion when what build_terrain_mesh makes changes: its own code, or the loader's
 // conversion or refinement (assets) that it builds on.
-inline constexpr int kMeshCacheVersion = 1;
+inline constexpr int kMeshCacheVersion = 2;
 std::string mesh_cache_key(uint64_t content_hash, const Terrain& settings);
 // Two entries: the counts (fixed size), then the arrays and chunks they size.
 std::string mesh_counts_bytes(const TerrainMesh& mesh);

@@ -68,7 +68,14 @@ Cascades make_cascades(const FrameView& v, const glm::vec3& sun, float distance_
 struct Draw {
   uint32_t first, count;
   int material;
+  uint32_t base_vertex;
 };
+
+// One chunk's level: 16-bit indices counted from the chunk's first vertex.
+void draw_elements(const Draw& d) {
+  glDrawElementsBaseVertex(GL_TRIANGLES, GLsizei(d.count), GL_UNSIGNED_SHORT,
+                           reinterpret_cast<const void*>(uintptr_t(d.first) * sizeof(uint16_t)), GLint(d.base_vertex));
+}
 
 // A chunk that casts shadows, with its camera-relative bounds (culled against each cascade).
 struct Caster {
@@ -209,7 +216,7 @@ void terrain_system(SystemContext& sc) {
       // What this chunk writes to the depth: its level's triangles, placed (the view aside).
       sc.targets->add_geometry(screen_rect(view, lo, hi),
                                fnv1a_64_of(l.first_index, fnv1a_64_of(l.index_count, placement)));
-      p.draws.push_back({l.first_index, l.index_count, material});
+      p.draws.push_back({l.first_index, l.index_count, material, c.base_vertex});
       p.triangles += l.index_count / 3;
     }
     placed->push_back(std::move(p));
@@ -247,7 +254,7 @@ void terrain_system(SystemContext& sc) {
           const Chunk& c = p.gpu->mesh.chunks[k.chunk];
           const LodRange& l = c.lods[size_t(select_lod(c, 1.0, texels_per_m, p.lod_pixel_error))];
           const int material = c.material < 0 ? int(p.gpu->materials.size()) - 1 : c.material;
-          p.shadow_draws[size_t(i)].push_back({l.first_index, l.index_count, material});
+          p.shadow_draws[size_t(i)].push_back({l.first_index, l.index_count, material, c.base_vertex});
         }
       }
     shadow_handle = sc.graph->import("terrain.shadow_atlas", atlas);
@@ -279,8 +286,7 @@ void terrain_system(SystemContext& sc) {
         prog.set("u_view_projection", (**cascades).light_view_projection[size_t(i)]);
         for (const Placed& p : *placed) {
           bind_placement(prog, p, rc.view);
-          for (const Draw& d : p.shadow_draws[size_t(i)])
-            glDrawElements(GL_TRIANGLES, GLsizei(d.count), GL_UNSIGNED_INT, reinterpret_cast<const void*>(uintptr_t(d.first) * 4));
+          for (const Draw& d : p.shadow_draws[size_t(i)]) draw_elements(d);
         }
         // Once drawn: a frame that failed before this draws it again.
         cache.cascade_inputs[size_t(i)] = (*inputs)[size_t(i)];
@@ -328,7 +334,7 @@ void terrain_system(SystemContext& sc) {
           glBindTextureUnit(2, m.occlusion.id());
           bound = d.material;
         }
-        glDrawElements(GL_TRIANGLES, GLsizei(d.count), GL_UNSIGNED_INT, reinterpret_cast<const void*>(uintptr_t(d.first) * 4));
+        draw_elements(d);
       }
     }
     glDisable(GL_CULL_FACE);

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <map>
 
 #include "terrain_mesh.h"
 
@@ -68,6 +69,67 @@ TEST(TerrainMesh, CoarserLevelsHaveFewerTrianglesAndGrowingError) {
   }
 }
 
+// Each chunk draws from its own vertices with 16-bit indices: every triangle of the source is drawn
+// once, from the same corners, normals and uvs (normals within their 10-bit steps).
+TEST(TerrainMesh, ChunksDrawTheSourceTrianglesFromTheirOwnVertices) {
+  Terrain s;
+  s.chunks_per_side = 4;
+  s.lod_levels = 1;
+  const assets::Model model = grid_model(64, 1000.0f);
+  const TerrainMesh m = build_terrain_mesh(model, s);
+  const assets::Primitive& src = model.meshes[0].primitives[0];
+  // The source's triangles by their corners (scene frame), each counted once.
+  std::map<std::array<float, 9>, int> triangles;
+  auto key = [](glm::vec3 a, glm::vec3 b, glm::vec3 c) { return std::array<float, 9>{a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z}; };
+  for (size_t t = 0; t < src.indices.size(); t += 3)
+    ++triangles[key(gltf_to_scene(src.positions[src.indices[t]]), gltf_to_scene(src.positions[src.indices[t + 1]]),
+                    gltf_to_scene(src.positions[src.indices[t + 2]]))];
+  size_t drawn = 0;
+  for (const Chunk& c : m.chunks) {
+    for (uint32_t k = c.lods[0].first_index; k < c.lods[0].first_index + c.lods[0].index_count; k += 3) {
+      const size_t a = c.base_vertex + m.indices[k], b = c.base_vertex + m.indices[k + 1], d = c.base_vertex + m.indices[k + 2];
+      ASSERT_LT(std::max({a, b, d}), m.positions.size());
+      EXPECT_EQ(--triangles[key(m.positions[a], m.positions[b], m.positions[d])], 0);
+      for (size_t v : {a, b, d}) {
+        const glm::vec3 n = unpack_normal(m.normals[v]);
+        EXPECT_NEAR(n.z, 1.0f, 1e-6f);  // glTF's up (0, 1, 0) is the scene's z
+        // The grid's uv is its position's fraction of the side: u = x / 1000 + 0.5, v = -y / 1000 + 0.5.
+        EXPECT_NEAR(m.uvs[v].x, m.positions[v].x / 1000.0f + 0.5f, 1e-5f);
+        EXPECT_NEAR(m.uvs[v].y, -m.positions[v].y / 1000.0f + 0.5f, 1e-5f);
+      }
+      ++drawn;
+    }
+  }
+  EXPECT_EQ(drawn, src.indices.size() / 3);
+}
+
+// A cell whose triangles use more vertices than 16-bit indices reach is split into chunks.
+TEST(TerrainMesh, CellsWithMoreVerticesThanSixteenBitsReachAreSplit) {
+  Terrain s;
+  s.chunks_per_side = 1;
+  s.lod_levels = 1;
+  const TerrainMesh m = build_terrain_mesh(grid_model(300, 1000.0f), s);  // 90601 vertices in one cell
+  ASSERT_GE(m.chunks.size(), 2u);
+  size_t triangles = 0;
+  for (const Chunk& c : m.chunks) {
+    const uint32_t end = (&c == &m.chunks.back()) ? uint32_t(m.positions.size()) : (&c + 1)->base_vertex;
+    EXPECT_LE(end - c.base_vertex, kMaxChunkVertices);
+    triangles += c.lods[0].index_count / 3;
+  }
+  EXPECT_EQ(triangles, 300u * 300u * 2u);
+}
+
+// Packed normals: the components GL's GL_INT_2_10_10_10_REV normalization gives back, within a step.
+TEST(TerrainMesh, PackedNormalsComeBackWithinTenBitSteps) {
+  for (const glm::vec3 n : {glm::vec3(0, 0, 1), glm::vec3(-1, 0, 0), glm::normalize(glm::vec3(0.3f, -0.8f, 0.52f)),
+                            glm::normalize(glm::vec3(-0.01f, 0.999f, -0.02f))}) {
+    const glm::vec3 back = unpack_normal(pack_normal(n));
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(back[i], n[i], 0.5f / 511.0f + 1e-6f) << i;
+  }
+  EXPECT_EQ(pack_normal(glm::vec3(0, 0, 1)), 511u << 20);
+  EXPECT_EQ(pack_normal(glm::vec3(-1, 0, 0)), 0x201u);  // -511 in 10 bits
+}
+
 TEST(TerrainMesh, LodSelectionCoarsensWithDistance) {
   Chunk c;
   c.lods = {{0, 300, 0.0f}, {0, 100, 0.5f}, {0, 30, 2.0f}, {0, 9, 8.0f}};
@@ -117,6 +179,7 @@ TEST(TerrainMesh, CacheBytesGiveBackTheSameMesh) {
       EXPECT_EQ(back->chunks[c].lods[l].index_count, m.chunks[c].lods[l].index_count);
       EXPECT_EQ(back->chunks[c].lods[l].error_m, m.chunks[c].lods[l].error_m);
     }
+    EXPECT_EQ(back->chunks[c].base_vertex, m.chunks[c].base_vertex);
   }
   EXPECT_EQ(back->min, m.min);
   EXPECT_EQ(back->max, m.max);
@@ -135,27 +198,36 @@ TEST(TerrainMesh, CacheBytesOutOfRangeAreRefused) {
   const std::string counts = mesh_counts_bytes(m), body = mesh_body_bytes(m);
   auto bytes = [](const std::string& b) { return std::vector<uint8_t>(b.begin(), b.end()); };
   MeshArrays arrays;
-  // An index past the vertices.
+  // Body layout: per vertex a position (12 bytes), a packed normal (4) and a uv (8); 16-bit indices;
+  // chunk records of 36 bytes (bounds, material, level count at 28, first vertex at 32); levels.
+  const size_t first_index = m.positions.size() * (sizeof(glm::vec3) + sizeof(uint32_t) + sizeof(glm::vec2));
+  const size_t first_chunk = first_index + m.indices.size() * sizeof(uint16_t);
+  constexpr size_t kChunkRecord = 36;
+  // An index past the vertices, counted from the last chunk's first vertex.
   std::vector<uint8_t> bad = bytes(body);
-  const size_t first_index = m.positions.size() * (2 * sizeof(glm::vec3) + sizeof(glm::vec2));
-  const uint32_t past = uint32_t(m.positions.size());
-  std::memcpy(bad.data() + first_index, &past, sizeof past);
+  const Chunk& last = m.chunks.back();
+  const uint16_t past = uint16_t(m.positions.size() - last.base_vertex);
+  std::memcpy(bad.data() + first_index + last.lods[0].first_index * sizeof(uint16_t), &past, sizeof past);
+  EXPECT_FALSE(mesh_from_bytes(bytes(counts), bad, arrays));
+  // A chunk's first vertex moved so that its indices reach past the vertices.
+  bad = bytes(body);
+  const uint32_t late = uint32_t(m.positions.size() - 1);
+  std::memcpy(bad.data() + first_chunk + 32, &late, sizeof late);
   EXPECT_FALSE(mesh_from_bytes(bytes(counts), bad, arrays));
   // A level reaching past the indices (the first chunk's first level made longer).
   bad = bytes(body);
-  const size_t first_lod = first_index + m.indices.size() * sizeof(uint32_t) + m.chunks.size() * 32;
+  const size_t first_lod = first_chunk + m.chunks.size() * kChunkRecord;
   const uint32_t too_many = uint32_t(m.indices.size() + 3);
   std::memcpy(bad.data() + first_lod + 4, &too_many, sizeof too_many);
   EXPECT_FALSE(mesh_from_bytes(bytes(counts), bad, arrays));
   // A chunk without levels (level 0, the full mesh, is always there): its level moved to the next chunk.
   bad = bytes(body);
-  const size_t first_chunk = first_index + m.indices.size() * sizeof(uint32_t);
   uint32_t lods_first = 0, lods_second = 0;
   std::memcpy(&lods_first, bad.data() + first_chunk + 28, sizeof lods_first);
-  std::memcpy(&lods_second, bad.data() + first_chunk + 32 + 28, sizeof lods_second);
+  std::memcpy(&lods_second, bad.data() + first_chunk + kChunkRecord + 28, sizeof lods_second);
   lods_second += lods_first, lods_first = 0;
   std::memcpy(bad.data() + first_chunk + 28, &lods_first, sizeof lods_first);
-  std::memcpy(bad.data() + first_chunk + 32 + 28, &lods_second, sizeof lods_second);
+  std::memcpy(bad.data() + first_chunk + kChunkRecord + 28, &lods_second, sizeof lods_second);
   EXPECT_FALSE(mesh_from_bytes(bytes(counts), bad, arrays));
   // A body shorter than its counts say, and counts too large for any limit.
   bad = bytes(body);
