@@ -184,7 +184,9 @@ void lut_system(SystemContext& sc) {
 
   auto& rc = sc.world.resource<RenderContext>();
   auto& gpu = sc.world.resource<AtmosphereGpu>();
-  const GpuUniforms u = make_uniforms(atm, sun, moon, rc.view);
+  GpuUniforms u = make_uniforms(atm, sun, moon, rc.view);
+  choose_aerial_frustum(u, gpu.aerial_uniforms, gpu.aerial_valid, gpu.uniforms.view_projection, gpu.view_turned);
+  gpu.view_turned = u.view_projection != gpu.uniforms.view_projection;
   const ResolvedQuality q = resolve_quality(atm);
 
   // Persistent textures. Transmittance is float: long grazing paths keep relative precision.
@@ -459,7 +461,9 @@ void background_system(SystemContext& sc) {
   std::string inputs;
   if (!draw_stars) {
     auto put = [&inputs](const auto& v) { inputs.append(reinterpret_cast<const char*>(&v), sizeof v); };
-    put(u), put(gpu.sky_view_builds), put(gpu.lut_builds), put(gpu.lut_cache_reads), put(pixel_angle);
+    GpuUniforms sky_u = u;  // the sky is at infinity: the aerial-perspective volume's frustum is not its input
+    sky_u.aerial_view_projection = sky_u.aerial_inverse_view_projection = glm::mat4(0.0f);
+    put(sky_u), put(gpu.sky_view_builds), put(gpu.lut_builds), put(gpu.lut_cache_reads), put(pixel_angle);
     put(rc.view.width), put(rc.view.height), put(rc.full_precision);
     for (const auto& [k, v] : discs) inputs += k + "=" + v + ";";
   }

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstring>
 #include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "welkin/atmosphere/gpu.h"
 #include "welkin/atmosphere/lut_mapping.h"
@@ -89,6 +90,8 @@ GpuUniforms make_uniforms(const Atmosphere& a, const Sun* sun_in, const Moon* mo
 
   u.inverse_view_projection = view.inverse_view_projection;
   u.view_projection = view.view_projection;
+  u.aerial_inverse_view_projection = view.inverse_view_projection;
+  u.aerial_view_projection = view.view_projection;
   // Sky-view frame at the camera: z up, x towards the sun's azimuth (any horizontal axis when the
   // sun is at the zenith or nadir).
   const glm::dvec3 up = cam / r;
@@ -134,17 +137,63 @@ bool luts_differ(const GpuUniforms& a, const GpuUniforms& b) {
          a.multiscattering_size != b.multiscattering_size;
 }
 
+namespace {
+
+// b with a's view: what remains differs only where the frames differ in anything else.
+GpuUniforms with_view_of(const GpuUniforms& a, GpuUniforms b) {
+  b.inverse_view_projection = a.inverse_view_projection;
+  b.view_projection = a.view_projection;
+  return b;
+}
+
+// Every corner ray of the view whose inverse is `inverse_view_projection` projects inside the frustum
+// of `view_projection` (the frusta share their apex, the camera, so the corners bound the view).
+bool frustum_inside(const glm::mat4& view_projection, const glm::mat4& inverse_view_projection) {
+  for (const float x : {-1.0f, 1.0f})
+    for (const float y : {-1.0f, 1.0f}) {
+      const glm::vec4 far_point = inverse_view_projection * glm::vec4(x, y, 0.5f, 1.0f);
+      const glm::vec3 dir = glm::normalize(glm::vec3(far_point) / far_point.w);
+      const glm::vec4 clip = view_projection * glm::vec4(dir * 1000.0f, 1.0f);
+      if (clip.w <= 0.0f || std::abs(clip.x) > clip.w || std::abs(clip.y) > clip.w) return false;
+    }
+  return true;
+}
+
+}  // namespace
+
 bool sky_view_differs(const GpuUniforms& a, const GpuUniforms& b) {
-  GpuUniforms view_free = b;
-  view_free.inverse_view_projection = a.inverse_view_projection;
-  view_free.view_projection = a.view_projection;
+  GpuUniforms view_free = with_view_of(a, b);
+  view_free.aerial_inverse_view_projection = a.aerial_inverse_view_projection;
+  view_free.aerial_view_projection = a.aerial_view_projection;
   view_free.aerial_size = a.aerial_size;
   view_free.aerial_params = a.aerial_params;
   return std::memcmp(&a, &view_free, sizeof(GpuUniforms)) != 0;
 }
 
 bool aerial_perspective_differs(const GpuUniforms& a, const GpuUniforms& b) {
-  return std::memcmp(&a, &b, sizeof(GpuUniforms)) != 0;
+  const GpuUniforms view_free = with_view_of(a, b);
+  return std::memcmp(&a, &view_free, sizeof(GpuUniforms)) != 0;
+}
+
+void choose_aerial_frustum(GpuUniforms& u, const GpuUniforms& kept, bool kept_valid,
+                           const glm::mat4& previous_view_projection, bool turned_before) {
+  u.aerial_view_projection = u.view_projection;
+  u.aerial_inverse_view_projection = u.inverse_view_projection;
+  const bool turning = u.view_projection != previous_view_projection;
+  if (!kept_valid || !turning) return;  // a still view: fitted to it (remade once a turn stops)
+  GpuUniforms same_frustum = u;
+  same_frustum.aerial_view_projection = kept.aerial_view_projection;
+  same_frustum.aerial_inverse_view_projection = kept.aerial_inverse_view_projection;
+  if (aerial_perspective_differs(same_frustum, kept)) return;  // the camera or anything else moved
+  if (frustum_inside(kept.aerial_view_projection, u.inverse_view_projection)) {
+    u = same_frustum;
+    return;
+  }
+  if (!turned_before) return;  // the first frame of a turn: perhaps the only one
+  // Turning on, out of it: a new volume around this view, wider on the image plane.
+  const glm::mat4 widen = glm::scale(glm::mat4(1.0f), glm::vec3(1.0f / kAerialTurningMargin, 1.0f / kAerialTurningMargin, 1.0f));
+  u.aerial_view_projection = widen * u.view_projection;
+  u.aerial_inverse_view_projection = u.inverse_view_projection * glm::inverse(widen);
 }
 
 }  // namespace welkin::atmosphere

@@ -28,7 +28,7 @@ AtmosphereAerialPerspective atm_aerial_perspective_march(vec3 camera_relative_m)
 
 AtmosphereAerialPerspective atm_aerial_perspective_froxels(vec3 camera_relative_m) {
   float d_km = length(camera_relative_m) * 1e-3;
-  vec4 clip = atm_view_projection * vec4(camera_relative_m, 1.0);
+  vec4 clip = atm_aerial_view_projection * vec4(camera_relative_m, 1.0);
   vec2 uv = clip.w > 0.0 ? clip.xy / clip.w * 0.5 + 0.5 : vec2(0.5);
   float w = sqrt(d_km / atm_aerial_params.x);
   // Slice 0's centre is at w = 0.5 / N; closer than that, fade towards no air at all.

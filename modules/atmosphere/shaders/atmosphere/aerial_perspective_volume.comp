@@ -13,7 +13,7 @@ void main() {
   ivec2 column = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(column, atm_aerial_size.xy))) return;
   vec2 ndc = (vec2(column) + 0.5) / vec2(atm_aerial_size.xy) * 2.0 - 1.0;
-  vec4 far_point = atm_inverse_view_projection * vec4(ndc, 0.5, 1.0);
+  vec4 far_point = atm_aerial_inverse_view_projection * vec4(ndc, 0.5, 1.0);
   vec3 dir = normalize(far_point.xyz / far_point.w);
   vec3 origin = atm_camera();
   AtmLight sun = atm_sun_light(), moon = atm_moon_light_source();

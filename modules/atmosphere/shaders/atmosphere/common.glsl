@@ -22,6 +22,8 @@ layout(std140, binding = WELKIN_BLOCK_ATMOSPHERE) uniform WelkinAtmosphere {
   vec4 atm_flags;                  // sun disc, limb darkening, moon disc, moon lights the sky
   mat4 atm_inverse_view_projection;
   mat4 atm_view_projection;
+  mat4 atm_aerial_inverse_view_projection;  // the aerial-perspective volume's frustum (gpu.h)
+  mat4 atm_aerial_view_projection;
   mat4 atm_sky_frame;              // sky-view LUT frame: x towards the sun's azimuth, z up at the camera
   ivec4 atm_transmittance_size;    // width, height, steps
   ivec4 atm_multiscattering_size;  // size, steps, iterations

@@ -391,6 +391,59 @@ TEST(AtmosphereFrame, SkyIsKeptWhileItsInputsAreTheSame) {
   EXPECT_EQ(r.gpu().sky_draws, draws + 1);
 }
 
+// A camera turning in place keeps its aerial-perspective volume while the view stays inside the
+// volume's frustum, which is made wider than the view (kAerialTurningMargin) once it turns: made one
+// frame in several instead of every frame. A frame drawn through a kept volume differs from one drawn
+// afresh only by where the volume's columns fall (measured); a view that stops turning gets a volume
+// fitted to it again, and with it the fresh frame bit for bit. A camera that moves remakes it.
+TEST(AtmosphereFrame, AerialPerspectiveKeptWhileTheViewTurnsInsideItsVolume) {
+  auto doc = [](double heading, double x) {
+    json d = test::scene({{"position_m", {x, 0, 30}}, {"heading_deg", heading}, {"pitch_deg", -5}, {"vertical_fov_deg", 50}},
+                         json::object(), {{"elevation_deg", 20}, {"azimuth_deg", 120}});
+    // A ground 60 km wide below the camera: aerial perspective from a few metres to the haze.
+    d["entities"].push_back({{"name", "ground"},
+                             {"components", {{"core.DebugShape", {{"shape", "box"}, {"position_m", {0, 0, -1}},
+                                                                  {"size_m", {60000, 60000, 2}}, {"albedo", {0.2, 0.25, 0.15}}}}}}});
+    return d;
+  };
+  constexpr int kW = 64, kH = 36;
+  auto fresh = [&](double heading, double x = 0.0) { return test::render(doc(heading, x), kW, kH).renderer->read_hdr().rgba; };
+  test::Rendered r = test::render(doc(0, 0), kW, kH, 2);
+  EXPECT_EQ(r.gpu().aerial_builds, 1);
+  Registry& reg = r.world->registry();
+  Camera& camera = *reg.get<Camera>(reg.first<Camera>());
+  double worst = 0.0;
+  for (int turn = 1; turn <= 18; ++turn) {
+    camera.heading_deg = float(turn);
+    r.frame(kW, kH, uint64_t(turn + 1));
+    if (turn % 6 == 3) {
+      const std::vector<float> kept = r.renderer->read_hdr().rgba, drawn = fresh(turn);
+      for (size_t i = 0; i < kept.size(); ++i)
+        if (i % 4 != 3) worst = std::max(worst, std::abs(double(kept[i]) - drawn[i]) / std::max(1e-3, double(drawn[i])));
+    }
+  }
+  const int turning_builds = r.gpu().aerial_builds - 1;
+  std::printf("18 frames turning 1 degree each: %d volumes made; worst relative difference to fresh frames %.2e\n",
+              turning_builds, worst);
+  EXPECT_LE(turning_builds, 6) << "one volume per several frames";
+  EXPECT_GE(turning_builds, 2) << "each covers a few degrees only";
+  EXPECT_LT(worst, 0.01);
+  EXPECT_GT(worst, 0.0) << "the kept volume's columns are not the fresh one's";
+  // The turn stops: one volume fitted to the view, then kept; the frame is the fresh one.
+  const int before_stop = r.gpu().aerial_builds;
+  r.frame(kW, kH, 100);
+  r.frame(kW, kH, 101);
+  EXPECT_EQ(r.gpu().aerial_builds, before_stop + 1);
+  EXPECT_EQ(r.renderer->read_hdr().rgba, fresh(18));
+  // A moving camera remakes it every frame, fitted to its view.
+  for (int step = 1; step <= 3; ++step) {
+    camera.position_m.x = 10.0 * step;
+    r.frame(kW, kH, uint64_t(101 + step));
+  }
+  EXPECT_EQ(r.gpu().aerial_builds, before_stop + 4);
+  EXPECT_EQ(r.renderer->read_hdr().rgba, fresh(18, 30.0));
+}
+
 TEST(AtmosphereFrame, DaylightDrownsTheFullMoonsLightOnSurfaces) {
   // Materials leave the moon out wherever it does not light the sky. The worst case by day: a sun
   // just above the horizon behind a grey ball, a full moon 30 degrees up behind the camera, the

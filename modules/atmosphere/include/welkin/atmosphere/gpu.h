@@ -37,6 +37,10 @@ struct GpuUniforms {
   glm::vec4 flags{0.0f};
   glm::mat4 inverse_view_projection{1.0f};
   glm::mat4 view_projection{1.0f};
+  // The aerial-perspective volume's own frustum: the view's, or a wider one kept while the view turns
+  // inside it (choose_aerial_frustum).
+  glm::mat4 aerial_inverse_view_projection{1.0f};
+  glm::mat4 aerial_view_projection{1.0f};
   glm::mat4 sky_frame{1.0f};
   glm::ivec4 transmittance_size{0};
   glm::ivec4 multiscattering_size{0};  // size, steps, iterations
@@ -46,7 +50,7 @@ struct GpuUniforms {
   glm::vec4 sky_view_params{0.0f};    // horizon zenith angle, beta, 1 / horizon zenith, 1 / beta
   glm::vec4 sky_view_params_v{0.0f};  // unit v to texel-centred v: scale, offset
 };
-static_assert(sizeof(GpuUniforms) == 720, "GpuUniforms must match the std140 WelkinAtmosphere block");
+static_assert(sizeof(GpuUniforms) == 848, "GpuUniforms must match the std140 WelkinAtmosphere block");
 
 // The block for one frame. Sun and moon may be null (a default sun; no moon). Pure CPU.
 GpuUniforms make_uniforms(const Atmosphere& atmosphere, const Sun* sun, const Moon* moon,
@@ -56,8 +60,23 @@ bool luts_differ(const GpuUniforms& a, const GpuUniforms& b);
 // True when they need a different sky-view LUT: everything but the view's orientation and the
 // aerial-perspective volume's settings (the LUT is laid out around the camera's position and the sun).
 bool sky_view_differs(const GpuUniforms& a, const GpuUniforms& b);
-// True when they need a different aerial-perspective volume (it follows the view: any change).
+// True when they need a different aerial-perspective volume: anything but the view itself differs
+// (the volume's frustum is its own, aerial_view_projection).
 bool aerial_perspective_differs(const GpuUniforms& a, const GpuUniforms& b);
+
+// A turning view (the camera in place, only its orientation changing) keeps its aerial-perspective
+// volume while the view stays inside the volume's frustum; the volume it makes then is wider than
+// the view by this factor on the image plane (about 6 degrees a side at a 60 degree field), so that
+// a turn of a degree a frame remakes it one frame in six. A still or moving camera gets a volume
+// fitted to its view.
+inline constexpr float kAerialTurningMargin = 1.25f;
+// Sets u's aerial frustum: the kept volume's when it serves this view, a wider one when the view goes
+// on turning out of it, the view's own otherwise (a single turn, then still, makes one fitted volume,
+// so that what reads the volume, the clouds' kept march, starts over once). `kept` is what the volume
+// was last made from (when `kept_valid`), `previous_view_projection` the last frame's view, and
+// `turned_before` whether that frame's view had turned from the one before it.
+void choose_aerial_frustum(GpuUniforms& u, const GpuUniforms& kept, bool kept_valid,
+                           const glm::mat4& previous_view_projection, bool turned_before);
 
 // Layers of the multi-scattering LUT, side by side (multiscattering_lut.comp, common.glsl): the mean
 // light arriving at a point, its dipole and quadrupole in the point's frame (z up, y towards the
@@ -81,6 +100,7 @@ struct AtmosphereGpu {
   // The per-frame LUTs are kept while nothing they depend on changed (a still camera, a still sun):
   // reusing them is exact, not an approximation.
   GpuUniforms sky_view_uniforms, aerial_uniforms;
+  bool view_turned = false;  // the last frame's view differed from the one before (choose_aerial_frustum)
   bool sky_view_valid = false, aerial_valid = false;
   int sky_view_builds = 0, aerial_builds = 0;
   // The next frame remakes the per-frame LUTs as if the view and the sun had moved: what a benchmark
