@@ -7,14 +7,7 @@
 
 #define STB_DXT_STATIC
 #define STB_DXT_IMPLEMENTATION
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#endif
 #include <stb_dxt.h>
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
 
 namespace welkin::assets {
 
