@@ -67,7 +67,8 @@ bool bc1_supported() {
 }
 
 // The compressed chain of one image as the disk cache keeps it: its size, then its blocks. The key is
-// the encoded image's hash with everything else the levels depend on.
+// the encoded image's hash with everything else the levels depend on; its version is bumped when the
+// levels or the blocks are made differently (mip_levels.cpp, block_compression.cpp).
 std::string bc1_cache_key(const assets::Image& img, const assets::Sampler& sampler, bool srgb) {
   char key[96];
   std::snprintf(key, sizeof key, "terrain-bc1-v1|%016llx|%d|%d|%d|", static_cast<unsigned long long>(img.encoded_hash),
