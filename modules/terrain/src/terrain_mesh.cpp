@@ -130,27 +130,35 @@ TerrainMesh build_terrain_mesh(const assets::Model& model, const Terrain& s) {
             }
           start = end;
           for (uint32_t g : global) to_local[g] = -1;
-          chunk.base_vertex = uint32_t(out.positions.size());
-          out.positions.insert(out.positions.end(), local_pos.begin(), local_pos.end());
-          for (uint32_t g : global) out.normals.push_back(pack_normal(f.normals[g])), out.uvs.push_back(f.uvs[g]);
           // meshopt reports error relative to the extent of the vertices it was given.
           const float scale = meshopt_simplifyScale(&local_pos[0].x, local_pos.size(), sizeof(glm::vec3));
-          std::vector<uint32_t> level = local_idx;
-          for (int l = 0; l < std::max(1, s.lod_levels); ++l) {
+          std::vector<std::vector<uint32_t>> levels{local_idx};
+          std::vector<float> errors{0.0f};
+          for (int l = 1; l < std::max(1, s.lod_levels); ++l) {
+            const std::vector<uint32_t>& finer = levels.back();
+            std::vector<uint32_t> coarser(finer.size());
+            size_t target = std::max<size_t>(3, finer.size() / 4 / 3 * 3);
             float error = 0.0f;
-            if (l > 0) {
-              std::vector<uint32_t> coarser(level.size());
-              size_t target = std::max<size_t>(3, level.size() / 4 / 3 * 3);
-              // Borders locked: the chunk's outline stays identical at every level, so no cracks.
-              coarser.resize(meshopt_simplify(coarser.data(), level.data(), level.size(), &local_pos[0].x, local_pos.size(),
-                                              sizeof(glm::vec3), target, 1.0f, meshopt_SimplifyLockBorder, &error));
-              if (coarser.size() >= level.size()) break;  // nothing left to remove
-              level = std::move(coarser);
-            }
-            LodRange r{uint32_t(out.indices.size()), uint32_t(level.size()),
-                       std::max(error * scale, chunk.lods.empty() ? 0.0f : chunk.lods.back().error_m)};
-            for (uint32_t i : level) out.indices.push_back(uint16_t(i));
-            chunk.lods.push_back(r);
+            // Borders locked: the chunk's outline stays identical at every level, so no cracks.
+            coarser.resize(meshopt_simplify(coarser.data(), finer.data(), finer.size(), &local_pos[0].x, local_pos.size(),
+                                            sizeof(glm::vec3), target, 1.0f, meshopt_SimplifyLockBorder, &error));
+            if (coarser.size() >= finer.size()) break;  // nothing left to remove
+            levels.push_back(std::move(coarser));
+            errors.push_back(std::max(error * scale, errors.back()));
+          }
+          // Triangles ordered for vertex reuse and vertices in the order the full level first uses
+          // them: a rasteriser shades each vertex fewer times and reads them in sequence.
+          for (auto& level : levels) meshopt_optimizeVertexCache(level.data(), level.data(), level.size(), local_pos.size());
+          std::vector<uint32_t> remap(local_pos.size());
+          meshopt_optimizeVertexFetchRemap(remap.data(), levels[0].data(), levels[0].size(), local_pos.size());
+          std::vector<uint32_t> ordered(global.size());
+          for (size_t i = 0; i < global.size(); ++i) ordered[remap[i]] = global[i];  // every vertex is in level 0
+          chunk.base_vertex = uint32_t(out.positions.size());
+          for (uint32_t g : ordered)
+            out.positions.push_back(f.positions[g]), out.normals.push_back(pack_normal(f.normals[g])), out.uvs.push_back(f.uvs[g]);
+          for (size_t l = 0; l < levels.size(); ++l) {
+            chunk.lods.push_back(LodRange{uint32_t(out.indices.size()), uint32_t(levels[l].size()), errors[l]});
+            for (uint32_t i : levels[l]) out.indices.push_back(uint16_t(remap[i]));
           }
           out.chunks.push_back(std::move(chunk));
         }

@@ -55,7 +55,7 @@ TerrainMesh build_terrain_mesh(const assets::Model& model, const Terrain& settin
 // that finds it neither decodes the geometry (Draco) nor refines or simplifies it. Bump
 // kMeshCacheVersion when what build_terrain_mesh makes changes: its own code, or the loader's
 // conversion or refinement (assets) that it builds on.
-inline constexpr int kMeshCacheVersion = 2;
+inline constexpr int kMeshCacheVersion = 3;
 std::string mesh_cache_key(uint64_t content_hash, const Terrain& settings);
 // Two entries: the counts (fixed size), then the arrays and chunks they size.
 std::string mesh_counts_bytes(const TerrainMesh& mesh);
