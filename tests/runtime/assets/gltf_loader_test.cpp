@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "test_util.h"
+#include "welkin/core/disk_cache.h"
 #include "welkin/gfx/image.h"
 
 namespace welkin::assets::test {
@@ -249,6 +250,44 @@ TEST(GltfLoader, WithoutGeometryKeepsTheRestAndTheContentHashFollowsEveryFile) {
   doc["asset"]["generator"] = "another";
   write_bytes(dir / "grid.gltf", doc.dump(2));
   EXPECT_NE(load_gltf((dir / "grid.gltf").string(), o).content_hash, buffer_changed);
+}
+
+// Images keep the hash of their encoded bytes whether or not they are decoded (what the terrain keys
+// its compressed images by): an external image is read and hashed even when not decoded, a change to
+// it changes its hash and the file's, and a missing one is an error either way.
+TEST(GltfLoader, ImagesKeepTheHashOfTheirEncodedBytesDecodedOrNot) {
+  const fs::path dir = temp_dir("image-hash");
+  GlbWriter w = textured_grid(false);
+  json doc = w.document();
+  write_bytes(dir / "grid.bin", std::string(w.bin().begin(), w.bin().end()));
+  doc["buffers"] = json::array({json{{"uri", "grid.bin"}, {"byteLength", w.bin().size()}}});
+  const auto png = png_bytes(4, 2);
+  const std::string png_text(png.begin(), png.end());
+  write_bytes(dir / "checker.png", png_text);
+  doc["images"][0] = json{{"uri", "checker.png"}};
+  write_bytes(dir / "grid.gltf", doc.dump(2));
+  LoadOptions bare;
+  bare.decode_images = false;
+  const Model decoded = load_gltf((dir / "grid.gltf").string());
+  const Model undecoded = load_gltf((dir / "grid.gltf").string(), bare);
+  ASSERT_EQ(undecoded.images.size(), 1u);
+  EXPECT_TRUE(undecoded.images[0].rgba.empty());
+  EXPECT_EQ(undecoded.images[0].encoded_hash, DiskCache::hash(png_text));
+  EXPECT_EQ(decoded.images[0].encoded_hash, DiskCache::hash(png_text));
+  EXPECT_EQ(undecoded.content_hash, decoded.content_hash) << "the same files were read";
+  // Another image in its place: its hash and the file's follow.
+  const auto other = png_bytes(4, 3);
+  write_bytes(dir / "checker.png", std::string(other.begin(), other.end()));
+  const Model changed = load_gltf((dir / "grid.gltf").string(), bare);
+  EXPECT_NE(changed.images[0].encoded_hash, undecoded.images[0].encoded_hash);
+  EXPECT_NE(changed.content_hash, undecoded.content_hash);
+  // Missing, it is an error even when it would not be decoded.
+  fs::remove(dir / "checker.png");
+  EXPECT_EQ(file_error(dir / "grid.gltf", bare).path, "/images/0/uri");
+  // In a GLB the image's bytes are the buffer view's.
+  const Model glb = load_bytes(textured_grid(true).glb(), "grid.glb", bare);
+  EXPECT_NE(glb.images[0].encoded_hash, DiskCache::hash({}));
+  EXPECT_EQ(glb.images[0].encoded_hash, load_bytes(textured_grid(true).glb(), "grid.glb").images[0].encoded_hash);
 }
 
 TEST(GltfLoader, MeshQuantizationIsDequantized) {
