@@ -4,6 +4,7 @@
 #include <map>
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,13 @@ struct TerrainCache {
   // What each cascade's depths were last drawn from (terrain_system.cpp, cascade_inputs): a cascade
   // whose inputs are the same is not drawn again.
   std::array<std::string, kShadowCascades> cascade_inputs;
+  // Where the last frame's cascades were (scene frame) and their sides: a cascade stays there while its
+  // slice of the view stays inside it (make_cascades).
+  struct CascadePlaces {
+    std::array<glm::dvec3, kShadowCascades> centre_m{};
+    std::array<float, kShadowCascades> extent_m{};
+  };
+  std::optional<CascadePlaces> cascade_places;
   size_t cascade_draws = 0;  // cascades drawn (tests, stats)
   // This frame's cascades as the light term's std140 block (terrain/light_term.glsl), and its buffer.
   struct CascadeBlock {

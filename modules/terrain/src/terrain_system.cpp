@@ -30,9 +30,13 @@ struct Cascades {
 // catch mountains behind the view. A slice's bounding sphere keeps its size as the camera turns; its
 // centre is put on a grid fixed in the scene (in the light's axes, steps of an eighth of the radius,
 // the radius grown by one step so that the slice stays inside), so a cascade stays where it is, and
-// its depths stay what they were, while the camera turns or moves within a step: 12.5% coarser texels
-// for cascades that are drawn again only when they move (or their casters or the sun do).
-Cascades make_cascades(const FrameView& v, const glm::vec3& sun, float distance_m, float reach_m) {
+// its depths stay what they were, while the camera turns or moves: 12.5% coarser texels for cascades
+// that are drawn again only when they move (or their casters or the sun do). A cascade stays where
+// the last frame had it (`previous`) for as long as its slice stays inside it, up to a whole step
+// from its centre in each of the light's axes: a turn or a flight moves it half as often as snapping
+// every frame would.
+Cascades make_cascades(const FrameView& v, const glm::vec3& sun, float distance_m, float reach_m,
+                       const std::optional<TerrainCache::CascadePlaces>& previous) {
   Cascades c;
   const float splits[4] = {v.near_m, distance_m * 0.03f, distance_m * 0.2f, distance_m};
   const float ty = std::tan(v.vertical_fov_rad * 0.5f), tx = ty * float(v.width) / float(v.height);
@@ -40,20 +44,29 @@ Cascades make_cascades(const FrameView& v, const glm::vec3& sun, float distance_
   // The light's axes (those of glm::lookAt toward -sun with `up`).
   const glm::dvec3 f = -glm::dvec3(sun), s = glm::normalize(glm::cross(f, glm::dvec3(up))), u = glm::cross(s, f);
   for (int i = 0; i < 3; ++i) {
+    // The slice in the view's own axes (right, up, forward), so that its radius is the same number
+    // however the view is turned (computed from turned corners, it changed in its last bits, and the
+    // cascade with it).
     glm::vec3 corners[8];
     for (int k = 0; k < 8; ++k) {
       float d = splits[i + (k >> 2)];
-      corners[k] = v.forward * d + v.right * (k & 1 ? tx : -tx) * d + v.up * (k & 2 ? ty : -ty) * d;
+      corners[k] = glm::vec3((k & 1 ? tx : -tx) * d, (k & 2 ? ty : -ty) * d, d);
     }
-    glm::vec3 centre(0.0f);
-    for (const auto& p : corners) centre += p / 8.0f;
+    glm::vec3 local(0.0f);
+    for (const auto& p : corners) local += p / 8.0f;
     float radius = 0.0f;
-    for (const auto& p : corners) radius = std::max(radius, glm::length(p - centre));
+    for (const auto& p : corners) radius = std::max(radius, glm::length(p - local));
+    const glm::vec3 centre = v.right * local.x + v.up * local.y + v.forward * local.z;
     const double step = radius / 8.0;
     const glm::dvec3 world = v.camera_position_m + glm::dvec3(centre);
     auto snap = [step](double x) { return std::round(x / step) * step; };
-    const glm::dvec3 snapped = s * snap(glm::dot(world, s)) + u * snap(glm::dot(world, u)) + f * snap(glm::dot(world, f));
+    glm::dvec3 snapped = s * snap(glm::dot(world, s)) + u * snap(glm::dot(world, u)) + f * snap(glm::dot(world, f));
     radius += float(step);
+    if (previous && previous->extent_m[size_t(i)] == 2.0f * radius) {
+      const glm::dvec3 d = world - previous->centre_m[size_t(i)];
+      if (std::abs(glm::dot(d, s)) <= step && std::abs(glm::dot(d, u)) <= step && std::abs(glm::dot(d, f)) <= step)
+        snapped = previous->centre_m[size_t(i)];
+    }
     const glm::vec3 rel = glm::vec3(snapped - v.camera_position_m);
     glm::mat4 view = glm::lookAt(rel + sun * (radius + reach_m), rel, up);
     glm::mat4 proj = glm::orthoRH_ZO(-radius, radius, -radius, radius, 0.0f, 2.0f * radius + reach_m);
@@ -234,8 +247,9 @@ void terrain_system(SystemContext& sc) {
   ResourceHandle shadow_handle;
   cache.cascade_block.far_m.w = 0.0f;  // until a cascade is made this frame
   if (sun && shadow_settings) {
-    *cascades = make_cascades(view, *sun, shadow_settings->shadow_distance_m, 20000.0f);
+    *cascades = make_cascades(view, *sun, shadow_settings->shadow_distance_m, 20000.0f, cache.cascade_places);
     const Cascades& cs = **cascades;
+    cache.cascade_places = TerrainCache::CascadePlaces{.centre_m = cs.centre_m, .extent_m = cs.extent_m};
     const int size = shadow_settings->shadow_map_size;
     Texture& atlas = cache.shadow_map(size);
     for (int i = 0; i < kShadowCascades; ++i) {
