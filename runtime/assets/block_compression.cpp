@@ -40,12 +40,11 @@ Bc1Chain bc1_layout(int width, int height) {
   Bc1Chain chain;
   chain.width = width, chain.height = height;
   size_t offset = 0;
-  for (int l = 0;; ++l) {
+  for (int l = 0; l < mip_level_count(width, height); ++l) {
     const int w = std::max(1, width >> l), h = std::max(1, height >> l);
     const size_t size = blocks_across(w) * blocks_across(h) * kBlockBytes;
     chain.levels.push_back({.width = w, .height = h, .offset = offset, .size = size});
     offset += size;
-    if (w == 1 && h == 1) break;
   }
   return chain;
 }

@@ -195,19 +195,25 @@ TEST(GltfLoader, DracoErrorFromTheDecodingProcessKeepsItsPath) {
   EXPECT_EQ(e.found, "7");
 }
 
-TEST(GltfLoader, GltfWithExternalFilesBesideIt) {
-  const fs::path dir = temp_dir("external");
+// The textured grid as a .gltf in `dir` with its buffer in grid.bin and its image, `png`, in the file
+// `image_file` (relative to dir) that the document names by `image_uri`. Returns the .gltf's path.
+fs::path write_external_grid(const fs::path& dir, const fs::path& image_file, const std::string& image_uri,
+                             const std::vector<uint8_t>& png) {
   GlbWriter w = textured_grid(false);
   json doc = w.document();
   write_bytes(dir / "grid.bin", std::string(w.bin().begin(), w.bin().end()));
   doc["buffers"] = json::array({json{{"uri", "grid.bin"}, {"byteLength", w.bin().size()}}});
-  // The image moves to a file in a subfolder, referenced with a percent-encoded space.
-  fs::create_directories(dir / "tex dir");
-  const auto png = png_bytes(4, 2);
-  write_bytes(dir / "tex dir" / "checker.png", std::string(png.begin(), png.end()));
-  doc["images"][0] = json{{"uri", "tex%20dir/checker.png"}};
+  fs::create_directories((dir / image_file).parent_path());
+  write_bytes(dir / image_file, std::string(png.begin(), png.end()));
+  doc["images"][0] = json{{"uri", image_uri}};
   write_bytes(dir / "grid.gltf", doc.dump(2));
-  const Model m = load_gltf((dir / "grid.gltf").string());
+  return dir / "grid.gltf";
+}
+
+TEST(GltfLoader, GltfWithExternalFilesBesideIt) {
+  // The image in a file in a subfolder, referenced with a percent-encoded space.
+  const fs::path gltf = write_external_grid(temp_dir("external"), "tex dir/checker.png", "tex%20dir/checker.png", png_bytes(4, 2));
+  const Model m = load_gltf(gltf.string());
   expect_grid(m, false);
 }
 
@@ -257,15 +263,9 @@ TEST(GltfLoader, WithoutGeometryKeepsTheRestAndTheContentHashFollowsEveryFile) {
 // it changes its hash and the file's, and a missing one is an error either way.
 TEST(GltfLoader, ImagesKeepTheHashOfTheirEncodedBytesDecodedOrNot) {
   const fs::path dir = temp_dir("image-hash");
-  GlbWriter w = textured_grid(false);
-  json doc = w.document();
-  write_bytes(dir / "grid.bin", std::string(w.bin().begin(), w.bin().end()));
-  doc["buffers"] = json::array({json{{"uri", "grid.bin"}, {"byteLength", w.bin().size()}}});
   const auto png = png_bytes(4, 2);
   const std::string png_text(png.begin(), png.end());
-  write_bytes(dir / "checker.png", png_text);
-  doc["images"][0] = json{{"uri", "checker.png"}};
-  write_bytes(dir / "grid.gltf", doc.dump(2));
+  write_external_grid(dir, "checker.png", "checker.png", png);
   LoadOptions bare;
   bare.decode_images = false;
   const Model decoded = load_gltf((dir / "grid.gltf").string());
