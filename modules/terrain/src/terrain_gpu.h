@@ -54,6 +54,12 @@ struct TerrainCache {
     glm::vec4 texel_m{0.0f};
   } cascade_block;
   std::unique_ptr<Buffer> cascade_buffer;
+  // The view's terrain as last drawn (terrain_system.cpp, view_inputs): its colour and depth, and
+  // the digest of what they were drawn from. A frame whose digest is the same takes them instead of
+  // drawing; they are made once a view is drawn twice alike, so a moving view never copies them.
+  std::unique_ptr<Texture> kept_color, kept_depth;
+  uint64_t kept_inputs = 0, drawn_inputs = 0;
+  size_t view_draws = 0;  // frames whose terrain was drawn rather than kept (tests, stats)
   assets::AssetCache assets;
   // With the disk cache on: the file read for its materials and images only, and (only when the built
   // mesh is not on disk) again whole (`assets`).

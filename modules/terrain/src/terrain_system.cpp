@@ -146,6 +146,30 @@ std::string cascade_inputs(const Cascades& c, int i, const glm::vec3& sun, const
   return bytes;
 }
 
+// What the view's terrain is drawn from: each terrain's mesh, placement and the levels drawn, the
+// view, the frame's size and format, the shaders, and the light environment (its composition and
+// every term's state: the sun, the sky, the cascades, the clouds' shadows). None when a term cannot
+// say what it reads: then the terrain is drawn every frame.
+std::optional<uint64_t> view_inputs(const std::vector<Placed>& placed, const RenderContext& rc, const LightEnvironment& env) {
+  const std::optional<uint64_t> light = env.state();
+  if (!light) return std::nullopt;
+  const FrameView& v = rc.view;
+  uint64_t h = fnv1a_64_of(*light, fnv1a_64_of(env.version(), fnv1a_64_of(env.moon_lights_surfaces())));
+  h = fnv1a_64_of(v.view_projection, fnv1a_64_of(v.camera_position_m, h));
+  const int frame[3] = {v.width, v.height, int(rc.full_precision)};
+  h = fnv1a_64_of(frame, fnv1a_64_of(rc.shaders.environment_version(), h));
+  for (const Placed& p : placed) {
+    h = fnv1a_64_of(p.inverse_two_radius, fnv1a_64_of(p.rotation, fnv1a_64_of(p.anchor_m, fnv1a_64_of(p.gpu, h))));
+    h = fnv1a_64(std::string_view(reinterpret_cast<const char*>(p.draws.data()), p.draws.size() * sizeof(Draw)), h);
+  }
+  return h;
+}
+
+void copy_texture(const Texture& from, const Texture& to) {
+  glCopyImageSubData(from.id(), GL_TEXTURE_2D, 0, 0, 0, 0, to.id(), GL_TEXTURE_2D, 0, 0, 0, 0, to.desc().width,
+                     to.desc().height, 1);
+}
+
 }  // namespace
 
 glm::dvec3 anchor_position(World& world, const Terrain& t) {
@@ -192,6 +216,8 @@ void terrain_system(SystemContext& sc) {
   auto& rc = world.resource<RenderContext>();
   auto& cache = world.resource<TerrainCache>();
   const FrameView& view = rc.view;
+  // The frame's depth holds no other geometry yet: a kept terrain's depth can replace it whole.
+  const bool depth_empty = sc.targets->geometry.empty();
   const double pixels_per_radian = view.height / view.vertical_fov_rad;
   double planet_radius_km = 0.0;
   if (auto r = scene_scalar(world, "atmosphere.Atmosphere", "bottom_radius_km")) planet_radius_km = *r;
@@ -246,6 +272,7 @@ void terrain_system(SystemContext& sc) {
   auto cascades = std::make_shared<std::optional<Cascades>>();
   ResourceHandle shadow_handle;
   cache.cascade_block.far_m.w = 0.0f;  // until a cascade is made this frame
+  bool cascades_drawn = false;
   if (sun && shadow_settings) {
     *cascades = make_cascades(view, *sun, shadow_settings->shadow_distance_m, 20000.0f, cache.cascade_places);
     const Cascades& cs = **cascades;
@@ -279,7 +306,8 @@ void terrain_system(SystemContext& sc) {
       (*inputs)[size_t(i)] = cascade_inputs(cs, i, *sun, *placed, size);
       if ((*inputs)[size_t(i)] != cache.cascade_inputs[size_t(i)]) stale.push_back(i);
     }
-    if (!stale.empty())
+    cascades_drawn = !stale.empty();
+    if (cascades_drawn)
     sc.graph->add_pass("terrain.shadows", [&](PassBuilder& b) { b.write(shadow_handle); },
                        [placed, cascades, shadow_handle, size, &rc, &cache, inputs, stale](PassContext& pc) {
       Framebuffer fb(nullptr, &pc.texture(shadow_handle));
@@ -312,15 +340,39 @@ void terrain_system(SystemContext& sc) {
       glClearDepth(0.0);
     });
   }
+  // A still view under still light draws the same terrain again, bit for bit: while what it is drawn
+  // from stays the same (and no cascade is drawn this frame: its drawing is not yet in the light's
+  // state), the frame takes the colour and depth drawn last, a copy instead of 110k triangles shaded.
+  std::optional<uint64_t> inputs;
+  if (depth_empty && !cascades_drawn) inputs = view_inputs(*placed, rc, world.resource<LightEnvironment>());
+  const bool keep = inputs && *inputs == cache.kept_inputs && cache.kept_color;
   sc.graph->add_pass("terrain", [&](PassBuilder& b) {
     b.read(targets.color);
     b.write(targets.color);
     b.read(targets.depth);
     b.write(targets.depth);
     if (shadow_handle.valid()) b.read(shadow_handle);
-  }, [placed, targets, &rc, &world](PassContext& pc) {
-    Framebuffer fb(&pc.texture(targets.color), &pc.texture(targets.depth));
+  }, [placed, targets, &rc, &world, &cache, inputs, keep](PassContext& pc) {
+    const Texture &color = pc.texture(targets.color), &depth = pc.texture(targets.depth);
+    Framebuffer fb(&color, &depth);
     fb.bind();
+    if (keep) {
+      // The kept depth replaces the frame's; the kept colour goes where it holds terrain (the depth
+      // test against a triangle at infinity passes exactly there); the sky stays elsewhere.
+      copy_texture(*cache.kept_depth, depth);
+      glEnable(GL_DEPTH_TEST);
+      glDepthFunc(GL_LESS);
+      glDepthMask(GL_FALSE);
+      glDisable(GL_BLEND);
+      const Program& copy = rc.shaders.graphics("fullscreen.vert", "copy.frag");
+      copy.use();
+      glBindTextureUnit(0, cache.kept_color->id());
+      rc.draw_fullscreen_triangle();
+      glDepthMask(GL_TRUE);
+      glDepthFunc(GL_GREATER);
+      return;
+    }
+    ++cache.view_draws;
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_GREATER);
     glDepthMask(GL_TRUE);
@@ -352,6 +404,16 @@ void terrain_system(SystemContext& sc) {
       }
     }
     glDisable(GL_CULL_FACE);
+    // Recorded once drawn (a failed frame draws again); kept when drawn twice alike.
+    if (inputs && *inputs == cache.drawn_inputs) {
+      const TextureDesc color_desc = color.desc(), depth_desc = depth.desc();
+      if (!cache.kept_color || !(cache.kept_color->desc() == color_desc)) cache.kept_color = std::make_unique<Texture>(color_desc);
+      if (!cache.kept_depth || !(cache.kept_depth->desc() == depth_desc)) cache.kept_depth = std::make_unique<Texture>(depth_desc);
+      copy_texture(color, *cache.kept_color);
+      copy_texture(depth, *cache.kept_depth);
+      cache.kept_inputs = *inputs;
+    }
+    cache.drawn_inputs = inputs.value_or(0);
   });
 }
 

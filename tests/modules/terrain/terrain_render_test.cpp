@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <functional>
 
 #include "cache_folder.h"
 #include "depth_readback.h"
@@ -109,7 +110,9 @@ TEST_F(TerrainRender, GeometryRectangleHoldsEveryPixelOfTheTerrain) {
     ASSERT_EQ(depth->depth.size(), size_t(64 * 36));
     EXPECT_GT(depth->covered(), 64 * 36 / 5) << pitch;
     EXPECT_EQ(depth->outside(fr.geometry), 0) << pitch;
-    if (pitch > 0) EXPECT_LT(fr.geometry.y1, 36) << "the sky above the terrain is left out";
+    if (pitch > 0) {
+      EXPECT_LT(fr.geometry.y1, 36) << "the sky above the terrain is left out";
+    }
   }
 }
 
@@ -349,6 +352,99 @@ TEST_F(TerrainRender, CascadesStayWhileTheirSliceStaysInside) {
   EXPECT_LT(mean, 1e-3);
   EXPECT_LT(double(over_one_percent) / double(values), 0.01);
   EXPECT_LT(worst, 0.1);
+}
+
+// A still view under a still sun draws its terrain until it is drawn twice alike (a frame that draws
+// the shadow cascades counts as changed in the next), then takes the kept colour and depth: the frame
+// is the drawn one bit for bit, colour and depth, with the sky above the ridge where it was. Whatever
+// the terrain is drawn from changing draws it again: the camera turning or moving, the sun, the
+// terrain's placement, the frame's size.
+TEST_F(TerrainRender, StillViewTakesTheTerrainDrawnLast) {
+  World world;
+  load_valley(world);
+  auto depth = welkin::testing::read_depth_after_geometry(world);
+  Renderer r(world);
+  Camera& camera = *world.registry().get<Camera>(world.registry().first<Camera>());
+  camera.pitch_deg = 4.0f;  // sky above the ridge: the kept colour must leave it alone
+  auto& cache = world.resource<terrain::TerrainCache>();
+  struct Frame {
+    std::vector<float> hdr, depth;
+  };
+  auto render = [&](int w = 64, int h = 36) {
+    r.render_frame({}, w, h);
+    return Frame{r.read_hdr().rgba, depth->depth};
+  };
+  // Renders still frames until two in a row are kept; the frame drawn last and the draws it took.
+  auto settle = [&](const Frame& first, const char* what) {
+    const size_t start = cache.view_draws;
+    for (int i = 0; i < 2; ++i) render();
+    const size_t drawn = cache.view_draws - start;
+    EXPECT_LE(drawn, 2u) << what << ": drawn again at most until the cascades and the view are drawn twice alike";
+    for (int i = 0; i < 3; ++i) {
+      const Frame kept = render();
+      EXPECT_EQ(kept.hdr, first.hdr) << what << ", frame " << i << ": the kept colour is the drawn one bit for bit";
+      EXPECT_EQ(kept.depth, first.depth) << what << ", frame " << i;
+    }
+    EXPECT_EQ(cache.view_draws - start, drawn) << what << ": still frames take the kept terrain";
+  };
+  const Frame drawn = render();
+  EXPECT_GT(depth->covered(), 64 * 36 / 5);
+  EXPECT_LT(depth->covered(), 64 * 36) << "the sky shows above the ridge";
+  settle(drawn, "the first view");
+
+  // What is drawn before the terrain and changes while the terrain does not (a sky, say) stays where
+  // there is no terrain: the kept colour goes only where the kept depth holds terrain.
+  auto paint = std::make_shared<float>(0.0f);
+  world.scheduler().add(SystemDesc{.name = "test.paint", .phase = Phase::render, .order = -50, .run = [paint](SystemContext& sc) {
+    const FrameTargets t = *sc.targets;
+    sc.graph->add_pass("test.paint", [&](PassBuilder& b) { b.read(t.color); b.write(t.color); }, [t, paint](PassContext& pc) {
+      Framebuffer fb(&pc.texture(t.color), nullptr);
+      fb.bind();
+      glClearColor(*paint, 2.0f * *paint, 3.0f * *paint, 1.0f);
+      glClear(GL_COLOR_BUFFER_BIT);
+      glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    });
+  }});
+  for (float p : {100.0f, 200.0f}) {
+    *paint = p;
+    const size_t draws = cache.view_draws;
+    const Frame f = render();
+    EXPECT_EQ(cache.view_draws, draws) << "the terrain is kept";
+    size_t sky = 0;
+    for (size_t y = 0; y < 36; ++y)
+      for (size_t x = 0; x < 64; ++x) {
+        const bool open = f.depth[y * 64 + x] == 0.0f;  // GL's rows, bottom up; the image's top down
+        const size_t i = ((35 - y) * 64 + x) * 4;
+        sky += open;
+        for (size_t c = 0; c < 3; ++c)
+          ASSERT_EQ(f.hdr[i + c], open ? p * float(c + 1) : drawn.hdr[i + c]) << x << "," << y << (open ? " (sky)" : " (terrain)");
+      }
+    EXPECT_GT(sky, 64u);
+  }
+
+  // Each input in turn: drawn again, and kept again once still.
+  auto& terrain = *world.registry().get<terrain::Terrain>(world.registry().first<terrain::Terrain>());
+  auto& sun = *world.registry().get<DirectionalLight>(world.registry().first<DirectionalLight>());
+  const std::vector<std::pair<const char*, std::function<void()>>> changes = {
+      {"the camera turns", [&] { camera.heading_deg += 0.5f; }},
+      {"the camera turns a little (the same chunks drawn)", [&] { camera.heading_deg += 0.02f; }},
+      {"the camera moves", [&] { camera.position_m.x += 1.0; }},
+      {"the sun moves", [&] { sun.elevation_deg += 0.5f; }},
+      {"the sun brightens", [&] { sun.illuminance_lux *= 1.01f; }},
+      {"the terrain turns", [&] { terrain.heading_deg += 0.1f; }},
+  };
+  for (const auto& [what, change] : changes) {
+    const Frame before = render();
+    const size_t draws = cache.view_draws;
+    change();
+    const Frame after = render();
+    EXPECT_EQ(cache.view_draws, draws + 1) << what;
+    EXPECT_NE(after.hdr, before.hdr) << what;
+    settle(after, what);
+  }
+  const size_t draws = cache.view_draws;
+  render(48, 27);
+  EXPECT_EQ(cache.view_draws, draws + 1) << "another frame size";
 }
 
 TEST_F(TerrainRender, DefaultDemoSceneMatchesGolden) {
