@@ -115,6 +115,10 @@ int GlbWriter::add_material(const Material& m) {
   if (m.emissive.valid()) j["emissiveTexture"] = tex(m.emissive);
   if (m.emissive_factor != glm::vec3(0.0f))
     j["emissiveFactor"] = vec({m.emissive_factor.r, m.emissive_factor.g, m.emissive_factor.b});
+  if (m.emissive_strength != 1.0f) {
+    use_extension("KHR_materials_emissive_strength", false);
+    j["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", m.emissive_strength}};
+  }
   if (m.alpha_mode != AlphaMode::opaque) j["alphaMode"] = m.alpha_mode == AlphaMode::mask ? "MASK" : "BLEND";
   if (m.alpha_mode == AlphaMode::mask) j["alphaCutoff"] = m.alpha_cutoff;
   if (m.double_sided) j["doubleSided"] = true;

@@ -11,6 +11,7 @@ GLenum gl_internal_format(TextureFormat f) {
     case TextureFormat::rgba8: return GL_RGBA8;
     case TextureFormat::rgba16f: return GL_RGBA16F;
     case TextureFormat::rgba32f: return GL_RGBA32F;
+    case TextureFormat::rgba32ui: return GL_RGBA32UI;
     case TextureFormat::r8: return GL_R8;
     case TextureFormat::r32f: return GL_R32F;
     case TextureFormat::rg32f: return GL_RG32F;
@@ -24,6 +25,7 @@ const char* texture_format_name(TextureFormat f) {
     case TextureFormat::rgba8: return "rgba8";
     case TextureFormat::rgba16f: return "rgba16f";
     case TextureFormat::rgba32f: return "rgba32f";
+    case TextureFormat::rgba32ui: return "rgba32ui";
     case TextureFormat::r8: return "r8";
     case TextureFormat::r32f: return "r32f";
     case TextureFormat::rg32f: return "rg32f";

@@ -115,10 +115,14 @@ std::string LightEnvironment::composed_source() const {
   // The light functions are declared first, so that terms may use them.
   s += "vec3 welkin_sun_direction();\nvec3 welkin_sun_irradiance(vec3 p);\nvec3 welkin_moon_direction();\n"
        "vec3 welkin_moon_irradiance(vec3 p);\nvec3 welkin_sky_irradiance(vec3 n);\n";
+  s += "// What reaches a surface point (welkin_surface_light): the sun's irradiance there, the fraction of each\n"
+       "// light and of the sky's light reaching it, and the irradiance the terms redirect onto it.\n"
+       "struct WelkinSurfaceLight {\n  vec3 sun_irradiance;\n  float sun_visibility, moon_visibility, sky_visibility;\n"
+       "  vec3 added_irradiance;\n};\n";
   // Only the terms whose functions are called are included: an unused provider compiles nothing.
   for (const LightTerm& t : terms_) {
     bool used = &t == lights || &t == aerial || &t == medium || !t.light_visibility.empty() || !t.sky_visibility.empty() ||
-                !t.added_irradiance.empty();
+                !t.added_irradiance.empty() || !t.surface_light.empty();
     if (used && !t.include.empty()) s += "#include \"" + t.include + "\"\n";
   }
   if (lights) {
@@ -152,6 +156,21 @@ std::string LightEnvironment::composed_source() const {
        "float v = 1.0", "v", "*=", "p, n", &LightTerm::sky_visibility);
   fold("Diffuse irradiance the terms redirect onto the point.", "vec3 welkin_added_irradiance(vec3 p, vec3 n)",
        "vec3 e = vec3(0.0)", "e", "+=", "p, n", &LightTerm::added_irradiance);
+  // Everything at once for a surface point: each term's shared work done once.
+  s += "WelkinSurfaceLight welkin_surface_light(vec3 p, vec3 n) {\n"
+       "  WelkinSurfaceLight l = WelkinSurfaceLight(welkin_sun_irradiance(p), 1.0, 1.0, 1.0, vec3(0.0));\n";
+  for (const LightTerm& t : terms_) {
+    if (!t.surface_light.empty()) {
+      s += "  " + t.surface_light + "(p, n, l);\n";
+      continue;
+    }
+    if (!t.light_visibility.empty())
+      s += "  l.sun_visibility *= " + t.light_visibility + "(p, n, 0);\n#if WELKIN_MOON_LIGHT\n  l.moon_visibility *= " +
+           t.light_visibility + "(p, n, 1);\n#endif\n";
+    if (!t.sky_visibility.empty()) s += "  l.sky_visibility *= " + t.sky_visibility + "(p, n);\n";
+    if (!t.added_irradiance.empty()) s += "  l.added_irradiance += " + t.added_irradiance + "(p, n);\n";
+  }
+  s += "  return l;\n}\n";
   s += "// Light added between a camera-relative point and the camera, and that path's transmittance.\n";
   if (aerial)
     s += "vec3 welkin_aerial_perspective(vec3 p, out vec3 transmittance) { return " + aerial->aerial_perspective +
@@ -177,7 +196,8 @@ void LightEnvironment::bind_block(std::string_view block_name, std::unique_ptr<B
 
 bool LightEnvironment::shades_surfaces() const {
   for (const LightTerm& t : terms_)
-    if (!t.light_visibility.empty() || !t.sky_visibility.empty() || !t.added_irradiance.empty()) return true;
+    if (!t.light_visibility.empty() || !t.sky_visibility.empty() || !t.added_irradiance.empty() || !t.surface_light.empty())
+      return true;
   return false;
 }
 

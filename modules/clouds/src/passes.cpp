@@ -518,6 +518,7 @@ void add_light_term(World& world) {
       .light_visibility = "clouds_light_visibility",
       .sky_visibility = "clouds_sky_visibility",
       .added_irradiance = "clouds_added_irradiance",
+      .surface_light = "clouds_surface_light",
       .textures = {"clouds.shadow_map"},
       .blocks = {"clouds.shadow"},
       .bind = [&world](const LightEnvironment& env) {

@@ -1,5 +1,7 @@
 // Render system of the terrain module: places each terrain, picks chunk levels of detail, culls
-// chunks outside the view, and draws them with the runtime's PBR shading into colour and depth.
+// chunks outside the view, draws the cascaded shadow maps, then the chunks' surface (depth and each
+// pixel's material inputs) and its light (the runtime's PBR shading, once per pixel); a still view
+// takes the terrain it drew last.
 #include <array>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
@@ -223,6 +225,7 @@ void terrain_system(SystemContext& sc) {
   if (auto r = scene_scalar(world, "atmosphere.Atmosphere", "bottom_radius_km")) planet_radius_km = *r;
 
   auto placed = std::make_shared<std::vector<Placed>>();
+  PixelRect covered;  // every pixel the drawn chunks may cover
   world.registry().each<Terrain>([&](Entity, Terrain& t) {
     Placed p;
     p.gpu = &cache.get(t);
@@ -253,8 +256,9 @@ void terrain_system(SystemContext& sc) {
       if (outside_view(view.view_projection, lo, hi)) continue;
       const LodRange& l = c.lods[size_t(lod)];
       // What this chunk writes to the depth: its level's triangles, placed (the view aside).
-      sc.targets->add_geometry(screen_rect(view, lo, hi),
-                               fnv1a_64_of(l.first_index, fnv1a_64_of(l.index_count, placement)));
+      const PixelRect pixels = screen_rect(view, lo, hi);
+      covered.include(pixels);
+      sc.targets->add_geometry(pixels, fnv1a_64_of(l.first_index, fnv1a_64_of(l.index_count, placement)));
       p.draws.push_back({l.first_index, l.index_count, material, c.base_vertex});
       p.triangles += l.index_count / 3;
     }
@@ -346,33 +350,58 @@ void terrain_system(SystemContext& sc) {
   std::optional<uint64_t> inputs;
   if (depth_empty && !cascades_drawn) inputs = view_inputs(*placed, rc, world.resource<LightEnvironment>());
   const bool keep = inputs && *inputs == cache.kept_inputs && cache.kept_color;
+  if (keep) {
+    sc.graph->add_pass("terrain", [&](PassBuilder& b) {
+      b.read(targets.color);
+      b.write(targets.color);
+      b.write(targets.depth);
+    }, [targets, &rc, &cache](PassContext& pc) {
+      // The kept depth replaces the frame's; the kept colour goes where it holds terrain (the depth
+      // test against a triangle at infinity passes exactly there); the sky stays elsewhere.
+      const Texture& depth = pc.texture(targets.depth);
+      copy_texture(*cache.kept_depth, depth);
+      Framebuffer fb(&pc.texture(targets.color), &depth);
+      fb.bind();
+      glEnable(GL_DEPTH_TEST);
+      glDepthFunc(GL_LESS);
+      glDepthMask(GL_FALSE);
+      glDisable(GL_BLEND);
+      rc.shaders.graphics("fullscreen.vert", "copy.frag").use();
+      glBindTextureUnit(0, cache.kept_color->id());
+      rc.draw_fullscreen_triangle();
+      glDepthMask(GL_TRUE);
+      glDepthFunc(GL_GREATER);
+    });
+    return;
+  }
+
+  // Two passes: the surface (each material's inputs per pixel, with the depth), then its light, once
+  // per pixel. Shading in the first pass would run the light for whole quads and blocks around
+  // triangles of a pixel or two: several times the pixels the terrain covers on a software rasteriser.
+  // The materials' own light goes into the frame's colour first, only where a drawn one has any.
+  bool emissive = false;
+  for (const Placed& p : *placed)
+    for (const Draw& d : p.draws) emissive = emissive || p.gpu->materials[size_t(d.material)].emissive != glm::vec3(0.0f);
+  auto surface = std::make_shared<ResourceHandle>();
   sc.graph->add_pass("terrain", [&](PassBuilder& b) {
     b.read(targets.color);
     b.write(targets.color);
     b.read(targets.depth);
     b.write(targets.depth);
-    if (shadow_handle.valid()) b.read(shadow_handle);
-  }, [placed, targets, &rc, &world, &cache, inputs, keep](PassContext& pc) {
-    const Texture &color = pc.texture(targets.color), &depth = pc.texture(targets.depth);
-    Framebuffer fb(&color, &depth);
-    fb.bind();
-    if (keep) {
-      // The kept depth replaces the frame's; the kept colour goes where it holds terrain (the depth
-      // test against a triangle at infinity passes exactly there); the sky stays elsewhere.
-      copy_texture(*cache.kept_depth, depth);
-      glEnable(GL_DEPTH_TEST);
-      glDepthFunc(GL_LESS);
-      glDepthMask(GL_FALSE);
-      glDisable(GL_BLEND);
-      const Program& copy = rc.shaders.graphics("fullscreen.vert", "copy.frag");
-      copy.use();
-      glBindTextureUnit(0, cache.kept_color->id());
-      rc.draw_fullscreen_triangle();
-      glDepthMask(GL_TRUE);
-      glDepthFunc(GL_GREATER);
-      return;
-    }
+    *surface = b.create("terrain.surface", TextureDesc{.width = view.width, .height = view.height,
+                                                       .format = TextureFormat::rgba32ui, .linear_filter = false});
+  }, [placed, targets, surface, covered, emissive, &rc, &cache](PassContext& pc) {
     ++cache.view_draws;
+    Framebuffer fb({&pc.texture(targets.color), &pc.texture(*surface)}, &pc.texture(targets.depth));
+    fb.bind();
+    // No terrain yet: the light pass skips what other geometry drew before (roughness 0).
+    const GLuint none[4] = {0, 0, 0, 0};
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(covered.x0, covered.y0, covered.x1 - covered.x0, covered.y1 - covered.y0);
+    glClearBufferuiv(GL_COLOR, 1, none);
+    glColorMaski(0, emissive, emissive, emissive, emissive);
+    glDisable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ZERO);  // several draw buffers: no second source colour may be named
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_GREATER);
     glDepthMask(GL_TRUE);
@@ -380,7 +409,6 @@ void terrain_system(SystemContext& sc) {
     const Program& prog = rc.shaders.graphics("terrain/terrain.vert", "terrain/terrain.frag");
     prog.use();
     prog.set("u_view_projection", rc.view.view_projection);
-    world.resource<LightEnvironment>().bind();
     for (const Placed& p : *placed) {
       bind_placement(prog, p, rc.view);
       int bound = -2;
@@ -403,7 +431,46 @@ void terrain_system(SystemContext& sc) {
         draw_elements(d);
       }
     }
+    glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDisable(GL_CULL_FACE);
+    glDisable(GL_SCISSOR_TEST);
+  });
+
+  sc.graph->add_pass("terrain.light", [&](PassBuilder& b) {
+    b.read(targets.color);
+    b.write(targets.color);
+    b.read(targets.depth);
+    b.read(*surface);
+    if (shadow_handle.valid()) b.read(shadow_handle);
+  }, [targets, surface, covered, emissive, &rc, &world, &cache, inputs](PassContext& pc) {
+    const Texture &color = pc.texture(targets.color), &depth = pc.texture(targets.depth);
+    {
+      // Depth attached read-only and read at the fragment's own texel (GL 4.5, 9.3.1); the triangle
+      // at infinity passes GL_LESS only where something was drawn.
+      Framebuffer fb(&color, &depth);
+      fb.bind();
+      glEnable(GL_DEPTH_TEST);
+      glDepthFunc(GL_LESS);
+      glDepthMask(GL_FALSE);
+      glEnable(GL_SCISSOR_TEST);
+      glScissor(covered.x0, covered.y0, covered.x1 - covered.x0, covered.y1 - covered.y0);
+      if (emissive) {
+        glEnable(GL_BLEND);
+        glBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);  // onto the materials' own light
+      }
+      world.resource<LightEnvironment>().bind();
+      const Program& prog = rc.shaders.graphics("fullscreen.vert", "terrain/light.frag");
+      prog.use();
+      prog.set("u_inverse_view_projection", rc.view.inverse_view_projection);
+      glBindTextureUnit(0, depth.id());
+      glBindTextureUnit(1, pc.texture(*surface).id());
+      rc.draw_fullscreen_triangle();
+      glDisable(GL_BLEND);
+      glBlendFunc(GL_ONE, GL_ZERO);
+      glDisable(GL_SCISSOR_TEST);
+      glDepthMask(GL_TRUE);
+      glDepthFunc(GL_GREATER);
+    }
     // Recorded once drawn (a failed frame draws again); kept when drawn twice alike.
     if (inputs && *inputs == cache.drawn_inputs) {
       const TextureDesc color_desc = color.desc(), depth_desc = depth.desc();

@@ -8,12 +8,12 @@ const float WELKIN_PI = 3.14159265358979;
 
 vec3 shade_lambert(vec3 albedo, vec3 normal, vec3 camera_relative_position) {
   vec3 p = camera_relative_position;
-  vec3 e = welkin_sun_irradiance(p) * (max(dot(normal, welkin_sun_direction()), 0.0) * welkin_light_visibility(p, normal, 0));
+  WelkinSurfaceLight l = welkin_surface_light(p, normal);
+  vec3 e = l.sun_irradiance * (max(dot(normal, welkin_sun_direction()), 0.0) * l.sun_visibility);
 #if WELKIN_MOON_LIGHT
-  e += welkin_moon_irradiance(p) * (max(dot(normal, welkin_moon_direction()), 0.0) * welkin_light_visibility(p, normal, 1));
+  e += welkin_moon_irradiance(p) * (max(dot(normal, welkin_moon_direction()), 0.0) * l.moon_visibility);
 #endif
-  e += welkin_sky_irradiance(normal) * welkin_sky_visibility(p, normal);
-  e += welkin_added_irradiance(p, normal);
+  e += welkin_sky_irradiance(normal) * l.sky_visibility + l.added_irradiance;
   return albedo / WELKIN_PI * e;
 }
 
@@ -37,16 +37,15 @@ vec3 pbr_direct(vec3 base_color, float metallic, float roughness, vec3 n, vec3 v
 vec3 shade_pbr(vec3 base_color, float metallic, float roughness, float occlusion, vec3 n, vec3 camera_relative_position) {
   vec3 p = camera_relative_position;
   vec3 v = normalize(-p);
-  vec3 c = pbr_direct(base_color, metallic, roughness, n, v, welkin_sun_direction(),
-                      welkin_sun_irradiance(p) * welkin_light_visibility(p, n, 0));
+  WelkinSurfaceLight l = welkin_surface_light(p, n);
+  vec3 c = pbr_direct(base_color, metallic, roughness, n, v, welkin_sun_direction(), l.sun_irradiance * l.sun_visibility);
 #if WELKIN_MOON_LIGHT
   c += pbr_direct(base_color, metallic, roughness, n, v, welkin_moon_direction(),
-                  welkin_moon_irradiance(p) * welkin_light_visibility(p, n, 1));
+                  welkin_moon_irradiance(p) * l.moon_visibility);
 #endif
   // Sky light: diffuse from the irradiance, specular approximated by the irradiance toward the reflection.
   vec3 f0 = mix(vec3(0.04), base_color, metallic);
-  vec3 sky_diffuse = (welkin_sky_irradiance(n) * welkin_sky_visibility(p, n) + welkin_added_irradiance(p, n)) *
-                     (1.0 - metallic) * base_color / WELKIN_PI;
+  vec3 sky_diffuse = (welkin_sky_irradiance(n) * l.sky_visibility + l.added_irradiance) * (1.0 - metallic) * base_color / WELKIN_PI;
   vec3 sky_specular = welkin_sky_irradiance(reflect(-v, n)) / WELKIN_PI * f0 * (1.0 - roughness * 0.7);
-  return c + (sky_diffuse + sky_specular * welkin_sky_visibility(p, n)) * occlusion;
+  return c + (sky_diffuse + sky_specular * l.sky_visibility) * occlusion;
 }

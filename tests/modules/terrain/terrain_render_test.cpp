@@ -11,6 +11,7 @@
 #include "cache_folder.h"
 #include "depth_readback.h"
 #include "terrain_gpu.h"
+#include "welkin/assets/glb_writer.h"
 #include "welkin/assets/gltf_loader.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/debug_content.h"
@@ -114,6 +115,105 @@ TEST_F(TerrainRender, GeometryRectangleHoldsEveryPixelOfTheTerrain) {
       EXPECT_LT(fr.geometry.y1, 36) << "the sky above the terrain is left out";
     }
   }
+}
+
+// Radiance of a metallic-roughness surface with normal n seen along -v under the default lights
+// (a sun of irradiance `sun` from l, a sky of irradiance sky (0.5 + 0.5 n.z)), in double: Karis 2013
+// (GGX, height-correlated Smith, Schlick), the sky's specular from the irradiance toward the
+// reflection, as welkin/shading.glsl states it.
+glm::dvec3 pbr_reference(const glm::dvec3& base, double metallic, double roughness, const glm::dvec3& n,
+                         const glm::dvec3& v, const glm::dvec3& l, const glm::dvec3& sun, const glm::dvec3& sky) {
+  const double pi = 3.14159265358979323846;
+  const glm::dvec3 f0 = glm::mix(glm::dvec3(0.04), base, metallic);
+  glm::dvec3 direct(0.0);
+  const double n_l = std::max(glm::dot(n, l), 0.0);
+  if (n_l > 0.0) {
+    const glm::dvec3 h = glm::normalize(v + l);
+    const double n_v = std::max(glm::dot(n, v), 1e-4), n_h = std::max(glm::dot(n, h), 0.0), v_h = std::max(glm::dot(v, h), 0.0);
+    const double a = std::max(roughness * roughness, 1e-3), a2 = a * a;
+    const double d = a2 / (pi * std::pow(n_h * n_h * (a2 - 1.0) + 1.0, 2.0));
+    const double vis = 0.5 / (n_l * std::sqrt(n_v * n_v * (1.0 - a2) + a2) + n_v * std::sqrt(n_l * n_l * (1.0 - a2) + a2));
+    const glm::dvec3 f = f0 + (1.0 - f0) * std::pow(1.0 - v_h, 5.0);
+    direct = ((1.0 - f) * (1.0 - metallic) * base / pi + d * vis * f) * sun * n_l;
+  }
+  auto sky_irradiance = [&](const glm::dvec3& d) { return sky * (0.5 + 0.5 * d.z); };
+  const glm::dvec3 r = glm::reflect(-v, n);
+  return direct + sky_irradiance(n) * (1.0 - metallic) * base / pi + sky_irradiance(r) / pi * f0 * (1.0 - roughness * 0.7);
+}
+
+// A flat ground of one material, unshadowed, under the default lights: every pixel that sees it
+// carries the CPU reference's radiance (its point from the pixel's ray, the sun's highlight ahead),
+// plus the material's own light where it has some, to half-float precision. The light is computed
+// after the surface is drawn (position from the depth, the surface's inputs packed per pixel), so
+// this is also what bounds the packing.
+TEST_F(TerrainRender, GroundShadesAsTheCpuReference) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("welkin-terrain-pbr-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  for (const glm::dvec3 emissive : {glm::dvec3(0.0), glm::dvec3(2000.0, 4000.0, 1000.0)}) {
+    assets::GlbWriter w;
+    assets::Material material;
+    material.base_color_factor = {0.45f, 0.3f, 0.15f, 1.0f};
+    material.metallic_factor = 0.2f;
+    material.roughness_factor = 0.35f;
+    material.emissive_factor = glm::vec3(emissive / 4000.0);
+    material.emissive_strength = 4000.0f;
+    assets::MeshData plane;
+    plane.name = "ground";
+    const int n = 16;
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        plane.positions.emplace_back((float(i) / n - 0.5f) * 4000.0f, 0.0f, (float(j) / n - 0.5f) * 4000.0f);
+        plane.normals.emplace_back(0.0f, 1.0f, 0.0f);
+        plane.uv0.emplace_back(float(i) / n, float(j) / n);
+      }
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const uint32_t a = uint32_t(j * (n + 1) + i), b = a + 1, c = a + uint32_t(n + 1), d = c + 1;
+        plane.indices.insert(plane.indices.end(), {a, c, b, b, c, d});
+      }
+    plane.material = w.add_material(material);
+    w.add_node("ground", w.add_mesh(plane).mesh);
+    const std::string file = (dir / "plane.glb").string();
+    w.write(file);
+
+    World world;
+    world.modules().add_static(modules::terrain_module());
+    json doc{{"welkin_scene", 1},
+             {"entities",
+              json::array({json{{"components", {{"core.Camera", {{"position_m", {0, -100, 120}}, {"pitch_deg", -25}, {"vertical_fov_deg", 60}}}}}},
+                           json{{"components", {{"core.DirectionalLight", {{"azimuth_deg", 20}, {"elevation_deg", 25}, {"illuminance_lux", 10000}}}}}},
+                           json{{"components", {{"terrain.Terrain", {{"file", file}, {"follow_curvature", false}, {"cast_shadows", false}}}}}}})}};
+    load_scene(world, doc, "ground.json");
+    Renderer r(world);
+    const int width = 48, height = 27;
+    r.render_frame({}, width, height);
+    const ImageF hdr = r.read_hdr();
+    const FrameView view = make_frame_view(*world.registry().get<Camera>(world.registry().first<Camera>()), width, height);
+    DirectionalLight light;  // the scene's: a sun dimmer than the default, its highlight within half floats
+    light.illuminance_lux = 10000.0f;
+    const glm::dvec3 l = direction_from_azimuth_elevation(20.0, 25.0);
+    const glm::dvec3 sun = glm::dvec3(light.color) * double(light.illuminance_lux), sky = sun * double(light.ambient_fraction);
+    size_t ground = 0;
+    double worst = 0.0, brightest = 0.0;
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const glm::dvec3 d = glm::dvec3(pixel_direction(view, x + 0.5, y + 0.5));
+        if (d.z > -0.02) continue;
+        const glm::dvec3 p = d * (120.0 / -d.z);  // camera-relative point on the ground
+        if (std::abs(p.x) > 1500.0 || std::abs(p.y - 100.0) > 1500.0) continue;
+        const glm::dvec3 expected = emissive + pbr_reference(glm::dvec3(0.45, 0.3, 0.15), 0.2, 0.35, glm::dvec3(0, 0, 1),
+                                                             -glm::normalize(p), l, sun, sky);
+        const float* got = hdr.pixel(x, y);
+        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(got[c] - expected[c]) / expected[c]);
+        brightest = std::max(brightest, expected.y);
+        ++ground;
+      }
+    std::printf("emissive %.0f: %zu ground pixels, worst relative difference %.2e (brightest %.0f)\n", emissive.y,
+                ground, worst, brightest);
+    EXPECT_GT(ground, size_t(width * height / 3));
+    EXPECT_LT(worst, 2e-3) << "emissive " << emissive.y;
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST_F(TerrainRender, SampleTerrainRendersWithItsMaterial) {

@@ -112,6 +112,23 @@ TEST(GltfLoader, SmallGlbLoadsWithExactCounts) {
   EXPECT_EQ(m.meshes[0].primitives[0].indices, src.indices);
 }
 
+// An emissive strength other than 1 is written (KHR_materials_emissive_strength) and read back: the
+// writer used to drop it, and the material came back 4000 times dimmer.
+TEST(GltfLoader, EmissiveStrengthIsWrittenAndRead) {
+  GlbWriter w;
+  Material mat;
+  mat.emissive_factor = {0.5f, 1.0f, 0.25f};
+  mat.emissive_strength = 4000.0f;
+  MeshData mesh = grid_mesh(2);
+  mesh.material = w.add_material(mat);
+  w.add_node("grid", w.add_mesh(mesh).mesh);
+  const Model m = load_bytes(w.glb());
+  ASSERT_EQ(m.materials.size(), 1u);
+  EXPECT_EQ(m.materials[0].emissive_factor, mat.emissive_factor);
+  EXPECT_FLOAT_EQ(m.materials[0].emissive_strength, 4000.0f);
+  EXPECT_EQ(m.extensions_used, std::vector<std::string>{"KHR_materials_emissive_strength"});
+}
+
 TEST(GltfLoader, DracoGlbLoadsWithExactCounts) {
   GlbWriter w = textured_grid(true);
   const Model m = load_bytes(w.glb());

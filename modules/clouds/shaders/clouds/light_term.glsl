@@ -19,9 +19,8 @@ layout(binding = WELKIN_UNIT_CLOUDS_SHADOW_MAP) uniform sampler2D cs_map;  // th
 float clouds_shadow_optical_depth(vec3 p) {
   int n = int(cs_up.w);
   // The cascade is chosen first and read once (a software rasteriser would read every cascade a loop
-  // passes, taken or not), by selects rather than branches: a material asks for this depth at the
-  // same point three times (the sun's visibility, the sky's, the added light), and as straight-line
-  // code the compiler computes it once.
+  // passes, taken or not), by selects rather than branches. Materials ask for it once per point
+  // (clouds_surface_light): asked by each of the three functions, it was computed three times.
   int chosen = -1;
   vec2 uv = vec2(0.0);
   for (int k = 0; k < CLOUDS_SHADOW_CASCADES; ++k) {
@@ -54,11 +53,22 @@ float clouds_sky_visibility(vec3 p, vec3 n) {
   return clouds_diffuse_transmittance(clouds_shadow_optical_depth(p) * cs_light.w);
 }
 
-// The sunlight the deck scatters down rather than lets through directly, spread like an overcast
-// sky (brighter overhead: the cosine-weighted irradiance of a uniform sky on a tilted plane).
-vec3 clouds_added_irradiance(vec3 p, vec3 n) {
-  float tau = clouds_shadow_optical_depth(p);
-  if (tau <= 0.0) return vec3(0.0);
+// The sunlight the deck scatters down rather than lets through directly (optical depth tau toward
+// the sun), spread like an overcast sky (brighter overhead: the cosine-weighted irradiance of a
+// uniform sky on a tilted plane). None without cloud: the two transmittances are then both 1.
+vec3 clouds_scattered_down(vec3 sun_irradiance, float tau, vec3 n) {
   float diffuse = max(clouds_diffuse_transmittance(tau) - exp(-tau), 0.0);
-  return welkin_sun_irradiance(p) * (cs_light.w * diffuse * (0.5 + 0.5 * dot(n, cs_up.xyz)));
+  return sun_irradiance * (cs_light.w * diffuse * (0.5 + 0.5 * dot(n, cs_up.xyz)));
+}
+
+vec3 clouds_added_irradiance(vec3 p, vec3 n) {
+  return clouds_scattered_down(welkin_sun_irradiance(p), clouds_shadow_optical_depth(p), n);
+}
+
+// The three at a surface point from one lookup of the shadow map.
+void clouds_surface_light(vec3 p, vec3 n, inout WelkinSurfaceLight l) {
+  float tau = clouds_shadow_optical_depth(p);
+  l.sun_visibility *= exp(-tau);
+  l.sky_visibility *= clouds_diffuse_transmittance(tau * cs_light.w);
+  l.added_irradiance += clouds_scattered_down(l.sun_irradiance, tau, n);
 }

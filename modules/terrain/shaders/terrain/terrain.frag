@@ -1,11 +1,13 @@
-// Metallic-roughness PBR (glTF) lit by the light environment (welkin/lighting.glsl: sources, the
-// cascaded shadows and any other module's terms); aerial perspective is added afterwards over the
-// depth buffer.
-#include "welkin/shading.glsl"
+// The terrain's surface, for its light pass (terrain/light.frag): a glTF metallic-roughness
+// material's inputs written per pixel, its own light (emissive) into the frame. Shading once per
+// pixel afterwards instead of here: a software rasteriser runs this shader for whole 2x2 quads and
+// blocks around triangles of a pixel or two, several times the pixels the terrain covers.
+#include "terrain/surface.glsl"
 in vec3 v_position;
 in vec3 v_normal;
 in vec2 v_uv;
-out vec4 o_color;
+layout(location = 0) out vec4 o_emissive;  // masked off while no drawn material has any
+layout(location = 1) out uvec4 o_surface;
 uniform vec4 u_base_color_factor;
 uniform float u_metallic, u_roughness;
 uniform vec3 u_emissive;
@@ -27,5 +29,6 @@ void main() {
   if (u_has_occlusion == 1) occlusion = texture(u_occlusion, uv).r;
   vec3 n = normalize(v_normal);
   if (!gl_FrontFacing) n = -n;
-  o_color = vec4(shade_pbr(base.rgb, metallic, clamp(roughness, 0.03, 1.0), occlusion, n, v_position) + u_emissive, 1.0);
+  o_emissive = vec4(u_emissive, 1.0);
+  o_surface = terrain_pack_surface(TerrainSurface(base.rgb, occlusion, n, clamp(roughness, 0.03, 1.0), metallic));
 }

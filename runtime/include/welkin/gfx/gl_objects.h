@@ -50,7 +50,7 @@ using GlProgramName = GlHandle<gl_delete::program>;
 using GlVertexArrayName = GlHandle<gl_delete::vertex_array>;
 using GlQueryName = GlHandle<gl_delete::query>;
 
-enum class TextureFormat { rgba8, rgba16f, rgba32f, r8, r32f, rg32f, depth32f };
+enum class TextureFormat { rgba8, rgba16f, rgba32f, rgba32ui, r8, r32f, rg32f, depth32f };
 GLenum gl_internal_format(TextureFormat f);
 const char* texture_format_name(TextureFormat f);
 

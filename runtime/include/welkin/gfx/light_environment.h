@@ -37,6 +37,13 @@ struct LightTerm {
   // vec3 F(vec3 p, vec3 n): diffuse irradiance a term redirects onto p (sunlight a cloud deck
   // scatters down, say); summed. Terms may call the composed welkin_* light functions.
   std::string added_irradiance;
+  // void F(vec3 p, vec3 n, inout WelkinSurfaceLight light): the three above together at a surface
+  // point, for a term whose three share their work (one shadow-map lookup): welkin_surface_light,
+  // what materials call, then does that work once per point instead of once per function (shader
+  // compilers do not merge the repeated lookups, and a software rasteriser pays for each). It
+  // multiplies the visibilities and adds to the added irradiance as the three would; `light` holds
+  // the sun's irradiance at p. A term without it is asked through its three functions.
+  std::string surface_light;
   // vec3 F(vec3 p, out vec3 transmittance): light added between p and the camera, and the
   // transmittance of that path (one provider; materials that write no depth call it).
   std::string aerial_perspective;
