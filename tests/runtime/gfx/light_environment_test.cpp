@@ -49,6 +49,35 @@ TEST(LightEnvironment, VisibilitiesMultiplyAndTermsComeAndGo) {
   EXPECT_NE(s.find("vec3 welkin_sun_irradiance(vec3 p) { return vec3(0.0); }"), std::string::npos);
 }
 
+// welkin_surface_light asks each term once: a term naming a surface function through it alone, the
+// others through their three functions (the moon's visibility only while the moon lights surfaces).
+TEST(LightEnvironment, SurfaceLightAsksEachTermOnce) {
+  LightEnvironment env;
+  env.add({.name = "a", .include = "a.glsl", .light_visibility = "a_vis", .sky_visibility = "a_sky"});
+  env.add({.name = "b", .include = "b.glsl", .light_visibility = "b_vis", .sky_visibility = "b_sky",
+           .added_irradiance = "b_add", .surface_light = "b_surface"});
+  const std::string s = env.composed_source();
+  const size_t at = s.find("WelkinSurfaceLight welkin_surface_light(vec3 p, vec3 n) {");
+  ASSERT_NE(at, std::string::npos) << s;
+  const std::string body = s.substr(at, s.find("\n}\n", at) - at);
+  EXPECT_NE(body.find("WelkinSurfaceLight(welkin_sun_irradiance(p), 1.0, 1.0, 1.0, vec3(0.0))"), std::string::npos) << body;
+  EXPECT_EQ(count(body, "a_vis(p, n, 0)"), 1u) << body;
+  EXPECT_NE(body.find("#if WELKIN_MOON_LIGHT\n  l.moon_visibility *= a_vis(p, n, 1);\n#endif"), std::string::npos) << body;
+  EXPECT_EQ(count(body, "a_sky(p, n)"), 1u);
+  EXPECT_EQ(count(body, "b_surface(p, n, l);"), 1u);
+  EXPECT_EQ(body.find("b_vis"), std::string::npos) << "b's three are asked through its surface function";
+  EXPECT_EQ(body.find("b_sky"), std::string::npos);
+  EXPECT_EQ(body.find("b_add"), std::string::npos);
+  // The three stay for what samples one of them alone (a march through shadowed air).
+  EXPECT_NE(s.find("v *= b_vis(p, n, light);"), std::string::npos);
+  EXPECT_LT(s.find("struct WelkinSurfaceLight"), s.find("#include \"a.glsl\"")) << "terms may name the struct";
+  // A term with a surface function alone is included and shades surfaces.
+  LightEnvironment only;
+  only.add({.name = "c", .include = "c.glsl", .surface_light = "c_surface"});
+  EXPECT_TRUE(only.shades_surfaces());
+  EXPECT_NE(only.composed_source().find("#include \"c.glsl\""), std::string::npos);
+}
+
 // The environment's state follows every term's, and the composed source; a term that reports none
 // leaves the environment without one (nothing may then be kept between frames). The moon's switch
 // is in the composed source.

@@ -1,8 +1,9 @@
 #pragma once
 // The terrain's surface at a pixel, between its two passes (terrain.frag writes it, light.frag reads
-// it), packed in one RGBA32UI texel: base colour and occlusion as half floats, the normal
-// octahedral in two 16-bit signed normalized numbers (within 5e-5 rad), roughness and metallic as
-// half floats. Roughness is at least 0.03 where the terrain wrote: 0 marks no terrain.
+// it), packed in one RGBA32UI texel: base colour, occlusion, roughness and metallic as 16-bit
+// unsigned normalized numbers (glTF keeps them all within [0, 1]), the normal octahedral in two
+// 16-bit signed normalized ones (within 5e-5 rad). Roughness is at least 0.03 where the terrain
+// wrote: 0 marks no terrain.
 struct TerrainSurface {
   vec3 base_color;
   float occlusion;
