@@ -423,9 +423,11 @@ void terrain_system(SystemContext& sc) {
           prog.set("u_has_base_color", m.base_color ? 1 : 0);
           prog.set("u_has_metallic_roughness", m.metallic_roughness ? 1 : 0);
           prog.set("u_has_occlusion", m.occlusion ? 1 : 0);
+          prog.set("u_has_emissive", m.emissive_map ? 1 : 0);
           glBindTextureUnit(0, m.base_color.id());
           glBindTextureUnit(1, m.metallic_roughness.id());
           glBindTextureUnit(2, m.occlusion.id());
+          glBindTextureUnit(3, m.emissive_map.id());
           bound = d.material;
         }
         draw_elements(d);

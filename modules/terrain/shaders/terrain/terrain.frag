@@ -12,10 +12,11 @@ uniform vec4 u_base_color_factor;
 uniform float u_metallic, u_roughness;
 uniform vec3 u_emissive;
 uniform mat3 u_uv_transform;
-uniform int u_has_base_color, u_has_metallic_roughness, u_has_occlusion;
+uniform int u_has_base_color, u_has_metallic_roughness, u_has_occlusion, u_has_emissive;
 layout(binding = 0) uniform sampler2D u_base_color;
 layout(binding = 1) uniform sampler2D u_metallic_roughness;
 layout(binding = 2) uniform sampler2D u_occlusion;
+layout(binding = 3) uniform sampler2D u_emissive_map;
 void main() {
   vec2 uv = (u_uv_transform * vec3(v_uv, 1.0)).xy;
   vec4 base = u_base_color_factor;
@@ -29,6 +30,8 @@ void main() {
   if (u_has_occlusion == 1) occlusion = texture(u_occlusion, uv).r;
   vec3 n = normalize(v_normal);
   if (!gl_FrontFacing) n = -n;
-  o_emissive = vec4(u_emissive, 1.0);
+  vec3 emissive = u_emissive;
+  if (u_has_emissive == 1) emissive *= texture(u_emissive_map, uv).rgb;
+  o_emissive = vec4(emissive, 1.0);
   o_surface = terrain_pack_surface(TerrainSurface(base.rgb, occlusion, n, clamp(roughness, 0.03, 1.0), metallic));
 }
