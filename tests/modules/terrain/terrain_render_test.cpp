@@ -145,9 +145,8 @@ glm::dvec3 pbr_reference(const glm::dvec3& base, double metallic, double roughne
 // A flat ground of one material, unshadowed, under the default lights: every pixel that sees it
 // carries the CPU reference's radiance (its point from the pixel's ray, the sun's highlight ahead),
 // plus the material's own light where it has some (a factor, or a factor times a texture), to
-// half-float precision. The light is computed
-// after the surface is drawn (position from the depth, the surface's inputs packed per pixel), so
-// this is also what bounds the packing.
+// half-float precision. The light is computed after the surface is drawn (position from the depth,
+// the surface's inputs packed per pixel), so this is also what bounds the packing.
 TEST_F(TerrainRender, GroundShadesAsTheCpuReference) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("welkin-terrain-pbr-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
@@ -226,8 +225,8 @@ TEST_F(TerrainRender, GroundShadesAsTheCpuReference) {
     std::printf("emissive %.0f%s: %zu ground pixels, worst relative difference %.2e (brightest %.0f)\n", emissive.y,
                 textured ? " (textured)" : "", ground, worst, brightest);
     EXPECT_GT(ground, size_t(width * height / 3));
-    // With the texture, the driver's sRGB decode adds its own error: llvmpipe's reads the blue 206 as
-    // 0.27% less than the exact curve.
+    // With the texture, its light is 0.27% low in blue: the texel as the GL driver decodes (sRGB) and
+    // filters it, which the reference takes from the exact curve.
     EXPECT_LT(worst, textured ? 4e-3 : 2e-3) << "emissive " << emissive.y << (textured ? " (textured)" : "");
   }
   std::filesystem::remove_all(dir);
