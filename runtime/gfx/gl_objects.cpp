@@ -55,6 +55,11 @@ Texture::Texture(const TextureDesc& desc) : desc_(desc) {
   check_gl("texture creation");
 }
 
+void copy_texture(const Texture& from, const Texture& to) {
+  glCopyImageSubData(from.id(), GL_TEXTURE_2D, 0, 0, 0, 0, to.id(), GL_TEXTURE_2D, 0, 0, 0, 0, to.desc().width,
+                     to.desc().height, 1);
+}
+
 Framebuffer::Framebuffer(const Texture* color, const Texture* depth) {
   const Texture* colors[1] = {color};
   attach(colors, color ? 1 : 0, depth);

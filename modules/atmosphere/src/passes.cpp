@@ -489,12 +489,8 @@ void background_system(SystemContext& sc) {
       [gp, rcp, env, t, kept, keep, inputs = std::move(inputs), pixel_angle, sky, open_sky, discs, any_disc,
        draw_stars, stars_draw](PassContext& pc) {
         const Texture &color = pc.texture(t.color), &kept_sky = pc.texture(kept);
-        auto copy = [&](const Texture& from, const Texture& to) {
-          glCopyImageSubData(from.id(), GL_TEXTURE_2D, 0, 0, 0, 0, to.id(), GL_TEXTURE_2D, 0, 0, 0, 0,
-                             to.desc().width, to.desc().height, 1);
-        };
         if (keep) {
-          copy(kept_sky, color);
+          copy_texture(kept_sky, color);
           return;
         }
         Framebuffer fb(&color, nullptr);
@@ -517,7 +513,7 @@ void background_system(SystemContext& sc) {
         ++gp->sky_draws;
         // Recorded only once drawn (a failed frame draws again); kept when drawn twice alike.
         if (!inputs.empty() && inputs == gp->drawn_sky_inputs) {
-          copy(color, kept_sky);
+          copy_texture(color, kept_sky);
           gp->kept_sky_inputs = inputs;
         }
         gp->drawn_sky_inputs = inputs;

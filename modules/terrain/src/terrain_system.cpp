@@ -167,11 +167,6 @@ std::optional<uint64_t> view_inputs(const std::vector<Placed>& placed, const Ren
   return h;
 }
 
-void copy_texture(const Texture& from, const Texture& to) {
-  glCopyImageSubData(from.id(), GL_TEXTURE_2D, 0, 0, 0, 0, to.id(), GL_TEXTURE_2D, 0, 0, 0, 0, to.desc().width,
-                     to.desc().height, 1);
-}
-
 }  // namespace
 
 glm::dvec3 anchor_position(World& world, const Terrain& t) {

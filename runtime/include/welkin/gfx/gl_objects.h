@@ -79,6 +79,10 @@ class Texture {
   GlTextureName name_;
 };
 
+// Copies level 0 of a 2D texture into another of the same size and format (what a pass keeps of
+// an earlier frame, and puts back).
+void copy_texture(const Texture& from, const Texture& to);
+
 // Framebuffer with one colour attachment (or several, drawn to by location) and an optional depth
 // attachment.
 class Framebuffer {
