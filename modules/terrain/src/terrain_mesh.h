@@ -17,6 +17,7 @@ namespace welkin::terrain {
 struct LodRange {
   uint32_t first_index = 0, index_count = 0;
   float error_m = 0.0f;  // geometric error of this level against the full mesh, in metres
+  uint32_t vertex_count = 0;  // the level uses the chunk's first vertex_count vertices, and only those
 };
 
 struct Chunk {
@@ -55,7 +56,7 @@ TerrainMesh build_terrain_mesh(const assets::Model& model, const Terrain& settin
 // that finds it neither decodes the geometry (Draco) nor refines or simplifies it. Bump
 // kMeshCacheVersion when what build_terrain_mesh makes changes: its own code, or the loader's
 // conversion or refinement (assets) that it builds on.
-inline constexpr int kMeshCacheVersion = 3;
+inline constexpr int kMeshCacheVersion = 4;
 std::string mesh_cache_key(uint64_t content_hash, const Terrain& settings);
 // Two entries: the counts (fixed size), then the arrays and chunks they size.
 std::string mesh_counts_bytes(const TerrainMesh& mesh);

@@ -84,12 +84,14 @@ struct Draw {
   uint32_t first, count;
   int material;
   uint32_t base_vertex;
+  uint32_t vertex_count;  // the level's vertices: the first of its chunk's
 };
 
-// One chunk's level: 16-bit indices counted from the chunk's first vertex.
+// One chunk's level: 16-bit indices counted from the chunk's first vertex, and the range of vertices
+// they use (a rasteriser that shades a draw's whole range then shades only the level's).
 void draw_elements(const Draw& d) {
-  glDrawElementsBaseVertex(GL_TRIANGLES, GLsizei(d.count), GL_UNSIGNED_SHORT,
-                           reinterpret_cast<const void*>(uintptr_t(d.first) * sizeof(uint16_t)), GLint(d.base_vertex));
+  glDrawRangeElementsBaseVertex(GL_TRIANGLES, 0, std::max(d.vertex_count, 1u) - 1, GLsizei(d.count), GL_UNSIGNED_SHORT,
+                                reinterpret_cast<const void*>(uintptr_t(d.first) * sizeof(uint16_t)), GLint(d.base_vertex));
 }
 
 // A chunk that casts shadows, with its camera-relative bounds (culled against each cascade).
@@ -254,7 +256,7 @@ void terrain_system(SystemContext& sc) {
       const PixelRect pixels = screen_rect(view, lo, hi);
       covered.include(pixels);
       sc.targets->add_geometry(pixels, fnv1a_64_of(l.first_index, fnv1a_64_of(l.index_count, placement)));
-      p.draws.push_back({l.first_index, l.index_count, material, c.base_vertex});
+      p.draws.push_back({l.first_index, l.index_count, material, c.base_vertex, l.vertex_count});
       p.triangles += l.index_count / 3;
     }
     placed->push_back(std::move(p));
@@ -294,7 +296,7 @@ void terrain_system(SystemContext& sc) {
           const Chunk& c = p.gpu->mesh.chunks[k.chunk];
           const LodRange& l = c.lods[size_t(select_lod(c, 1.0, texels_per_m, p.lod_pixel_error))];
           const int material = c.material < 0 ? int(p.gpu->materials.size()) - 1 : c.material;
-          p.shadow_draws[size_t(i)].push_back({l.first_index, l.index_count, material, c.base_vertex});
+          p.shadow_draws[size_t(i)].push_back({l.first_index, l.index_count, material, c.base_vertex, l.vertex_count});
         }
       }
     shadow_handle = sc.graph->import("terrain.shadow_atlas", atlas);

@@ -1,6 +1,7 @@
 // Chunking and levels of detail of terrain meshes (CPU only).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -103,6 +104,33 @@ TEST(TerrainMesh, ChunksDrawTheSourceTrianglesFromTheirOwnVertices) {
   EXPECT_EQ(drawn, src.indices.size() / 3);
 }
 
+// Each level draws from a prefix of its chunk's vertices, and uses every vertex of it: the coarsest
+// level's first, then those each finer level adds. A draw's vertex range (vertex_count) then holds
+// only the level's own vertices, the coarse levels a small part of the chunk's.
+TEST(TerrainMesh, EachLevelDrawsFromAPrefixOfItsChunksVertices) {
+  Terrain s;
+  s.chunks_per_side = 2;
+  s.lod_levels = 4;
+  const TerrainMesh m = build_terrain_mesh(grid_model(64, 1000.0f), s);
+  for (size_t c = 0; c < m.chunks.size(); ++c) {
+    const Chunk& chunk = m.chunks[c];
+    const size_t chunk_vertices = (c + 1 < m.chunks.size() ? m.chunks[c + 1].base_vertex : m.positions.size()) - chunk.base_vertex;
+    ASSERT_GE(chunk.lods.size(), 3u);
+    EXPECT_EQ(chunk.lods[0].vertex_count, chunk_vertices);
+    for (size_t l = 0; l < chunk.lods.size(); ++l) {
+      const LodRange& level = chunk.lods[l];
+      std::vector<bool> used(chunk_vertices, false);
+      for (uint32_t k = level.first_index; k < level.first_index + level.index_count; ++k) {
+        ASSERT_LT(m.indices[k], level.vertex_count) << "chunk " << c << " level " << l;
+        used[m.indices[k]] = true;
+      }
+      EXPECT_EQ(std::count(used.begin(), used.end(), true), level.vertex_count) << "chunk " << c << " level " << l;
+      if (l > 0) EXPECT_LT(level.vertex_count, chunk.lods[l - 1].vertex_count);
+    }
+    EXPECT_LT(chunk.lods.back().vertex_count * 8, chunk_vertices) << "the coarsest level: a small part";
+  }
+}
+
 // A cell whose triangles use more vertices than 16-bit indices reach is split into chunks.
 TEST(TerrainMesh, CellsWithMoreVerticesThanSixteenBitsReachAreSplit) {
   Terrain s;
@@ -178,6 +206,7 @@ TEST(TerrainMesh, CacheBytesGiveBackTheSameMesh) {
       EXPECT_EQ(back->chunks[c].lods[l].first_index, m.chunks[c].lods[l].first_index);
       EXPECT_EQ(back->chunks[c].lods[l].index_count, m.chunks[c].lods[l].index_count);
       EXPECT_EQ(back->chunks[c].lods[l].error_m, m.chunks[c].lods[l].error_m);
+      EXPECT_EQ(back->chunks[c].lods[l].vertex_count, m.chunks[c].lods[l].vertex_count);
     }
     EXPECT_EQ(back->chunks[c].base_vertex, m.chunks[c].base_vertex);
   }
