@@ -18,6 +18,8 @@ void describe(TypeBuilder<Camera>& t) {
   t.field("ev100", &Camera::ev100).unit("EV").range(-12, 24).tooltip("Exposure value at ISO 100 (daylight ~15, sunset ~12, moonlight ~-2)");
   t.field("exposure", &Camera::exposure).range(0, 1e6).tooltip("Linear exposure multiplier (manual mode)");
   t.field("tonemapper", &Camera::tonemapper).values({{"aces", 0}, {"agx", 1}, {"linear", 2}}).tooltip("Tone-mapping curve");
+  t.field("moving_render_scale", &Camera::moving_render_scale).range(0.25, 1)
+      .tooltip("While the view moves: fraction of the width and height rendered (upscaled); still views render whole");
 }
 
 float exposure_from_ev100(float ev100) { return 1.0f / (1.2f * std::exp2(ev100)); }

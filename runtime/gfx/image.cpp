@@ -150,6 +150,24 @@ ImageU8 read_png(const std::string& path, int max_side) {
   return img;
 }
 
+ImageDifference image_difference(const ImageU8& a, const ImageU8& b) {
+  if (a.width != b.width || a.height != b.height || a.rgba.size() != b.rgba.size())
+    throw Error(ErrorInfo{.expected = "two images of one size",
+                          .found = std::to_string(a.width) + "x" + std::to_string(a.height) + " and " +
+                                   std::to_string(b.width) + "x" + std::to_string(b.height)});
+  ImageDifference d;
+  double squares = 0.0, sum = 0.0;
+  size_t n = 0;
+  for (size_t i = 0; i < a.rgba.size(); ++i) {
+    if (i % 4 == 3) continue;
+    const int e = std::abs(int(a.rgba[i]) - int(b.rgba[i]));
+    squares += double(e) * e, sum += e, d.max = std::max(d.max, e), ++n;
+  }
+  d.mean = n ? sum / double(n) : 0.0;
+  d.psnr_db = squares == 0.0 ? INFINITY : 10.0 * std::log10(255.0 * 255.0 / (squares / double(n)));
+  return d;
+}
+
 uint8_t linear_to_srgb8(float v) {
   v = std::clamp(v, 0.0f, 1.0f);
   float s = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;

@@ -2,6 +2,8 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "welkin/core/error.h"
@@ -59,13 +61,24 @@ FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height
   Entity cam = reg.first<Camera>();
   if (cam.is_null() && !view_camera)
     throw Error(ErrorInfo{.expected = "an entity with a core.Camera component", .found = "none", .message = "the scene has no camera"});
-  ctx_.view = make_frame_view(view_camera ? *view_camera : *reg.get<Camera>(cam), width, height);
+  const Camera& camera = view_camera ? *view_camera : *reg.get<Camera>(cam);
+  // A moving view is rendered at the camera's moving_render_scale and upscaled; a still one whole, and
+  // the systems then keep what they drew. Frames rendered alone are always whole.
+  const FrameView whole = make_frame_view(camera, width, height);
+  const bool moved = last_view_ && last_view_->width == width && last_view_->height == height &&
+                     (last_view_->view_projection != whole.view_projection || last_view_->camera_position_m != whole.camera_position_m);
+  last_view_ = whole;
+  const float scale = moved && !frame.alone ? camera.moving_render_scale : 1.0f;
+  const int rendered_width = std::clamp(int(std::lround(width * double(scale))), 1, width);
+  const int rendered_height = std::clamp(int(std::lround(height * double(scale))), 1, height);
+  ctx_.view = rendered_width == width && rendered_height == height ? whole : make_frame_view(camera, rendered_width, rendered_height);
+  result.rendered_width = rendered_width, result.rendered_height = rendered_height;
 
   const TextureFormat hdr_format = ctx_.radiance_format();
-  if (!hdr_ || hdr_->desc().width != width || hdr_->desc().height != height || hdr_->desc().format != hdr_format) {
-    hdr_ = std::make_unique<Texture>(TextureDesc{.width = width, .height = height, .format = hdr_format});
+  if (!hdr_ || hdr_->desc().width != rendered_width || hdr_->desc().height != rendered_height || hdr_->desc().format != hdr_format)
+    hdr_ = std::make_unique<Texture>(TextureDesc{.width = rendered_width, .height = rendered_height, .format = hdr_format});
+  if (!ldr_ || ldr_->desc().width != width || ldr_->desc().height != height)
     ldr_ = std::make_unique<Texture>(TextureDesc{.width = width, .height = height, .format = TextureFormat::rgba8, .linear_filter = false});
-  }
 
   RenderGraph graph;
   FrameTargets targets;
@@ -73,7 +86,8 @@ FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height
   ResourceHandle output = graph.import("output", *ldr_);
   graph.add_pass("clear", [&](PassBuilder& b) {
     b.write(targets.color);
-    targets.depth = b.create("scene_depth", TextureDesc{.width = width, .height = height, .format = TextureFormat::depth32f, .linear_filter = false});
+    targets.depth = b.create("scene_depth", TextureDesc{.width = rendered_width, .height = rendered_height,
+                                                         .format = TextureFormat::depth32f, .linear_filter = false});
   }, [&, targets_copy = &targets](PassContext& pc) {
     Framebuffer fb(&pc.texture(targets_copy->color), &pc.texture(targets_copy->depth));
     fb.bind();
@@ -93,6 +107,7 @@ FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height
   result.geometry = targets.geometry;
 
   const FrameView& view = ctx_.view;
+  const bool upscale = rendered_width != width || rendered_height != height;
   graph.add_pass("tonemap", [&](PassBuilder& b) {
     b.read(targets.color);
     b.write(output);
@@ -102,11 +117,13 @@ FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
     const Program& p = ctx_.shaders.graphics("fullscreen.vert", "tonemap.frag",
-                                             {{"TONEMAPPER", std::to_string(int(view.tonemapper))}});
+                                             {{"TONEMAPPER", std::to_string(int(view.tonemapper))},
+                                              {"TONEMAP_UPSCALE", upscale ? "1" : "0"}});
     p.use();
     glBindTextureUnit(0, pc.texture(targets.color).id());
     p.set("u_hdr", 0);
     p.set("u_exposure", view.exposure);
+    if (upscale) p.set("u_output_size", glm::vec2(width, height));
     ctx_.draw_fullscreen_triangle();
   });
   graph.present(output);

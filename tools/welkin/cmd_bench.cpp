@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
@@ -51,6 +52,10 @@ int run_bench(const BenchOptions& o) {
   std::map<std::string, std::vector<double>> pass_ms, pass_ratio;
   // Each path (volumetric clouds, mesh clusters, god rays, ...) is a system: the sum of its passes per frame.
   std::map<std::string, std::vector<double>> system_ms, system_ratio;
+  // A moving view rendered smaller (core.Camera/moving_render_scale): its size, and the last one's
+  // output against the same view rendered whole (the next, still frame), after the timed frames.
+  int rendered_width = w, rendered_height = h;
+  std::optional<ImageDifference> moving_error;
   for (int i = 0; i < o.frames; ++i) {
     FrameResult fr;
     frame_ms.push_back(finished_ms([&] { fr = renderer.render_frame({.time_s = i / 30.0, .dt_s = 1 / 30.0, .index = uint64_t(i + 3)}, w, h); }));
@@ -68,6 +73,12 @@ int run_bench(const BenchOptions& o) {
     for (const auto& [system, ms] : by_system) {
       system_ms[system].push_back(ms);
       system_ratio[system].push_back(ms / copy_ms.back());
+    }
+    if (fr.rendered_width != w || fr.rendered_height != h) rendered_width = fr.rendered_width, rendered_height = fr.rendered_height;
+    if (i + 1 == o.frames && (fr.rendered_width != w || fr.rendered_height != h)) {
+      const ImageU8 moving = renderer.read_output();
+      renderer.render_frame({.time_s = i / 30.0, .dt_s = 0.0, .index = uint64_t(i + 4)}, w, h);
+      moving_error = image_difference(moving, renderer.read_output());
     }
     if (o.turn_deg != 0.0) {
       Registry& reg = world->registry();
@@ -92,6 +103,9 @@ int run_bench(const BenchOptions& o) {
       systems.push_back({{"name", n}, {"median_ms", median(system_ms[n])}, {"ratio_to_copy", median(system_ratio[n])},
                          {"frames", system_ms[n].size()}});
     j["systems"] = systems;
+    j["moving_rendered_width"] = rendered_width, j["moving_rendered_height"] = rendered_height;
+    if (moving_error)
+      j["moving_against_whole"] = {{"psnr_db", moving_error->psnr_db}, {"mean_steps", moving_error->mean}, {"max_steps", moving_error->max}};
     std::printf("%s\n", j.dump(2).c_str());
     return kOk;
   }
@@ -100,6 +114,13 @@ int run_bench(const BenchOptions& o) {
   for (const auto& n : order) std::printf("%-30s %10.3f %10.2f\n", n.c_str(), median(pass_ms[n]), median(pass_ratio[n]));
   std::printf("%-30s %10.3f %10.2f\n", "frame (finished)", frame, ratio);
   std::printf("%-30s %10.3f %10.2f\n", "full-screen copy (floor)", floor, 1.0);
+  if (rendered_width != w || rendered_height != h) {
+    std::printf("moving frames rendered at %dx%d (core.Camera/moving_render_scale)", rendered_width, rendered_height);
+    if (moving_error)
+      std::printf("; the last against the same view rendered whole: PSNR %.1f dB, mean %.2f, max %d of 255",
+                  moving_error->psnr_db, moving_error->mean, moving_error->max);
+    std::printf("\n");
+  }
   std::printf("\n%-30s %10s %10s\n", "system (its passes)", "median ms", "x copy");
   for (const auto& n : system_order) std::printf("%-30s %10.3f %10.2f\n", n.c_str(), median(system_ms[n]), median(system_ratio[n]));
   return kOk;

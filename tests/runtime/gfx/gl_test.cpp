@@ -183,6 +183,71 @@ TEST_F(Gl, EachToneCurveIsItsOwnVariant) {
   EXPECT_NE(outputs[1].rgba, outputs[2].rgba);
 }
 
+// A moving view renders at the camera's moving_render_scale and its output is that frame read
+// bilinearly at each output pixel's centre (against a CPU bilinear read of the HDR frame, to one step
+// of 8 bits); a still view, a frame rendered alone and a scale of 1 render whole, the still frame bit
+// for bit what a fresh renderer draws.
+TEST_F(Gl, MovingViewRendersAtItsScaleAndIsUpscaled) {
+  auto debug_world = [](World& world) {
+    load_scene_file(world, WELKIN_SOURCE_DIR "/assets/scenes/debug.json");
+    Registry& reg = world.registry();
+    Camera& camera = *reg.get<Camera>(reg.first<Camera>());
+    camera.exposure_mode = ExposureMode::manual, camera.exposure = 3e-5f, camera.tonemapper = Tonemapper::linear;
+    camera.moving_render_scale = 0.5f;
+    return &camera;
+  };
+  World world;
+  Camera& camera = *debug_world(world);
+  Renderer r(world);
+  EXPECT_EQ(r.render_frame({.index = 1}, 64, 36).rendered_width, 64) << "no earlier view: whole";
+  camera.heading_deg += 1.0f;
+  const FrameResult moving = r.render_frame({.index = 2}, 64, 36);
+  EXPECT_EQ(moving.rendered_width, 32);
+  EXPECT_EQ(moving.rendered_height, 18);
+  const ImageF hdr = r.read_hdr();
+  const ImageU8 out = r.read_output();
+  ASSERT_EQ(hdr.width, 32);
+  ASSERT_EQ(out.width, 64);
+  ASSERT_EQ(out.height, 36);
+  int off = 0, edges = 0;
+  for (int y = 0; y < 36; ++y)
+    for (int x = 0; x < 64; ++x) {
+      // The output pixel's centre in the HDR frame's texels (rows top-down in both), clamped at the edges.
+      const double px = (x + 0.5) * 32.0 / 64.0 - 0.5, py = (y + 0.5) * 18.0 / 36.0 - 0.5;
+      const int x0 = int(std::floor(px)), y0 = int(std::floor(py));
+      const double fx = px - x0, fy = py - y0;
+      auto at = [&](int i, int j, int c) { return double(hdr.pixel(std::clamp(i, 0, 31), std::clamp(j, 0, 17))[c]); };
+      for (int c = 0; c < 3; ++c) {
+        const double v = (at(x0, y0, c) * (1 - fx) + at(x0 + 1, y0, c) * fx) * (1 - fy) + (at(x0, y0 + 1, c) * (1 - fx) + at(x0 + 1, y0 + 1, c) * fx) * fy;
+        const int expected = linear_to_srgb8(std::clamp(float(v * 3e-5), 0.0f, 1.0f));
+        off += std::abs(int(out.pixel(x, y)[c]) - expected) > 1;
+        edges += std::abs(int(out.pixel(x, y)[c]) - int(linear_to_srgb8(std::clamp(float(at(x / 2, y / 2, c) * 3e-5), 0.0f, 1.0f)))) > 1;
+      }
+    }
+  EXPECT_EQ(off, 0);
+  EXPECT_GT(edges, 50) << "bilinear, not the nearest texel: the two differ across the shapes' edges";
+
+  // Still: whole, the same bytes as a fresh renderer's frame of this view.
+  EXPECT_EQ(r.render_frame({.index = 3}, 64, 36).rendered_width, 64);
+  World fresh_world;
+  Camera& fresh_camera = *debug_world(fresh_world);
+  fresh_camera.heading_deg = camera.heading_deg;
+  Renderer fresh(fresh_world);
+  fresh.render_frame({.index = 1}, 64, 36);
+  EXPECT_EQ(r.read_output().rgba, fresh.read_output().rgba);
+  // Alone (`welkin render`, sequences) or at scale 1: whole while moving too.
+  camera.heading_deg += 1.0f;
+  EXPECT_EQ(r.render_frame({.index = 4, .alone = true}, 64, 36).rendered_width, 64);
+  camera.heading_deg += 1.0f;
+  camera.moving_render_scale = 1.0f;
+  EXPECT_EQ(r.render_frame({.index = 5}, 64, 36).rendered_width, 64);
+  camera.moving_render_scale = 0.25f;
+  camera.position_m.x += 1.0;  // moving without turning
+  const FrameResult quarter = r.render_frame({.index = 6}, 64, 36);
+  EXPECT_EQ(quarter.rendered_width, 16);
+  EXPECT_EQ(quarter.rendered_height, 9);
+}
+
 // The rectangle a box can cover holds the projection of every point of the box in front of the near
 // plane (points on its corners, edges and faces, and inside), cut to the frame; boxes behind the
 // camera give nothing, one around the camera the whole frame.

@@ -25,6 +25,10 @@ struct Camera {
   float ev100 = 14.0f;      // sunny-16 daylight is about 15
   float exposure = 1.0f;    // multiplier, used when exposure_mode is manual
   Tonemapper tonemapper = Tonemapper::aces;
+  // While the view moves (a frame not rendered alone whose view differs from the last frame's): the
+  // fraction of the output's width and height rendered, upscaled to it. A still view, and every frame
+  // rendered alone (`welkin render`, sequences), is rendered whole. 1: always whole.
+  float moving_render_scale = 1.0f;
 };
 void describe(TypeBuilder<Camera>& t);
 

@@ -42,6 +42,15 @@ void write_exr(const std::string& path, const ImageF& image, ExrPrecision precis
 ImageU8 read_png(const std::string& path, int max_side = kMaxImageSide);
 ImageF read_exr(const std::string& path);
 
+// How far two 8-bit images of one size are apart over their colour channels (alpha aside): the
+// peak signal-to-noise ratio in dB (infinite when equal), the mean and the largest difference in steps.
+struct ImageDifference {
+  double psnr_db = 0.0, mean = 0.0;
+  int max = 0;
+};
+// Throws Error when the sizes differ.
+ImageDifference image_difference(const ImageU8& a, const ImageU8& b);
+
 // Linear [0,1] to sRGB-encoded 8-bit, with the exact sRGB transfer function.
 uint8_t linear_to_srgb8(float linear);
 float srgb8_to_linear(uint8_t encoded);

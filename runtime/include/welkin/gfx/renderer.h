@@ -58,6 +58,7 @@ struct FrameResult {
   std::vector<std::string> systems_run;
   std::vector<std::string> culled_passes;
   PixelRect geometry;  // FrameTargets::geometry as the frame's systems left it
+  int rendered_width = 0, rendered_height = 0;  // smaller than the output while the view moves (Camera::moving_render_scale)
 };
 
 class Renderer {
@@ -67,7 +68,8 @@ class Renderer {
   // Runs the world's update, pre-render and render systems and the frame graph. `view_camera`, when
   // given, replaces the scene's camera for this frame (the editor's fly camera) without touching it.
   FrameResult render_frame(const FrameInfo& frame, int width, int height, const Camera* view_camera = nullptr);
-  // The last frame's tone-mapped output and linear HDR colour.
+  // The last frame's tone-mapped output, and its linear HDR colour at the size it was rendered (smaller
+  // than the output while the view moved: Camera::moving_render_scale).
   ImageU8 read_output() const;
   ImageF read_hdr() const;
   const Texture& output_texture() const { return *ldr_; }
@@ -82,6 +84,7 @@ class Renderer {
   World& world_;
   RenderContext& ctx_;
   std::unique_ptr<Texture> hdr_, ldr_;
+  std::optional<FrameView> last_view_;  // the last frame's whole view, to tell a moving view
 };
 
 }  // namespace welkin
