@@ -244,7 +244,10 @@ std::vector<GpuMaterial> TerrainCache::upload_materials(const Terrain& s, const 
     g.metallic_roughness = texture(mat.metallic_roughness, false);
     g.occlusion = texture(mat.occlusion, false);
     g.emissive_map = texture(mat.emissive, true);
-    if (mat.base_color.transform.present) g.uv_transform = mat.base_color.transform.matrix();
+    const assets::TextureRef* refs[4] = {&mat.base_color, &mat.metallic_roughness, &mat.occlusion, &mat.emissive};
+    for (size_t i = 0; i < 4; ++i)
+      if (refs[i]->transform.present) g.uv_transforms[i] = refs[i]->transform.matrix();
+    g.occlusion_strength = mat.occlusion.scale;
     materials.push_back(std::move(g));
   }
   materials.emplace_back();  // primitives without a material: glTF's default (white, rough, dielectric)

@@ -19,7 +19,16 @@ struct GpuMaterial {
   float metallic = 0.0f, roughness = 1.0f;
   glm::vec3 emissive{0.0f};
   GlTextureName base_color, metallic_roughness, normal, occlusion, emissive_map;
-  glm::mat3 uv_transform{1.0f};
+  float occlusion_strength = 1.0f;  // glTF: occlusion = 1 + strength (texel - 1)
+  // Each texture's KHR_texture_transform: base colour, metallic-roughness, occlusion, emissive.
+  std::array<glm::mat3, 4> uv_transforms{glm::mat3(1.0f), glm::mat3(1.0f), glm::mat3(1.0f), glm::mat3(1.0f)};
+  // A texture it has whose transform is not the base colour's (the surface shader then computes each).
+  bool own_transforms() const {
+    const bool present[4] = {bool(base_color), bool(metallic_roughness), bool(occlusion), bool(emissive_map)};
+    for (int i = 1; i < 4; ++i)
+      if (present[i] && uv_transforms[size_t(i)] != uv_transforms[0]) return true;
+    return false;
+  }
 };
 
 struct GpuTerrain {

@@ -376,9 +376,13 @@ void terrain_system(SystemContext& sc) {
   // per pixel. Shading in the first pass would run the light for whole quads and blocks around
   // triangles of a pixel or two: several times the pixels the terrain covers on a software rasteriser.
   // The materials' own light goes into the frame's colour first, only where a drawn one has any.
-  bool emissive = false;
+  bool emissive = false, own_transforms = false;
   for (const Placed& p : *placed)
-    for (const Draw& d : p.draws) emissive = emissive || p.gpu->materials[size_t(d.material)].emissive != glm::vec3(0.0f);
+    for (const Draw& d : p.draws) {
+      const GpuMaterial& m = p.gpu->materials[size_t(d.material)];
+      emissive = emissive || m.emissive != glm::vec3(0.0f);
+      own_transforms = own_transforms || m.own_transforms();
+    }
   auto surface = std::make_shared<ResourceHandle>();
   sc.graph->add_pass("terrain", [&](PassBuilder& b) {
     b.read(targets.color);
@@ -387,7 +391,7 @@ void terrain_system(SystemContext& sc) {
     b.write(targets.depth);
     *surface = b.create("terrain.surface", TextureDesc{.width = view.width, .height = view.height,
                                                        .format = TextureFormat::rgba32ui, .linear_filter = false});
-  }, [placed, targets, surface, covered, emissive, &rc, &cache](PassContext& pc) {
+  }, [placed, targets, surface, covered, emissive, own_transforms, &rc, &cache](PassContext& pc) {
     ++cache.view_draws;
     Framebuffer fb({&pc.texture(targets.color), &pc.texture(*surface)}, &pc.texture(targets.depth));
     fb.bind();
@@ -403,7 +407,8 @@ void terrain_system(SystemContext& sc) {
     glDepthFunc(GL_GREATER);
     glDepthMask(GL_TRUE);
     glEnable(GL_CULL_FACE);
-    const Program& prog = rc.shaders.graphics("terrain/terrain.vert", "terrain/terrain.frag");
+    const Program& prog = rc.shaders.graphics("terrain/terrain.vert", "terrain/terrain.frag",
+                                              {{"TERRAIN_TEXTURE_TRANSFORMS", own_transforms ? "1" : "0"}});
     prog.use();
     prog.set("u_view_projection", rc.view.view_projection);
     for (const Placed& p : *placed) {
@@ -416,7 +421,11 @@ void terrain_system(SystemContext& sc) {
           prog.set("u_metallic", m.metallic);
           prog.set("u_roughness", m.roughness);
           prog.set("u_emissive", m.emissive);
-          prog.set("u_uv_transform", m.uv_transform);
+          prog.set("u_occlusion_strength", m.occlusion_strength);
+          prog.set("u_uv_transform", m.uv_transforms[0]);
+          prog.set("u_metallic_roughness_transform", m.uv_transforms[1]);
+          prog.set("u_occlusion_transform", m.uv_transforms[2]);
+          prog.set("u_emissive_transform", m.uv_transforms[3]);
           prog.set("u_has_base_color", m.base_color ? 1 : 0);
           prog.set("u_has_metallic_roughness", m.metallic_roughness ? 1 : 0);
           prog.set("u_has_occlusion", m.occlusion ? 1 : 0);

@@ -123,7 +123,8 @@ TEST_F(TerrainRender, GeometryRectangleHoldsEveryPixelOfTheTerrain) {
 // (GGX, height-correlated Smith, Schlick), the sky's specular from the irradiance toward the
 // reflection, as welkin/shading.glsl states it.
 glm::dvec3 pbr_reference(const glm::dvec3& base, double metallic, double roughness, const glm::dvec3& n,
-                         const glm::dvec3& v, const glm::dvec3& l, const glm::dvec3& sun, const glm::dvec3& sky) {
+                         const glm::dvec3& v, const glm::dvec3& l, const glm::dvec3& sun, const glm::dvec3& sky,
+                         double occlusion = 1.0) {
   const double pi = 3.14159265358979323846;
   const glm::dvec3 f0 = glm::mix(glm::dvec3(0.04), base, metallic);
   glm::dvec3 direct(0.0);
@@ -139,7 +140,64 @@ glm::dvec3 pbr_reference(const glm::dvec3& base, double metallic, double roughne
   }
   auto sky_irradiance = [&](const glm::dvec3& d) { return sky * (0.5 + 0.5 * d.z); };
   const glm::dvec3 r = glm::reflect(-v, n);
-  return direct + sky_irradiance(n) * (1.0 - metallic) * base / pi + sky_irradiance(r) / pi * f0 * (1.0 - roughness * 0.7);
+  return direct + (sky_irradiance(n) * (1.0 - metallic) * base / pi + sky_irradiance(r) / pi * f0 * (1.0 - roughness * 0.7)) * occlusion;
+}
+
+// An image's PNG bytes (written to `path` and read back), for GlbWriter::add_image.
+std::vector<uint8_t> png_bytes(const ImageU8& image, const std::filesystem::path& path) {
+  write_png(path.string(), image);
+  std::ifstream in(path, std::ios::binary);
+  return std::vector<uint8_t>((std::istreambuf_iterator<char>(in)), {});
+}
+
+// A flat ground 4 km square of one material, written with `w` to `file`: glTF's (x, 0, z) from -2000
+// to 2000 m, its uv (x / 4000 + 0.5, z / 4000 + 0.5); the scene's north is glTF's -z.
+void write_ground(assets::GlbWriter& w, const assets::Material& material, const std::string& file) {
+  assets::MeshData plane;
+  plane.name = "ground";
+  const int n = 16;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      plane.positions.emplace_back((float(i) / n - 0.5f) * 4000.0f, 0.0f, (float(j) / n - 0.5f) * 4000.0f);
+      plane.normals.emplace_back(0.0f, 1.0f, 0.0f);
+      plane.uv0.emplace_back(float(i) / n, float(j) / n);
+    }
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const uint32_t a = uint32_t(j * (n + 1) + i), b = a + 1, c = a + uint32_t(n + 1), d = c + 1;
+      plane.indices.insert(plane.indices.end(), {a, c, b, b, c, d});
+    }
+  plane.material = w.add_material(material);
+  w.add_node("ground", w.add_mesh(plane).mesh);
+  w.write(file);
+}
+
+// The ground of `file` seen from 120 m above the scene origin's south (pitched 25° down), lit by a
+// sun of 10 000 lx at azimuth 20°, elevation 25° (unshadowed): the HDR frame and its view.
+std::pair<ImageF, FrameView> render_ground(const std::string& file, int width, int height) {
+  World world;
+  world.modules().add_static(modules::terrain_module());
+  json doc{{"welkin_scene", 1},
+           {"entities",
+            json::array({json{{"components", {{"core.Camera", {{"position_m", {0, -100, 120}}, {"pitch_deg", -25}, {"vertical_fov_deg", 60}}}}}},
+                         json{{"components", {{"core.DirectionalLight", {{"azimuth_deg", 20}, {"elevation_deg", 25}, {"illuminance_lux", 10000}}}}}},
+                         json{{"components", {{"terrain.Terrain", {{"file", file}, {"follow_curvature", false}, {"cast_shadows", false},
+                                                                {"compress_images", false}}}}}}})}};
+  load_scene(world, doc, "ground.json");
+  Renderer r(world);
+  r.render_frame({}, width, height);
+  return {r.read_hdr(), make_frame_view(*world.registry().get<Camera>(world.registry().first<Camera>()), width, height)};
+}
+
+// The sun and sky of render_ground, as the CPU reference takes them.
+struct GroundLight {
+  glm::dvec3 l, sun, sky;
+};
+GroundLight ground_light() {
+  DirectionalLight light;  // the scene's: a sun dimmer than the default, its highlight within half floats
+  light.illuminance_lux = 10000.0f;
+  const glm::dvec3 sun = glm::dvec3(light.color) * double(light.illuminance_lux);
+  return {direction_from_azimuth_elevation(20.0, 25.0), sun, sun * double(light.ambient_fraction)};
 }
 
 // A flat ground of one material, unshadowed, under the default lights: every pixel that sees it
@@ -154,9 +212,7 @@ TEST_F(TerrainRender, GroundShadesAsTheCpuReference) {
   ImageU8 glow;
   glow.width = glow.height = 2;
   for (int i = 0; i < 4; ++i) glow.rgba.insert(glow.rgba.end(), {132, 65, 206, 255});
-  write_png((dir / "glow.png").string(), glow);
-  std::ifstream glow_file(dir / "glow.png", std::ios::binary);
-  const std::vector<uint8_t> glow_png((std::istreambuf_iterator<char>(glow_file)), {});
+  const std::vector<uint8_t> glow_png = png_bytes(glow, dir / "glow.png");
   auto srgb = [](double c) { c /= 255.0; return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); };
   const glm::dvec3 glow_linear(srgb(132), srgb(65), srgb(206));
   for (const auto& [factor, textured] : {std::pair{glm::dvec3(0.0), false}, std::pair{glm::dvec3(2000.0, 4000.0, 1000.0), false},
@@ -170,43 +226,11 @@ TEST_F(TerrainRender, GroundShadesAsTheCpuReference) {
     material.emissive_factor = glm::vec3(factor / 4000.0);
     material.emissive_strength = 4000.0f;
     if (textured) material.emissive.texture = w.add_texture(w.add_image(glow_png, "image/png", "glow"));
-    assets::MeshData plane;
-    plane.name = "ground";
-    const int n = 16;
-    for (int j = 0; j <= n; ++j)
-      for (int i = 0; i <= n; ++i) {
-        plane.positions.emplace_back((float(i) / n - 0.5f) * 4000.0f, 0.0f, (float(j) / n - 0.5f) * 4000.0f);
-        plane.normals.emplace_back(0.0f, 1.0f, 0.0f);
-        plane.uv0.emplace_back(float(i) / n, float(j) / n);
-      }
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const uint32_t a = uint32_t(j * (n + 1) + i), b = a + 1, c = a + uint32_t(n + 1), d = c + 1;
-        plane.indices.insert(plane.indices.end(), {a, c, b, b, c, d});
-      }
-    plane.material = w.add_material(material);
-    w.add_node("ground", w.add_mesh(plane).mesh);
     const std::string file = (dir / "plane.glb").string();
-    w.write(file);
-
-    World world;
-    world.modules().add_static(modules::terrain_module());
-    json doc{{"welkin_scene", 1},
-             {"entities",
-              json::array({json{{"components", {{"core.Camera", {{"position_m", {0, -100, 120}}, {"pitch_deg", -25}, {"vertical_fov_deg", 60}}}}}},
-                           json{{"components", {{"core.DirectionalLight", {{"azimuth_deg", 20}, {"elevation_deg", 25}, {"illuminance_lux", 10000}}}}}},
-                           json{{"components", {{"terrain.Terrain", {{"file", file}, {"follow_curvature", false}, {"cast_shadows", false},
-                                                                  {"compress_images", false}}}}}}})}};
-    load_scene(world, doc, "ground.json");
-    Renderer r(world);
+    write_ground(w, material, file);
     const int width = 48, height = 27;
-    r.render_frame({}, width, height);
-    const ImageF hdr = r.read_hdr();
-    const FrameView view = make_frame_view(*world.registry().get<Camera>(world.registry().first<Camera>()), width, height);
-    DirectionalLight light;  // the scene's: a sun dimmer than the default, its highlight within half floats
-    light.illuminance_lux = 10000.0f;
-    const glm::dvec3 l = direction_from_azimuth_elevation(20.0, 25.0);
-    const glm::dvec3 sun = glm::dvec3(light.color) * double(light.illuminance_lux), sky = sun * double(light.ambient_fraction);
+    const auto [hdr, view] = render_ground(file, width, height);
+    const auto [l, sun, sky] = ground_light();
     size_t ground = 0;
     double worst = 0.0, brightest = 0.0;
     for (int y = 0; y < height; ++y)
@@ -229,6 +253,73 @@ TEST_F(TerrainRender, GroundShadesAsTheCpuReference) {
     // filters it, which the reference takes from the exact curve.
     EXPECT_LT(worst, textured ? 4e-3 : 2e-3) << "emissive " << emissive.y << (textured ? " (textured)" : "");
   }
+  std::filesystem::remove_all(dir);
+}
+
+// Each texture of a material takes its own KHR_texture_transform, and occlusion its strength. The
+// emissive texture, red on its left half and blue on its right, is offset by 0.05 (its edge 200 m
+// west of the view's centre line, instead of on it); the
+// base colour (one grey) is turned a quarter turn and the occlusion (one value) scaled, so that the
+// emissive read with either's transform would put the colours elsewhere. Every ground pixel away
+// from the colours' edge carries the CPU reference (emissive, and the PBR light with occlusion
+// 1 + strength (texel - 1)).
+TEST_F(TerrainRender, EachTextureTakesItsOwnTransform) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("welkin-terrain-uv-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  auto image = [](int side, auto colour) {
+    ImageU8 img;
+    img.width = img.height = side;
+    for (int y = 0; y < side; ++y)
+      for (int x = 0; x < side; ++x) {
+        const std::array<uint8_t, 4> c = colour(x, side);
+        img.rgba.insert(img.rgba.end(), c.begin(), c.end());
+      }
+    return img;
+  };
+  const ImageU8 halves = image(64, [](int x, int side) { return x < side / 2 ? std::array<uint8_t, 4>{255, 0, 0, 255} : std::array<uint8_t, 4>{0, 0, 255, 255}; });
+  const ImageU8 grey = image(64, [](int, int) { return std::array<uint8_t, 4>{128, 128, 128, 255}; });
+  assets::GlbWriter w;
+  assets::Material material;
+  material.base_color_factor = {1.0f, 1.0f, 1.0f, 1.0f};
+  material.metallic_factor = 0.0f;
+  material.roughness_factor = 0.6f;
+  material.emissive_factor = {1.0f, 1.0f, 1.0f};
+  material.emissive_strength = 3000.0f;
+  material.base_color.texture = w.add_texture(w.add_image(png_bytes(grey, dir / "grey.png"), "image/png", "grey"));
+  material.base_color.transform = {.present = true, .offset = {1.0f, 0.0f}, .rotation = 1.5707963f};
+  material.occlusion.texture = w.add_texture(w.add_image(png_bytes(grey, dir / "ao.png"), "image/png", "ao"));
+  material.occlusion.scale = 0.5f;
+  material.occlusion.transform = {.present = true, .scale = {3.0f, 3.0f}};
+  material.emissive.texture = w.add_texture(w.add_image(png_bytes(halves, dir / "halves.png"), "image/png", "halves"));
+  material.emissive.transform = {.present = true, .offset = {0.05f, 0.0f}};
+  const std::string file = (dir / "plane.glb").string();
+  write_ground(w, material, file);
+  const int width = 192, height = 108;  // fine pixels: the far ground reads levels of a few texels
+  const auto [hdr, view] = render_ground(file, width, height);
+  const auto [l, sun, sky] = ground_light();
+  const double grey_linear = std::pow((128.0 / 255.0 + 0.055) / 1.055, 2.4), occlusion = 1.0 + 0.5 * (128.0 / 255.0 - 1.0);
+  size_t red = 0, blue = 0;
+  double worst = 0.0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const glm::dvec3 d = glm::dvec3(pixel_direction(view, x + 0.5, y + 0.5));
+      if (d.z > -0.02) continue;
+      const glm::dvec3 p = d * (120.0 / -d.z);  // camera-relative point on the ground
+      if (glm::length(p) > 1300.0) continue;  // nearer: the colours' edge stays within a few pixels
+      // The plane's u there (x east, from -2000 to 2000 m), and the emissive's: offset by 0.05.
+      const double u = p.x / 4000.0 + 0.5, emissive_u = u + 0.05;
+      if (std::abs(emissive_u - 0.5) < 0.03) continue;  // the colours' edge, blended by the filter
+      const glm::dvec3 colour = emissive_u < 0.5 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 0, 1);
+      (emissive_u < 0.5 ? red : blue) += 1;
+      const glm::dvec3 expected = 3000.0 * colour + pbr_reference(glm::dvec3(grey_linear), 0.0, 0.6, glm::dvec3(0, 0, 1),
+                                                                   -glm::normalize(p), l, sun, sky, occlusion);
+      const float* got = hdr.pixel(x, y);
+      for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(got[c] - expected[c]) / expected[c]);
+    }
+  std::printf("%zu red and %zu blue ground pixels, worst relative difference %.2e\n", red, blue, worst);
+  EXPECT_GT(red, size_t(400));
+  EXPECT_GT(blue, size_t(400));
+  EXPECT_LT(worst, 4e-3);
   std::filesystem::remove_all(dir);
 }
 
