@@ -623,10 +623,13 @@ void clouds_system(SystemContext& sc) {
   }
   // A frame rendered alone marches every pixel (the history is another moment's).
   const bool temporal = clouds->temporal_upscaling && !sc.frame.alone && w >= 2 && h >= 2;
-  if (temporal)
-    for (int i = 0; i < 2; ++i)
-      if (ensure_texture(gpu.history_color[i], {.width = w, .height = h, .format = TextureFormat::rgba16f}))
-        gpu.history_valid = false;
+  if (temporal) {
+    ensure_texture(gpu.history_color[gpu.history_index], {.width = w, .height = h, .format = TextureFormat::rgba16f});
+    if (!gpu.history_color[1 - gpu.history_index]) {
+      ensure_texture(gpu.history_color[1 - gpu.history_index], {.width = w, .height = h, .format = TextureFormat::rgba16f});
+      gpu.history_valid = false;
+    }
+  }
   // Without a history (the first frame, a new size, after a frame without upscaling) every pixel is
   // marched once and becomes the history; then one pixel of each block per frame, in the order of a
   // Bayer matrix (each next pixel as far as it can be from those marched just before).
@@ -663,6 +666,7 @@ void clouds_system(SystemContext& sc) {
   }
   if (gpu.march_state != 0) ++gpu.march_state_frames;
   ++gpu.marches;
+  if (!partial) ++gpu.full_marches;
 
   const int qw = (w + n - 1) / n, qh = (h + n - 1) / n;
   static constexpr glm::ivec2 kOffsets2[4] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};

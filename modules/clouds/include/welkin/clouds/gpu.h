@@ -256,10 +256,14 @@ struct CloudsGpu {
   int shadow_builds = 0;                         // cascades made
   FrameBlock block;      // this frame's, uploaded before the geometry
   std::vector<LayerBlock> layers;  // and its packed layers (the CPU reference reads them)
-  // Temporal upscaling: the last two results at the march resolution.
+  // Temporal upscaling: the last two results at the march resolution. The one a frame writes is made
+  // at its size; the last frame's may be of another (the resolve reads it by its own size), so a
+  // frame whose size changed (a view that starts or stops moving, Camera::moving_render_scale) still
+  // marches one pixel of each block.
   std::unique_ptr<Texture> history_color[2];
   int history_index = 0;      // the one the next frame writes
   bool history_valid = false;  // history_color[1 - history_index] holds the last frame
+  size_t full_marches = 0;     // frames that marched every pixel (no history to reproject; tests)
   glm::mat4 previous_view_projection{1.0f};
   glm::dvec3 previous_camera_m{0.0};
   uint64_t temporal_frame = 0;
