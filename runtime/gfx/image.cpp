@@ -57,11 +57,24 @@ ImageF read_texture_float(const Texture& t, int layer) {
 // Encoders write into memory; the one atomic writer puts the bytes on disk (so a full disk never
 // replaces a good image with a truncated one), and readers go through the bounded regular-file reader.
 
-void write_png(const std::string& path, const ImageU8& img) {
-  std::string bytes;
-  auto append = [](void* ctx, void* data, int size) { static_cast<std::string*>(ctx)->append(static_cast<char*>(data), size_t(size)); };
+std::vector<uint8_t> encode_png(const ImageU8& img) {
+  std::vector<uint8_t> bytes;
+  auto append = [](void* ctx, void* data, int size) {
+    auto* out = static_cast<std::vector<uint8_t>*>(ctx);
+    out->insert(out->end(), static_cast<uint8_t*>(data), static_cast<uint8_t*>(data) + size);
+  };
   if (!stbi_write_png_to_func(append, &bytes, img.width, img.height, 4, img.rgba.data(), img.width * 4))
+    throw Error(ErrorInfo{.message = "cannot encode PNG"});
+  return bytes;
+}
+
+void write_png(const std::string& path, const ImageU8& img) {
+  std::vector<uint8_t> bytes;
+  try {
+    bytes = encode_png(img);
+  } catch (const Error&) {
     throw Error(ErrorInfo{.file = path, .message = "cannot encode PNG"});
+  }
   write_file_atomically(path, bytes);
 }
 

@@ -143,13 +143,6 @@ glm::dvec3 pbr_reference(const glm::dvec3& base, double metallic, double roughne
   return direct + (sky_irradiance(n) * (1.0 - metallic) * base / pi + sky_irradiance(r) / pi * f0 * (1.0 - roughness * 0.7)) * occlusion;
 }
 
-// An image's PNG bytes (written to `path` and read back), for GlbWriter::add_image.
-std::vector<uint8_t> png_bytes(const ImageU8& image, const std::filesystem::path& path) {
-  write_png(path.string(), image);
-  std::ifstream in(path, std::ios::binary);
-  return std::vector<uint8_t>((std::istreambuf_iterator<char>(in)), {});
-}
-
 // A flat ground 4 km square of one material, written with `w` to `file`: glTF's (x, 0, z) from -2000
 // to 2000 m, its uv (x / 4000 + 0.5, z / 4000 + 0.5); the scene's north is glTF's -z.
 void write_ground(assets::GlbWriter& w, const assets::Material& material, const std::string& file) {
@@ -212,7 +205,7 @@ TEST_F(TerrainRender, GroundShadesAsTheCpuReference) {
   ImageU8 glow;
   glow.width = glow.height = 2;
   for (int i = 0; i < 4; ++i) glow.rgba.insert(glow.rgba.end(), {132, 65, 206, 255});
-  const std::vector<uint8_t> glow_png = png_bytes(glow, dir / "glow.png");
+  const std::vector<uint8_t> glow_png = encode_png(glow);
   auto srgb = [](double c) { c /= 255.0; return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); };
   const glm::dvec3 glow_linear(srgb(132), srgb(65), srgb(206));
   for (const auto& [factor, textured] : {std::pair{glm::dvec3(0.0), false}, std::pair{glm::dvec3(2000.0, 4000.0, 1000.0), false},
@@ -285,12 +278,12 @@ TEST_F(TerrainRender, EachTextureTakesItsOwnTransform) {
   material.roughness_factor = 0.6f;
   material.emissive_factor = {1.0f, 1.0f, 1.0f};
   material.emissive_strength = 3000.0f;
-  material.base_color.texture = w.add_texture(w.add_image(png_bytes(grey, dir / "grey.png"), "image/png", "grey"));
+  material.base_color.texture = w.add_texture(w.add_image(encode_png(grey), "image/png", "grey"));
   material.base_color.transform = {.present = true, .offset = {1.0f, 0.0f}, .rotation = 1.5707963f};
-  material.occlusion.texture = w.add_texture(w.add_image(png_bytes(grey, dir / "ao.png"), "image/png", "ao"));
+  material.occlusion.texture = w.add_texture(w.add_image(encode_png(grey), "image/png", "ao"));
   material.occlusion.scale = 0.5f;
   material.occlusion.transform = {.present = true, .scale = {3.0f, 3.0f}};
-  material.emissive.texture = w.add_texture(w.add_image(png_bytes(halves, dir / "halves.png"), "image/png", "halves"));
+  material.emissive.texture = w.add_texture(w.add_image(encode_png(halves), "image/png", "halves"));
   material.emissive.transform = {.present = true, .offset = {0.05f, 0.0f}};
   const std::string file = (dir / "plane.glb").string();
   write_ground(w, material, file);
@@ -411,10 +404,7 @@ TEST_F(TerrainRender, CompressedBaseColourStaysCloseToTheImage) {
   std::vector<uint8_t> back(size_t(width) * size_t(height) * 4);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glGetTextureImage(id, 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(back.size()), back.data());
-  double sum = 0.0;
-  for (size_t i = 0; i < back.size(); ++i)
-    if (i % 4 != 3) sum += std::pow(double(back[i]) - image.rgba[i], 2.0);
-  const double psnr = 10.0 * std::log10(255.0 * 255.0 / (sum / double(back.size() / 4 * 3)));
+  const double psnr = image_difference({width, height, back}, {image.width, image.height, image.rgba}).psnr_db;
   World plain;
   load_valley(plain, {{"compress_images", false}});
   Renderer rp(plain);

@@ -21,10 +21,7 @@ std::vector<uint8_t> png_bytes(int w, int h) {
   img.height = h;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) img.rgba.insert(img.rgba.end(), {uint8_t(x * 40), uint8_t(y * 80), 7, 255});
-  const fs::path p = temp_dir() / "tex.png";
-  write_png(p.string(), img);
-  const std::string s = read_bytes(p);
-  return std::vector<uint8_t>(s.begin(), s.end());
+  return encode_png(img);
 }
 
 // A textured 8 x 8 grid under a translated child node: 81 vertices, 128 triangles.

@@ -37,6 +37,8 @@ ImageF read_texture_float(const Texture& texture, int layer = 0);
 // Files are written with write_file_atomically (welkin/core/files.h) and read with the bounded
 // regular-file reader; images over the bounds above are refused. Throw Error on failure.
 void write_png(const std::string& path, const ImageU8& image);
+// The PNG file's bytes, in memory (what write_png writes).
+std::vector<uint8_t> encode_png(const ImageU8& image);
 void write_exr(const std::string& path, const ImageF& image, ExrPrecision precision = ExrPrecision::half);
 // max_side: the largest width and height the caller takes, checked from the header before decoding.
 ImageU8 read_png(const std::string& path, int max_side = kMaxImageSide);
