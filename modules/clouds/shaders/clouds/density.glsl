@@ -251,7 +251,7 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
 // The field's layers are compiled in (CLOUDS_LAYERS of them, at most CLOUDS_LOCAL_LAYERS), each with
 // what it needs and nothing else, so that a software rasteriser (which runs both sides of every
 // branch for its whole group of pixels) does not pay for what no layer uses. Bit i of a mask is
-// layer i's (passes.cpp's field_defines writes them):
+// layer i's (density_field.cpp's field_defines writes them):
 //   CLOUDS_DETAIL_MASK  the detail noise erodes it;  CLOUDS_MAP_MASK  it follows the painted map;
 //   CLOUDS_SHADOW_MASK  it casts shadows;  CLOUDS_WEATHER_SOURCE_i  the layer (<= i) whose weather
 //   sample it shares (the same place and period, other channels).

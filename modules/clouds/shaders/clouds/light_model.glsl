@@ -10,7 +10,7 @@
 // transmittance exp(-tau), and the two-stream (diffuse) transmittance 1 / (1 + 0.15 tau). The source
 // is linear in both, so an average of sources over many samples is the source of their averages
 // (the billboards' atlas keeps those averages toward every direction).
-// CLOUDS_MULTIPLE_SCATTERING and CLOUDS_POWDER (src/passes.cpp, light_model_defines) compile the
+// CLOUDS_MULTIPLE_SCATTERING and CLOUDS_POWDER (src/density_field.cpp, light_model_defines) compile the
 // model's choices in; undefined, they are read from the block.
 #include "clouds/transmittance.glsl"
 #ifdef CLOUDS_MULTIPLE_SCATTERING

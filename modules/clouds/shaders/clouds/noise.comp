@@ -1,14 +1,14 @@
 // Fills one of the clouds' tileable noise volumes (CLOUDS_NOISE selects which):
 //   0 shape (128^3, RGBA8): r Perlin-Worley base eroded by three octaves of Worley fBm (Schneider
-//     2015); gba are filled with the turbulence (3) afterwards (src/passes.cpp)
+//     2015); gba are filled with the turbulence (3) afterwards (src/noise_volumes.cpp)
 //   1 detail (32^3, R8): Worley fBm at higher frequencies
 //   2 weather (64^3, RGBA8): r, g, b coverage signals for layers (layer i reads channel i % 3),
 //     a the base variation; sampled at planet-centred positions, so the globe has no seams. The
-//     coverage channels are equalised to a uniform distribution afterwards (src/passes.cpp).
+//     coverage channels are equalised to a uniform distribution afterwards (src/noise_volumes.cpp).
 //   3 turbulence (the shape's size, RGBA16F): xyz the curl of a tileable Perlin vector potential,
 //     taken with central differences on the texel grid itself, so that the volume's own
 //     central-difference divergence vanishes (the two difference operators commute); scaled so that
-//     the longest vector has length 1 and packed into the shape's gba afterwards (src/passes.cpp).
+//     the longest vector has length 1 and packed into the shape's gba afterwards (src/noise_volumes.cpp).
 //   4 weather systems (32^3, R8): two smooth octaves of Perlin noise over thousands of kilometres,
 //     equalised afterwards.
 #include "clouds/noise.glsl"

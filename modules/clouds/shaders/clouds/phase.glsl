@@ -24,7 +24,7 @@ float clouds_droplet_mie(float mu, float d) {
 
 // The phase of octave k of the multiple-scattering approximation: anisotropy scaled by c^k
 // (Wrenninge 2015, c = 0.5), so higher orders scatter more evenly.
-// CLOUDS_PHASE_MODEL (src/passes.cpp, light_model_defines) compiles the model in; undefined, it is
+// CLOUDS_PHASE_MODEL (src/density_field.cpp, light_model_defines) compiles the model in; undefined, it is
 // read from the block.
 float clouds_phase(float mu, float octave_scale) {
 #ifdef CLOUDS_PHASE_MODEL

@@ -1,0 +1,185 @@
+// The march after the geometry and its aerial perspective: at the quality's resolution, one pixel of
+// each block per frame when upscaling temporally (the resolve fills the others, temporal_resolve.h),
+// nothing at all while a still view keeps the clouds it has; then the composite over the frame.
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "frame_upload.h"
+#include "temporal_resolve.h"
+#include "welkin/core/world.h"
+#include "welkin/gfx/compute.h"
+#include "welkin/gfx/light_environment.h"
+#include "welkin/gfx/renderer.h"
+
+namespace welkin::clouds {
+
+namespace {
+
+// A handle another pass published on the graph's blackboard this frame (invalid: none).
+ResourceHandle published(const RenderGraph& g, const char* name) {
+  auto it = g.blackboard.find(name);
+  return it == g.blackboard.end() ? ResourceHandle{} : it->second;
+}
+
+// What the march and the resolve read, the frame's index aside (it only turns the jitter): the
+// block and layers, the field's noise and map, the shaders, the light environment's state, the
+// geometry's.
+uint64_t march_state(const CloudsGpu& gpu, uint64_t light, uint64_t geometry_state,
+                     const ShaderDefines& defines, int n, int w, int h) {
+  FrameBlock block = gpu.block;
+  block.frame.x = 0.0f;
+  uint64_t state = fnv1a_64_of(block, fnv1a_64_of(light, fnv1a_64_of(geometry_state)));
+  state = fnv1a_64(std::string_view(reinterpret_cast<const char*>(gpu.layers.data()),
+                                    gpu.layers.size() * sizeof(LayerBlock)),
+                   state);
+  const int field[6] = {gpu.noise_seed, gpu.noise_builds, gpu.noise_cache_reads, n, w, h};
+  state = fnv1a_64_of(gpu.coverage_map_revision, fnv1a_64_of(field, state));
+  state = fnv1a_64(gpu.coverage_map_file, state);
+  for (const auto& [k, v] : defines) state = fnv1a_64(k + "=" + v + ";", state);
+  return state;
+}
+
+// The pixel of each n x n block this frame marches: in the order of a Bayer matrix (each next pixel
+// as far as it can be from those marched just before); (0, 0) of 1 x 1 blocks when not `partial`.
+glm::ivec2 block_offset(CloudsGpu& gpu, bool partial, int n) {
+  static constexpr glm::ivec2 kOffsets2[4] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
+  static constexpr glm::ivec2 kOffsets4[16] = {{0, 0}, {2, 2}, {2, 0}, {0, 2}, {1, 1}, {3, 3},
+                                               {3, 1}, {1, 3}, {1, 0}, {3, 2}, {3, 0}, {1, 2},
+                                               {0, 1}, {2, 3}, {2, 1}, {0, 3}};
+  return !partial ? glm::ivec2(0)
+         : n == 4 ? kOffsets4[gpu.temporal_frame++ % 16]
+                  : kOffsets2[gpu.temporal_frame++ % 4];
+}
+
+// The march at qw x qh (the frame's size over the block's), stopping where the mesh clusters turn
+// opaque (`front`, when valid, bound at `front_unit`).
+MarchOutput add_march_pass(SystemContext& sc, CloudsGpu& gpu, const ShaderDefines& defines,
+                           glm::ivec3 stride_offset, int qw, int qh, ResourceHandle front,
+                           GLuint front_unit) {
+  World& world = sc.world;
+  auto& rc = world.resource<RenderContext>();
+  const FrameTargets t = *sc.targets;
+  const bool cluster_front = front.valid();
+  auto current = std::make_shared<std::array<ResourceHandle, 2>>();
+  CloudsGpu* gp = &gpu;
+  sc.graph->add_pass(
+      "clouds.march",
+      [&](PassBuilder& b) {
+        b.read(t.depth);
+        if (cluster_front) b.read(front);
+        (*current)[0] = b.create("clouds.march",
+                                 TextureDesc{.width = qw, .height = qh, .format = TextureFormat::rgba16f});
+        (*current)[1] = b.create(
+            "clouds.march_distance",
+            TextureDesc{.width = qw, .height = qh, .format = TextureFormat::rg32f, .linear_filter = false});
+      },
+      [gp, &rc, &world, t, current, defines, stride_offset, cluster_front, front,
+       front_unit](PassContext& pc) {
+        Framebuffer fb({&pc.texture((*current)[0]), &pc.texture((*current)[1])}, nullptr);
+        fb.bind();
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_BLEND);
+        // GL forbids several draw buffers while the blend function names a second source colour
+        // (the atmosphere's aerial perspective leaves one), even with blending off.
+        glBlendFunc(GL_ONE, GL_ZERO);
+        world.resource<LightEnvironment>().bind();
+        bind_field(*gp);
+        glBindTextureUnit(3, pc.texture(t.depth).id());
+        glBindTextureUnit(4, gp->blue_noise->id());
+        if (cluster_front) glBindTextureUnit(front_unit, pc.texture(front).id());
+        const Program& p = rc.shaders.graphics("fullscreen.vert", "clouds/march.frag", defines);
+        p.use();
+        glProgramUniform3i(p.id(), p.location("u_stride_offset"), stride_offset.x, stride_offset.y,
+                           stride_offset.z);
+        rc.draw_fullscreen_triangle();
+      });
+  return current;
+}
+
+}  // namespace
+
+void clouds_system(SystemContext& sc) {
+  World& world = sc.world;
+  const VolumetricClouds* clouds = first_clouds(world);
+  if (!clouds) return;
+  auto& gpu = world.resource<CloudsGpu>();
+  auto& rc = world.resource<RenderContext>();
+  // No layer holds cloud (coverage 0, no thickness or density): nothing is marched.
+  if (!gpu.has_layers) return;
+  const int w = int(gpu.block.frame.z), h = int(gpu.block.frame.w);
+  const FrameView& view = rc.view;
+  const char* ap_mode = camera_in_space(world, gpu.block)                                  ? "2"
+                        : clouds->aerial_perspective == CloudAerialPerspective::mean_depth ? "1"
+                                                                                           : "0";
+  // The field's layers and what each uses are compiled in, turbulence only where it displaces anything.
+  ShaderDefines defines = field_defines(gpu);
+  defines.merge(light_model_defines(gpu));
+  defines["CLOUDS_AP_MODE"] = ap_mode;
+  // The mesh clusters drawn just before: the march ends where they turn opaque.
+  // (published on the graph's blackboard by clouds.clusters when it drew this frame).
+  const ResourceHandle front = published(*sc.graph, "clouds.cluster_front");
+  const bool cluster_front = front.valid();
+  const GLuint front_unit = world.resource<LightEnvironment>().free_unit();
+  if (cluster_front) {
+    defines["CLOUDS_CLUSTER_FRONT"] = "1";
+    defines["CLOUDS_UNIT_CLUSTER_FRONT"] = std::to_string(front_unit);
+  }
+  // A frame rendered alone marches every pixel (the history is another moment's).
+  const bool temporal = clouds->temporal_upscaling && !sc.frame.alone && w >= 2 && h >= 2;
+  if (temporal) {
+    ensure_texture(gpu.history_color[gpu.history_index],
+                   {.width = w, .height = h, .format = TextureFormat::rgba16f});
+    if (!gpu.history_color[1 - gpu.history_index]) {
+      ensure_texture(gpu.history_color[1 - gpu.history_index],
+                     {.width = w, .height = h, .format = TextureFormat::rgba16f});
+      gpu.history_valid = false;
+    }
+  }
+  // Without a history (the first frame, a new size, after a frame without upscaling) every pixel is
+  // marched once and becomes the history; then one pixel of each block per frame, in the order of a
+  // Bayer matrix (each next pixel as far as it can be from those marched just before).
+  const bool partial = temporal && gpu.history_valid;
+  const int n = partial ? resolve_quality(*clouds).temporal_block : 1;
+  const FrameTargets t = *sc.targets;
+  RenderGraph& g = *sc.graph;
+  ResourceHandle clusters = published(g, "clouds.clusters");
+
+  // A still view keeps its clouds (march_state). Clusters and billboards drawn before the march are
+  // not followed: with them it marches.
+  const std::optional<uint64_t> light = world.resource<LightEnvironment>().state();
+  if (partial && light && !clusters.valid()) {
+    const uint64_t state = march_state(gpu, *light, t.geometry_state, defines, n, w, h);
+    if (state != gpu.march_state) gpu.march_state = state, gpu.march_state_frames = 0;
+  } else {
+    gpu.march_state_frames = 0, gpu.march_state = 0;
+  }
+  if (partial && gpu.march_state != 0 && gpu.march_state_frames >= n * n) {
+    // Kept: the history as the last frame's resolve left it.
+    const ResourceHandle kept = g.import("clouds.history_color", *gpu.history_color[1 - gpu.history_index]);
+    composite_clouds(g, rc, t, kept, {});
+    gpu.previous_view_projection = view.view_projection;
+    gpu.previous_camera_m = view.camera_position_m;
+    return;
+  }
+  if (gpu.march_state != 0) ++gpu.march_state_frames;
+  ++gpu.marches;
+  if (!partial) ++gpu.full_marches;
+
+  const int qw = (w + n - 1) / n, qh = (h + n - 1) / n;
+  const glm::ivec2 offset = block_offset(gpu, partial, n);
+  const glm::ivec3 stride_offset(n, offset.x, offset.y);
+  const MarchOutput current = add_march_pass(sc, gpu, defines, stride_offset, qw, qh, front, front_unit);
+  ResourceHandle result = (*current)[0];
+  if (temporal) {
+    result = add_resolve_pass(g, rc, gpu, *clouds, current, offset, partial, n, w, h, clusters);
+  } else {
+    gpu.history_valid = false;
+  }
+  gpu.previous_view_projection = view.view_projection;
+  gpu.previous_camera_m = view.camera_position_m;
+  composite_clouds(g, rc, t, result, clusters);
+}
+
+}  // namespace welkin::clouds

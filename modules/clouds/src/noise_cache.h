@@ -1,0 +1,33 @@
+#pragma once
+// The noise volumes' disk cache: generating them is most of a cloudy scene's start-up on llvmpipe,
+// and they are a pure function of what noise_key names.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "welkin/clouds/gpu.h"
+#include "welkin/core/disk_cache.h"
+#include "welkin/gfx/shader.h"
+
+namespace welkin::clouds {
+
+// Each volume's bytes as the cache holds them.
+inline constexpr size_t kShapeBytes = size_t(kShapeNoiseSize) * kShapeNoiseSize * kShapeNoiseSize * 4;
+inline constexpr size_t kDetailBytes = size_t(kDetailNoiseSize) * kDetailNoiseSize * kDetailNoiseSize;
+inline constexpr size_t kWeatherBytes = size_t(kWeatherNoiseSize) * kWeatherNoiseSize * kWeatherNoiseSize * 4;
+inline constexpr size_t kSystemsBytes = size_t(kSystemsNoiseSize) * kSystemsNoiseSize * kSystemsNoiseSize;
+inline constexpr size_t kBlueBytes = size_t(kBlueNoiseSize) * kBlueNoiseSize * sizeof(float);
+
+// Level 0 of each volume, 8-bit, as the march reads it, and the blue noise: what the disk cache holds.
+struct NoiseBytes {
+  std::vector<uint8_t> shape, detail, weather, systems;
+  std::vector<float> blue;
+};
+// The noise is a pure function of the seed, the sizes, the generating shaders, this code's version
+// and the GL implementation that runs them: all of it is the disk cache's key.
+std::string noise_key(const ShaderLibrary& shaders, int seed);
+std::optional<NoiseBytes> load_noise(const DiskCache& cache, const std::string& key);
+void store_noise(const DiskCache& cache, const std::string& key, const NoiseBytes& n);
+
+}  // namespace welkin::clouds

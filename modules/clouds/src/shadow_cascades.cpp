@@ -1,0 +1,133 @@
+// The shadow cascades (shadow_cascades.h): placed each frame, remade on the GPU only when what they
+// show has changed, before the geometry.
+#include "shadow_cascades.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "frame_upload.h"
+#include "welkin/core/world.h"
+#include "welkin/gfx/compute.h"
+#include "welkin/gfx/renderer.h"
+
+namespace welkin::clouds {
+
+namespace {
+
+constexpr int kShadowSteps = 40;
+
+}  // namespace
+
+void place_shadow_cascades(CloudsGpu& gpu, const VolumetricClouds& clouds, const CloudsContext& ctx,
+                           const PackedLayers& layers, const FrameBlock& block, const FrameView& view) {
+  // The shadow map: a square around the camera across the sun's direction, anchored in the world
+  // and rebuilt only when what it shows has changed (sun, settings, drift or camera by a texel).
+  const glm::vec3 l = ctx.sun_direction;
+  const int cascades = std::clamp(clouds.shadow_cascades, 1, kMaxShadowCascades);
+  ShadowKey key;
+  key.wanted = clouds.shadows && layers.any_shadow && l.z > 0.0f;
+  key.sun = l;
+  key.time_s = ctx.time_s;
+  key.anchor_m = view.camera_position_m;
+  key.size = clouds.shadow_map_size;
+  key.max_wind_mps = glm::length(clouds.wind_mps);
+  for (const LayerBlock& b : layers.layers) {
+    key.settings.insert(
+        key.settings.end(),
+        {b.altitude.x, b.altitude.y, b.altitude.z, b.altitude.w, b.shape.x, b.shape.y, b.shape.z, b.shape.w,
+         b.profile.x, b.profile.y, b.profile.z, b.profile.w, b.model.x, b.model.y, b.model.z, b.model.w});
+  }
+  for (const CloudLayer& L : clouds.layers)
+    key.max_wind_mps = std::max(key.max_wind_mps, glm::length(L.wind_mps));
+  key.settings.insert(key.settings.end(),
+                      {block.medium.x, block.medium.y, float(clouds.seed), clouds.shape_period_m,
+                       clouds.weather_period_m, clouds.shadow_distance_m, float(cascades), block.map_up.w,
+                       float(ctx.coverage_map_revision & 0xffffffu), clouds.coverage_map_size_m,
+                       clouds.weather_system_amount, clouds.weather_system_period_m});
+  // Cascade k (0 nearest) covers a square of side 2 D / 4^(n - 1 - k) around the camera; each is
+  // remade on its own, when it is stale at its own texel size (the nearest follows the camera most).
+  const glm::vec3 u =
+      glm::normalize(glm::cross(l, std::abs(l.z) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1)));
+  const glm::vec3 v = glm::cross(l, u);
+  const float start =
+      std::max((layers.highest_shadow_m - block.planet.y) / std::max(l.z, 0.05f), 0.0f) + 100.0f;
+  for (int k = 0; k < kMaxShadowCascades; ++k) {
+    ShadowKey& held = gpu.shadow_keys[k];
+    gpu.shadow_rebuild[k] = false;
+    if (!key.wanted || k >= cascades) {
+      held.wanted = false;
+      gpu.shadow.origin[k].w = 0.0f;
+      continue;
+    }
+    const float side = 2.0f * clouds.shadow_distance_m / float(1 << (2 * (cascades - 1 - k)));
+    ShadowKey cascade = key;
+    cascade.texel_m = side / float(clouds.shadow_map_size);
+    gpu.shadow_rebuild[k] = !held.wanted || held.stale(cascade);
+    if (gpu.shadow_rebuild[k]) {
+      gpu.shadow.axis_u[k] = glm::vec4(u / side, start);
+      gpu.shadow.axis_v[k] = glm::vec4(v / side, side);
+      held = cascade;
+    }
+    // A cascade stays where it was made: its centre, relative to this frame's camera.
+    gpu.shadow.origin[k] = glm::vec4(glm::vec3(held.anchor_m - view.camera_position_m), 1.0f);
+  }
+  gpu.shadow.light = glm::vec4(l, std::abs(l.z));
+  gpu.shadow.up = glm::vec4(glm::vec3(block.up), float(key.wanted ? cascades : 0));
+}
+
+// Before the geometry: noise, this frame's block, and the shadow map every material reads.
+void shadow_system(SystemContext& sc) {
+  World& world = sc.world;
+  const VolumetricClouds* clouds = first_clouds(world);
+  if (!clouds) return;
+  auto& gpu = world.resource<CloudsGpu>();
+  ensure_noise(world, clouds->seed);
+  gpu.has_layers = upload_frame(world, sc, *clouds, gpu.block);
+  if (!gpu.has_layers || gpu.shadow.up.w < 0.5f) {
+    gpu.shadow.up.w = 0.0f;
+    for (ShadowKey& k : gpu.shadow_keys) k.wanted = false;
+    return;
+  }
+  const int cascades = int(gpu.shadow.up.w), size = clouds->shadow_map_size;
+  // The cascades side by side in one texture, nearest first; a new texture holds none of them yet.
+  if (ensure_texture(gpu.shadow_map,
+                     {.width = size * cascades, .height = size, .format = TextureFormat::rgba32f}))
+    for (int k = 0; k < cascades; ++k) gpu.shadow_rebuild[k] = true;
+  if (std::none_of(gpu.shadow_rebuild, gpu.shadow_rebuild + cascades, [](bool b) { return b; })) return;
+  const ResourceHandle map = sc.graph->import("clouds.shadow_map", *gpu.shadow_map);
+  auto& rc = world.resource<RenderContext>();
+  CloudsGpu* gp = &gpu;
+  const ShadowBlock s = gpu.shadow;
+  std::vector<int> remade;
+  for (int k = 0; k < cascades; ++k)
+    if (gpu.shadow_rebuild[k]) remade.push_back(k);
+  sc.graph->add_pass(
+      "clouds.shadow_map",
+      [&](PassBuilder& b) {
+        b.write(map);
+        b.side_effect();  // read by every material through the light environment
+      },
+      [gp, &rc, s, remade, size, defines = field_defines(gpu)](PassContext&) {
+        bind_field(*gp);
+        bind_image_for_write(0, *gp->shadow_map);
+        const Program& p = rc.shaders.compute("clouds/shadow_map.comp", defines);
+        for (int k : remade) {
+          const float side = s.axis_v[k].w;
+          // The plane through the cascade's centre (camera-relative, this frame).
+          p.set("u_centre", glm::vec3(s.origin[k]));
+          p.set("u_light", glm::vec3(s.light));
+          p.set("u_axis_u", glm::vec3(s.axis_u[k]) * side);
+          p.set("u_axis_v", glm::vec3(s.axis_v[k]) * side);
+          p.set("u_extent_m", side);
+          p.set("u_start_m", s.axis_u[k].w);
+          p.set("u_steps", kShadowSteps);
+          glProgramUniform2i(p.id(), p.location("u_region"), k * size, size);
+          const int g = group_count(size, 8);
+          dispatch_compute(p, g, g);
+          ++gp->shadow_builds;
+        }
+      });
+}
+
+}  // namespace welkin::clouds

@@ -1,0 +1,97 @@
+// The temporal resolve and the composite (temporal_resolve.h).
+#include "temporal_resolve.h"
+
+#include <memory>
+
+namespace welkin::clouds {
+
+ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gpu,
+                                const VolumetricClouds& clouds, const MarchOutput& current, glm::ivec2 offset,
+                                bool partial, int n, int w, int h, ResourceHandle& clusters) {
+  const FrameView& view = rc.view;
+  // The mesh clusters (and billboards) drawn before the march lie behind it. At the march's resolution
+  // the resolve lays them in as it writes (a read at a quarter of the frame's pixels); otherwise the
+  // composite reads them at the frame's resolution.
+  const bool merge_clusters =
+      clusters.valid() && g.resource_desc(clusters).width == w && g.resource_desc(clusters).height == h;
+  const int write = gpu.history_index, read = 1 - write;
+  const ResourceHandle out_color = g.import("clouds.history_color", *gpu.history_color[write]);
+  const ResourceHandle history = g.import("clouds.history_previous", *gpu.history_color[read]);
+  const glm::vec3 moved = glm::vec3(view.camera_position_m - gpu.previous_camera_m);
+  const glm::mat4 previous_vp = gpu.previous_view_projection, inverse_vp = view.inverse_view_projection;
+  const bool valid = gpu.history_valid;
+  const float inside_cloud_m = 2.0f * gpu.block.steps.y;  // two of the shortest march steps
+  const ShaderDefines resolve_defines = {{"CLOUDS_CLIP", clouds.temporal_clipping ? "1" : "0"},
+                                         {"CLOUDS_WITH_CLUSTERS", merge_clusters ? "1" : "0"}};
+  auto merged = std::make_shared<ResourceHandle>();
+  g.add_pass(
+      "clouds.resolve",
+      [&](PassBuilder& b) {
+        b.read((*current)[0]);
+        b.read((*current)[1]);
+        b.read(history);
+        b.write(out_color);
+        if (merge_clusters) {
+          b.read(clusters);
+          *merged = b.create("clouds.with_clusters",
+                             TextureDesc{.width = w, .height = h, .format = TextureFormat::rgba16f});
+        }
+      },
+      [&rc, current, out_color, history, offset, moved, previous_vp, inverse_vp, valid, resolve_defines,
+       inside_cloud_m, partial, n, merge_clusters, clusters, merged](PassContext& pc) {
+        Framebuffer fb = merge_clusters ? Framebuffer({&pc.texture(out_color), &pc.texture(*merged)}, nullptr)
+                                        : Framebuffer(&pc.texture(out_color), nullptr);
+        fb.bind();
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ZERO);  // no second source colour while several buffers are drawn
+        glBindTextureUnit(0, pc.texture((*current)[0]).id());
+        glBindTextureUnit(1, pc.texture((*current)[1]).id());
+        glBindTextureUnit(2, pc.texture(history).id());
+        if (merge_clusters) glBindTextureUnit(3, pc.texture(clusters).id());
+        const Program& p = rc.shaders.graphics("fullscreen.vert", "clouds/resolve.frag", resolve_defines);
+        p.use();
+        glProgramUniform2i(p.id(), p.location("u_offset"), offset.x, offset.y);
+        glProgramUniform1i(p.id(), p.location("u_block"), n);
+        p.set("u_inverse_view_projection", inverse_vp);
+        p.set("u_previous_view_projection", previous_vp);
+        p.set("u_camera_moved_m", moved);
+        p.set("u_history_valid", valid ? 1 : 0);
+        p.set("u_full_frame", partial ? 0 : 1);
+        p.set("u_inside_cloud_m", inside_cloud_m);
+        rc.draw_fullscreen_triangle();
+      });
+  const ResourceHandle result = merge_clusters ? *merged : out_color;
+  if (merge_clusters) clusters = {};
+  gpu.history_index = read;
+  gpu.history_valid = true;
+  return result;
+}
+
+void composite_clouds(RenderGraph& g, RenderContext& rc, const FrameTargets& t, ResourceHandle result,
+                      ResourceHandle clusters) {
+  g.add_pass(
+      "clouds.composite",
+      [&](PassBuilder& b) {
+        b.read(result);
+        if (clusters.valid()) b.read(clusters);
+        b.read(t.color);
+        b.write(t.color);
+      },
+      [&rc, t, result, clusters](PassContext& pc) {
+        Framebuffer fb(&pc.texture(t.color), nullptr);
+        fb.bind();
+        glDisable(GL_DEPTH_TEST);
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_SRC_ALPHA);  // clouds + transmittance x what lies behind
+        glBindTextureUnit(0, pc.texture(result).id());
+        if (clusters.valid()) glBindTextureUnit(1, pc.texture(clusters).id());
+        const Program& p = rc.shaders.graphics("fullscreen.vert", "clouds/composite.frag",
+                                               {{"CLOUDS_WITH_CLUSTERS", clusters.valid() ? "1" : "0"}});
+        p.use();
+        rc.draw_fullscreen_triangle();
+        glDisable(GL_BLEND);
+      });
+}
+
+}  // namespace welkin::clouds

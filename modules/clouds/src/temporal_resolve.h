@@ -1,0 +1,26 @@
+#pragma once
+// The march's result made whole and laid over the frame: the temporal resolve (one pixel of each
+// block marched per frame, the others reprojected from the history) and the composite.
+#include <array>
+#include <memory>
+
+#include "welkin/clouds/gpu.h"
+#include "welkin/gfx/renderer.h"
+
+namespace welkin::clouds {
+
+// What the march wrote this frame: its colour and its distances, at the march's resolution.
+using MarchOutput = std::shared_ptr<std::array<ResourceHandle, 2>>;
+
+// The resolve into the history (gpu.history_color) at the march's size w x h, the march having
+// written pixel `offset` of each block of n x n (every pixel when not `partial`). Returns what to
+// composite; `clusters` (the mesh clusters' and billboards' colour) is laid in when it has the
+// march's size, and is then cleared.
+ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gpu,
+                                const VolumetricClouds& clouds, const MarchOutput& current, glm::ivec2 offset,
+                                bool partial, int n, int w, int h, ResourceHandle& clusters);
+// The clouds (and the clusters or billboards behind them, where not merged already) over the frame.
+void composite_clouds(RenderGraph& g, RenderContext& rc, const FrameTargets& t, ResourceHandle result,
+                      ResourceHandle clusters);
+
+}  // namespace welkin::clouds
