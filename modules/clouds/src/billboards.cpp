@@ -9,7 +9,9 @@
 #include <cmath>
 #include <memory>
 
-#include "welkin/clouds/gpu.h"
+#include "billboards.h"
+#include "clouds_gpu.h"
+#include "density_field.h"
 #include "welkin/core/error.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/compute.h"

@@ -10,7 +10,9 @@
 #include <memory>
 
 #include "welkin/assets/subdivision.h"
-#include "welkin/clouds/gpu.h"
+#include "clouds_gpu.h"
+#include "clusters.h"
+#include "density_field.h"
 #include "welkin/core/error.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/compute.h"

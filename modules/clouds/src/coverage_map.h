@@ -1,6 +1,6 @@
 #pragma once
 // The painted coverage map (the editor's brush) as the density field reads it.
-#include "welkin/clouds/gpu.h"
+#include "clouds_gpu.h"
 
 namespace welkin {
 class World;

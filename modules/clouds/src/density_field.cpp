@@ -1,9 +1,9 @@
 // The density field as shaders include it (shaders/clouds/density.glsl): its bindings, and the
 // compile-time description of this frame's layers and light model.
+#include "density_field.h"
+
 #include <string>
 #include <vector>
-
-#include "welkin/clouds/gpu.h"
 
 namespace welkin::clouds {
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "welkin/clouds/gpu.h"
+#include "frame_block.h"
 #include "welkin/scene/painted_map.h"
 
 namespace welkin::clouds {

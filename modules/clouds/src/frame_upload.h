@@ -1,6 +1,6 @@
 #pragma once
 // This frame's block and layers, read from the scene and uploaded before the geometry.
-#include "welkin/clouds/gpu.h"
+#include "clouds_gpu.h"
 
 namespace welkin {
 class World;

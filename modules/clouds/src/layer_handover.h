@@ -1,6 +1,6 @@
 #pragma once
 // Where the march hands layers over to the mesh clusters and the billboards this frame.
-#include "welkin/clouds/gpu.h"
+#include "clouds_gpu.h"
 
 namespace welkin {
 class World;

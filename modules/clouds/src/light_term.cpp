@@ -1,8 +1,10 @@
 // The clouds as a term of the world's light environment: their shadow cascades and sky occlusion,
 // read by every material (shaders/clouds/light_term.glsl).
+#include "light_term.h"
+
 #include <cstdint>
 
-#include "welkin/clouds/gpu.h"
+#include "clouds_gpu.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/light_environment.h"
 

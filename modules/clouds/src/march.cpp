@@ -1,11 +1,14 @@
 // The march after the geometry and its aerial perspective: at the quality's resolution, one pixel of
 // each block per frame when upscaling temporally (the resolve fills the others, temporal_resolve.h),
 // nothing at all while a still view keeps the clouds it has; then the composite over the frame.
+#include "march.h"
+
 #include <array>
 #include <memory>
 #include <optional>
 #include <string>
 
+#include "density_field.h"
 #include "frame_upload.h"
 #include "temporal_resolve.h"
 #include "welkin/core/world.h"

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "welkin/clouds/gpu.h"
+#include "noise_volumes.h"
 #include "welkin/core/disk_cache.h"
 #include "welkin/gfx/shader.h"
 

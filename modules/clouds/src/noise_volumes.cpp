@@ -1,5 +1,7 @@
 // The noise volumes the density field reads, generated on the GPU once per seed and finished on the
 // CPU (equalised, the curl field packed into the shape), or read from the disk cache (noise_cache.h).
+#include "noise_volumes.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -7,9 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "clouds_gpu.h"
 #include "noise_cache.h"
 #include "welkin/clouds/blue_noise.h"
-#include "welkin/clouds/gpu.h"
 #include "welkin/core/error.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/compute.h"

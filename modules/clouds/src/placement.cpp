@@ -5,7 +5,8 @@
 #include <bit>
 #include <cmath>
 
-#include "welkin/clouds/gpu.h"
+#include "clouds_gpu.h"
+#include "placement.h"
 #include "welkin/gfx/compute.h"
 
 namespace welkin::clouds {

@@ -1,6 +1,10 @@
 // Entry point of the clouds module: its components, its light term and its render systems.
 #include "welkin/clouds/components.h"
-#include "welkin/clouds/gpu.h"
+#include "billboards.h"
+#include "clusters.h"
+#include "light_term.h"
+#include "march.h"
+#include "shadow_cascades.h"
 #include "welkin/core/module.h"
 #include "welkin/core/world.h"
 

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <vector>
 
+#include "clouds_gpu.h"
+#include "density_field.h"
 #include "frame_upload.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/compute.h"

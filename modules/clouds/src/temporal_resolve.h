@@ -4,7 +4,7 @@
 #include <array>
 #include <memory>
 
-#include "welkin/clouds/gpu.h"
+#include "clouds_gpu.h"
 #include "welkin/gfx/renderer.h"
 
 namespace welkin::clouds {

@@ -6,7 +6,7 @@
 #include <glm/glm.hpp>
 #include <vector>
 
-#include "welkin/clouds/gpu.h"
+#include "clouds_gpu.h"  // the module's private GPU state (src/)
 
 namespace welkin::clouds {
 

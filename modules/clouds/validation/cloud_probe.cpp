@@ -6,7 +6,8 @@
 
 #include "reference/medium.h"
 #include "reference/phase.h"
-#include "welkin/clouds/gpu.h"
+#include "cloud_field.h"
+#include "clouds_gpu.h"
 #include "welkin/core/module.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/debug_content.h"

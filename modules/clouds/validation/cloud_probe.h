@@ -2,10 +2,10 @@
 // The GPU march against the CPU reference on single view rays through the same cloud field: a world
 // with the clouds, a white sun (core.DirectionalLight, 100 klx, no sky light, no air, no ground
 // bounce) so that both see exactly the same light, and a 1x1 frame aimed along each ray.
+#include <glm/glm.hpp>
 #include <memory>
 #include <string>
 
-#include "cloud_field.h"
 #include "reference/cloud_path_tracer.h"
 #include "welkin/clouds/components.h"
 

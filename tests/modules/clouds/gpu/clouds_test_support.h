@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "welkin/clouds/components.h"
-#include "welkin/clouds/gpu.h"
+#include "clouds_gpu.h"  // the module's private GPU state (modules/clouds/src)
 #include "welkin/core/module.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/gl_context.h"

@@ -1,0 +1,51 @@
+#pragma once
+// The billboards: the mid- and far-range clouds as baked views of archetypes (billboards.cpp).
+#include <glm/glm.hpp>
+#include <memory>
+#include <vector>
+
+#include "placement.h"
+
+namespace welkin {
+class World;
+struct SystemContext;
+}  // namespace welkin
+
+namespace welkin::clouds {
+
+// std430 mirror of Billboard (shaders/clouds/billboards.glsl): one billboard, written by the
+// placement each frame.
+struct BillboardGpu {
+  glm::vec4 centre;  // camera-relative m (the archetype box's centre); w: optical-depth scale (0: none)
+  glm::vec4 light;   // irradiance of the marched light at the centre; w: distance m
+  glm::vec4 sky;     // sky irradiance on a horizontal plane; w: archetype index
+  glm::vec4 ap_inscattering;  // w: the archetype's turn about the vertical (radians)
+  glm::vec4 ap_transmittance;
+};
+static_assert(sizeof(BillboardGpu) == 80, "BillboardGpu must match the std430 Billboard struct");
+
+// What an atlas was baked from: a frame whose key equals it reuses the atlas.
+struct BillboardBakeKey {
+  std::vector<float> values;
+  bool operator==(const BillboardBakeKey&) const = default;
+};
+
+// The billboards' GPU state (src/billboards.cpp).
+struct BillboardsGpu {
+  std::unique_ptr<Texture> volume, atlas;  // the archetypes' extinction, and their views
+  std::unique_ptr<Buffer> archetypes;      // each archetype's place in the noise and its weather's score
+  PlacementBuffers placement;
+  std::unique_ptr<Buffer> billboards, order;
+  size_t billboard_capacity = 0, order_capacity = 0;
+  BillboardBakeKey baked;  // what the atlas holds (empty: nothing yet)
+  int bakes = 0;           // how often it was baked (tests, stats)
+  GLuint vao = 0;
+  int drawn = 0;  // instance slots drawn last frame
+  ~BillboardsGpu();
+};
+
+// Render phase, before the mesh clusters (order 144): the billboards, baked when their key changed,
+// placed, lit, sorted and drawn into the mid- and far-range clouds' targets.
+void billboards_system(SystemContext& sc);
+
+}  // namespace welkin::clouds
