@@ -99,7 +99,7 @@ void billboards_system(SystemContext& sc) {
   RenderGraph& g = *sc.graph;
 
   // The bake, when what it reads has changed.
-  const float coverage = gpu.layers[size_t(packed)].shape.x;
+  const float coverage = gpu.layers[size_t(packed)].coverage;
   const BillboardBakeKey key = bake_key(billboards, clouds, layer, coverage);
   if (!(key == bg.baked)) {
     const int views = billboards.view_azimuths * billboards.view_elevations;
@@ -149,7 +149,7 @@ void billboards_system(SystemContext& sc) {
   // The choice's ring: cells whose centres lie from the fade-in's middle (a billboard nearer is
   // moved out to it, so that every slot chosen draws) to far.
   const glm::vec2 ring{0.5f * (fade.x + fade.y), fade.w};
-  const bool moon = gpu.block.phase.w > 0.5f;
+  const bool moon = gpu.block.moon_marched > 0.5f;
   const glm::vec3 light_dir = moon ? glm::vec3(0, 0, 1) : gpu.context.sun_direction;
   bg.drawn = count;
   g.add_pass("clouds.billboards_place", [](PassBuilder& b) { b.side_effect(); },
@@ -206,7 +206,7 @@ void billboards_system(SystemContext& sc) {
         p.set("u_inverse_view_projection", rc.view.inverse_view_projection);
         p.set("u_viewport", glm::vec2(targets->width, targets->height));
         p.set("u_light_dir", light_dir);
-        p.set("u_up_radius", glm::vec4(glm::vec3(gp->block.up), gp->block.planet.z));
+        p.set("u_up_radius", glm::vec4(glm::vec3(gp->block.up), gp->block.camera_radius_m));
         p.set("u_axis_wind", grid.axis_wind);
         glDrawArraysInstanced(GL_TRIANGLES, 0, 6, count);
         end_far_cloud_draw(rc.view.width, rc.view.height);

@@ -120,7 +120,7 @@ void clusters_system(SystemContext& sc) {
   const int height = std::max(1, int(std::ceil(view.height * clusters->resolution_scale)));
 
   const CloudsContext& ctx = gpu.context;
-  const bool moon = gpu.block.phase.w > 0.5f;
+  const bool moon = gpu.block.moon_marched > 0.5f;
   const glm::vec3 light_dir = moon ? glm::vec3(0, 0, 1) : ctx.sun_direction;
   const glm::vec2 form = genus_form(layer.genus);
   const ShaderDefines field = field_defines(gpu);
@@ -202,7 +202,7 @@ void clusters_system(SystemContext& sc) {
         p.set("u_inverse_view_projection", rc.view.inverse_view_projection);
         p.set("u_viewport", glm::vec2(targets->width, targets->height));
         p.set("u_light_dir", light_dir);
-        p.set("u_up_radius", glm::vec4(glm::vec3(gp->block.up), gp->block.planet.z));
+        p.set("u_up_radius", glm::vec4(glm::vec3(gp->block.up), gp->block.camera_radius_m));
         p.set("u_axis_wind", grid.axis_wind);
         p.set("u_axis_across", grid.axis_across);
         p.set("u_axis_up", grid.axis_up);

@@ -19,9 +19,9 @@ void bind_field(const CloudsGpu& gpu) {
 }
 
 ShaderDefines light_model_defines(const CloudsGpu& gpu) {
-  return {{"CLOUDS_MULTIPLE_SCATTERING", gpu.block.light_model.x > 0.5f ? "1" : "0"},
-          {"CLOUDS_POWDER", gpu.block.light.z != 0.0f ? "1" : "0"},
-          {"CLOUDS_PHASE_MODEL", gpu.block.medium.z > 0.5f ? "1" : "0"}};
+  return {{"CLOUDS_MULTIPLE_SCATTERING", gpu.block.multiple_scattering > 0.5f ? "1" : "0"},
+          {"CLOUDS_POWDER", gpu.block.powder != 0.0f ? "1" : "0"},
+          {"CLOUDS_PHASE_MODEL", gpu.block.phase_model > 0.5f ? "1" : "0"}};
 }
 
 // The density field's compile-time description (density.glsl): which layers there are and what each
@@ -29,21 +29,22 @@ ShaderDefines light_model_defines(const CloudsGpu& gpu) {
 // CLOUDS_LOCAL_LAYERS layers; more are read with run-time checks.
 ShaderDefines field_defines(const CloudsGpu& gpu) {
   constexpr int kLocalLayers = 4;
-  ShaderDefines d = {{"CLOUDS_TURBULENCE", gpu.block.noise_mix.x > 0.0f ? "1" : "0"}};
+  ShaderDefines d = {{"CLOUDS_TURBULENCE", gpu.block.turbulence_m > 0.0f ? "1" : "0"}};
   if (gpu.clusters_layer >= 0 || gpu.billboards_layer >= 0) d["CLOUDS_HANDOVER"] = "1";
   const std::vector<LayerBlock>& layers = gpu.layers;
   if (layers.empty() || layers.size() > size_t(kLocalLayers)) return d;
-  const bool detail = gpu.block.frame.y > 0.5f, map = gpu.block.map_up.w > 0.5f;
+  const bool detail = gpu.block.shape_detail > 0.5f, map = gpu.block.has_map > 0.5f;
   int detail_mask = 0, map_mask = 0, shadow_mask = 0;
   for (size_t i = 0; i < layers.size(); ++i) {
     const LayerBlock& L = layers[i];
-    if (detail && L.shape.z > 0.0f) detail_mask |= 1 << i;
-    if (map && L.model.w > 0.5f) map_mask |= 1 << i;
-    if (L.model.z > 0.5f) shadow_mask |= 1 << i;
+    if (detail && L.detail_amount > 0.0f) detail_mask |= 1 << i;
+    if (map && L.follows_map > 0.5f) map_mask |= 1 << i;
+    if (L.casts_shadow > 0.5f) shadow_mask |= 1 << i;
     // The first layer with the same weather origin and period (the same place: one fetch, other channels).
     size_t source = i;
     for (size_t j = 0; j < i && source == i; ++j)
-      if (layers[j].weather == L.weather) source = j;
+      if (layers[j].weather_origin == L.weather_origin && layers[j].weather_per_m == L.weather_per_m)
+        source = j;
     if (i > 0) d["CLOUDS_WEATHER_SOURCE_" + std::to_string(i)] = std::to_string(source);
   }
   for (size_t i = layers.size(); i < size_t(kLocalLayers); ++i)

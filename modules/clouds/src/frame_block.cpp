@@ -1,10 +1,11 @@
 // What the cloud shaders see of a frame: the layers that can hold cloud, packed, and the frame block.
 // Positions that tile (noise coordinates) are reduced modulo their period in double precision here,
 // so the GPU adds only camera-relative offsets in float, at any distance from the scene origin.
+#include "frame_block.h"
+
 #include <algorithm>
 #include <cmath>
 
-#include "frame_block.h"
 #include "welkin/scene/painted_map.h"
 
 namespace welkin::clouds {
@@ -23,8 +24,10 @@ std::vector<glm::vec2> altitude_bands(std::vector<glm::vec2> ranges, int max_ban
   std::sort(ranges.begin(), ranges.end(), [](const glm::vec2& a, const glm::vec2& b) { return a.x < b.x; });
   std::vector<glm::vec2> bands;
   for (const glm::vec2& r : ranges) {
-    if (!bands.empty() && r.x <= bands.back().y) bands.back().y = std::max(bands.back().y, r.y);
-    else bands.push_back(r);
+    if (!bands.empty() && r.x <= bands.back().y)
+      bands.back().y = std::max(bands.back().y, r.y);
+    else
+      bands.push_back(r);
   }
   while (int(bands.size()) > max_bands) {
     size_t closest = 0;
@@ -38,25 +41,37 @@ std::vector<glm::vec2> altitude_bands(std::vector<glm::vec2> ranges, int max_ban
 
 GenusModel genus_model(Genus genus) {
   switch (genus) {
-    case Genus::cumulus: return {1.0f, 2.5f};
-    case Genus::cumulonimbus: return {1.0f, 0.4f};
-    case Genus::stratocumulus: return {0.4f, 1.6f};
-    case Genus::altocumulus: return {0.5f, 4.0f};
-    case Genus::cirrocumulus: return {0.3f, 8.0f};
-    case Genus::stratus: return {0.0f, 0.5f};
-    case Genus::nimbostratus: return {0.1f, 0.4f};
-    case Genus::altostratus: return {0.0f, 0.7f};
-    case Genus::cirrostratus: return {0.0f, 0.5f};
-    case Genus::cirrus: return {0.2f, 2.5f};
+    case Genus::cumulus:
+      return {1.0f, 2.5f};
+    case Genus::cumulonimbus:
+      return {1.0f, 0.4f};
+    case Genus::stratocumulus:
+      return {0.4f, 1.6f};
+    case Genus::altocumulus:
+      return {0.5f, 4.0f};
+    case Genus::cirrocumulus:
+      return {0.3f, 8.0f};
+    case Genus::stratus:
+      return {0.0f, 0.5f};
+    case Genus::nimbostratus:
+      return {0.1f, 0.4f};
+    case Genus::altostratus:
+      return {0.0f, 0.7f};
+    case Genus::cirrostratus:
+      return {0.0f, 0.5f};
+    case Genus::cirrus:
+      return {0.2f, 2.5f};
   }
   return {1.0f, 1.0f};
 }
 
-PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& ctx, const glm::dvec3& camera_m) {
+PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& ctx,
+                         const glm::dvec3& camera_m) {
   PackedLayers out;
   const glm::dvec3 p = camera_m - ctx.planet_center_m;
   bool first = true, first_shadow = true;
-  const bool any_solo = std::any_of(clouds.layers.begin(), clouds.layers.end(), [](const CloudLayer& L) { return L.solo; });
+  const bool any_solo =
+      std::any_of(clouds.layers.begin(), clouds.layers.end(), [](const CloudLayer& L) { return L.solo; });
   for (size_t i = 0; i < clouds.layers.size(); ++i) {
     const CloudLayer& L = clouds.layers[i];
     if (!L.visible || (any_solo && !L.solo)) continue;
@@ -72,15 +87,21 @@ PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& ct
     const double group = double(i / 3);
     const glm::dvec3 offset = glm::dvec3(0.37 * group, 0.61 * group, 0.13 * group) * period;
     const glm::dvec3 drift = glm::dvec3(L.wind_mps, 0.0) * ctx.time_s;
-    LayerBlock b;
-    b.altitude = {L.base_altitude_m, L.thickness_m, L.base_variation_m, L.density_per_m};
-    b.shape = {coverage, L.shape_amount, L.detail_amount, std::max(L.coverage_filter_width, 0.01f)};
-    b.profile = {L.profile_exp_term, L.profile_exponent, L.profile_linear_term, L.profile_constant_term};
-    b.weather = glm::vec4(tile_origin(p - drift + offset, period), float(1.0 / period));
-    b.model = {g.dome, float(i % 3), L.casts_shadow ? 1.0f : 0.0f, follows_map ? 1.0f : 0.0f};
+    LayerBlock b{};
+    b.base_m = L.base_altitude_m, b.thickness_m = L.thickness_m;
+    b.base_variation_m = L.base_variation_m, b.density_per_m = L.density_per_m;
+    b.coverage = coverage, b.shape_amount = L.shape_amount, b.detail_amount = L.detail_amount;
+    b.filter_width = std::max(L.coverage_filter_width, 0.01f);
+    b.profile_exp_term = L.profile_exp_term, b.profile_exponent = L.profile_exponent;
+    b.profile_linear_term = L.profile_linear_term, b.profile_constant_term = L.profile_constant_term;
+    b.weather_origin = tile_origin(p - drift + offset, period);
+    b.weather_per_m = float(1.0 / period);
+    b.dome = g.dome, b.weather_channel = float(i % 3);
+    b.casts_shadow = L.casts_shadow ? 1.0f : 0.0f, b.follows_map = follows_map ? 1.0f : 0.0f;
     out.layers.push_back(b);
     out.source_index.push_back(int(i));
-    const float lo = L.base_altitude_m - L.base_variation_m, hi = L.base_altitude_m + L.thickness_m + L.base_variation_m;
+    const float lo = L.base_altitude_m - L.base_variation_m,
+                hi = L.base_altitude_m + L.thickness_m + L.base_variation_m;
     out.ranges.push_back({lo, hi});
     out.lowest_m = first ? lo : std::min(out.lowest_m, lo);
     out.highest_m = first ? hi : std::max(out.highest_m, hi);
@@ -96,55 +117,71 @@ PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& ct
 }
 
 FrameBlock make_frame_block(const VolumetricClouds& clouds, const CloudsContext& ctx, const NoiseFacts& noise,
-                            const FrameView& view, const PackedLayers& layers, int march_width, int march_height,
-                            uint64_t frame_index) {
+                            const FrameView& view, const PackedLayers& layers, int march_width,
+                            int march_height, uint64_t frame_index) {
   const ResolvedQuality q = resolve_quality(clouds);
   const glm::dvec3 p = view.camera_position_m - ctx.planet_center_m;
   const double r = std::max(glm::length(p), 1.0);
   const glm::dvec3 drift = glm::dvec3(clouds.wind_mps, 0.0) * ctx.time_s;
-  FrameBlock f;
-  f.planet = {float(ctx.planet_radius_m), float(r - ctx.planet_radius_m), float(r), float(layers.layers.size())};
-  f.up = glm::vec4(glm::vec3(p / r), clouds.max_distance_m);
-  // z: the empty-space step, a quarter of the finest weather texel of the layers.
+  FrameBlock f{};
+  f.planet_radius_m = float(ctx.planet_radius_m), f.camera_altitude_m = float(r - ctx.planet_radius_m);
+  f.camera_radius_m = float(r), f.layer_count = float(layers.layers.size());
+  f.up = glm::vec3(p / r), f.max_distance_m = clouds.max_distance_m;
+  // The empty-space step, a quarter of the finest weather texel of the layers.
   float finest_weather_m = clouds.weather_period_m;
-  for (const LayerBlock& b : layers.layers) finest_weather_m = std::min(finest_weather_m, 1.0f / b.weather.w);
+  for (const LayerBlock& b : layers.layers)
+    finest_weather_m = std::min(finest_weather_m, 1.0f / b.weather_per_m);
   float largest_block_m = 0.0f;
-  for (const LayerBlock& b : layers.layers) largest_block_m = std::max(largest_block_m, 1.0f / (b.weather.w * float(kWeatherOccupancySize)));
-  f.shell = {layers.lowest_m, layers.highest_m, 0.25f * finest_weather_m / float(kWeatherNoiseSize), largest_block_m};
-  f.shape_origin = glm::vec4(tile_origin(p - drift, clouds.shape_period_m), 1.0f / clouds.shape_period_m);
-  f.detail_origin = glm::vec4(tile_origin(p - drift, clouds.detail_period_m), 1.0f / clouds.detail_period_m);
-  f.steps = {float(q.max_steps), q.min_step_m, q.max_step_m, float(q.light_steps)};
-  f.light = {q.light_step_m, float(clouds.multiscattering_octaves), clouds.powder, clouds.ground_albedo};
-  f.medium = {clouds.scattering_coefficient, clouds.absorption_coefficient, float(int(clouds.phase)),
-              clouds.droplet_diameter_um};
-  f.phase = {clouds.phase_g_forward, clouds.phase_g_backward, clouds.phase_mix, ctx.sun_up_for_clouds ? 0.0f : 1.0f};
-  f.frame = {float(frame_index % 1024), q.shape_detail ? 1.0f : 0.0f, float(march_width), float(march_height)};
+  for (const LayerBlock& b : layers.layers)
+    largest_block_m = std::max(largest_block_m, 1.0f / (b.weather_per_m * float(kWeatherOccupancySize)));
+  f.lowest_m = layers.lowest_m, f.highest_m = layers.highest_m;
+  f.empty_step_m = 0.25f * finest_weather_m / float(kWeatherNoiseSize), f.largest_block_m = largest_block_m;
+  f.shape_origin = tile_origin(p - drift, clouds.shape_period_m),
+  f.shape_per_m = 1.0f / clouds.shape_period_m;
+  f.detail_origin = tile_origin(p - drift, clouds.detail_period_m),
+  f.detail_per_m = 1.0f / clouds.detail_period_m;
+  f.max_steps = float(q.max_steps), f.min_step_m = q.min_step_m, f.max_step_m = q.max_step_m;
+  f.light_steps = float(q.light_steps);
+  f.light_step_m = q.light_step_m, f.octaves = float(clouds.multiscattering_octaves),
+  f.powder = clouds.powder;
+  f.ground_albedo = clouds.ground_albedo;
+  f.scattering = clouds.scattering_coefficient, f.absorption = clouds.absorption_coefficient;
+  f.phase_model = float(int(clouds.phase)), f.droplet_diameter_um = clouds.droplet_diameter_um;
+  f.g_forward = clouds.phase_g_forward, f.g_backward = clouds.phase_g_backward,
+  f.forward_weight = clouds.phase_mix;
+  f.moon_marched = ctx.sun_up_for_clouds ? 0.0f : 1.0f;
+  f.frame_index = float(frame_index % 1024), f.shape_detail = q.shape_detail ? 1.0f : 0.0f;
+  f.march_width = float(march_width), f.march_height = float(march_height);
   const std::vector<glm::vec2> bands = altitude_bands(layers.ranges);
-  f.light_model = {float(int(clouds.multiple_scattering)), view.vertical_fov_rad / float(std::max(march_height, 1)),
-                   float(bands.size()), q.step_growth};
+  f.multiple_scattering = float(int(clouds.multiple_scattering));
+  f.pixel_angle_rad = view.vertical_fov_rad / float(std::max(march_height, 1));
+  f.band_count = float(bands.size()), f.step_growth = q.step_growth;
   for (size_t i = 0; i < bands.size(); ++i) f.band_low[int(i)] = bands[i].x, f.band_high[int(i)] = bands[i].y;
   const MapFrame map{ctx.planet_center_m, ctx.planet_radius_m, clouds.coverage_map_size_m};
   const glm::dmat3 axes = map.axes();
-  f.map_east = glm::vec4(glm::vec3(axes[0]), float(ctx.planet_radius_m / map.size_m));
-  f.map_north = glm::vec4(glm::vec3(axes[1]), ctx.coverage_map_raise);
-  f.map_up = glm::vec4(glm::vec3(axes[2]), ctx.has_coverage_map ? 1.0f : 0.0f);
-  f.map_origin = glm::vec4(glm::vec3(glm::transpose(axes) * p), 0.0f);
-  f.noise_mix = {q.turbulence ? clouds.turbulence_displacement_m : 0.0f, clouds.weather_system_amount, 0.0f, 0.0f};
+  f.map_east = glm::vec3(axes[0]), f.map_scale = float(ctx.planet_radius_m / map.size_m);
+  f.map_north = glm::vec3(axes[1]), f.map_raise = ctx.coverage_map_raise;
+  f.map_up = glm::vec3(axes[2]), f.has_map = ctx.has_coverage_map ? 1.0f : 0.0f;
+  f.map_origin = glm::vec3(glm::transpose(axes) * p);
+  f.turbulence_m = q.turbulence ? clouds.turbulence_displacement_m : 0.0f;
+  f.system_amount = clouds.weather_system_amount;
   // The scene's origin sits at the anchor texel, whose signal is neutral; the systems stay where they
   // are (the wind moves the clouds through them), so the origin keeps its layers' own coverage.
   const double system_period = clouds.weather_system_period_m;
-  f.weather_system = glm::vec4(tile_origin(view.camera_position_m + glm::dvec3(noise.system_anchor) * system_period, system_period),
-                               float(1.0 / system_period));
+  f.system_origin =
+      tile_origin(view.camera_position_m + glm::dvec3(noise.system_anchor) * system_period, system_period);
+  f.system_per_m = float(1.0 / system_period);
   // The most the signal changes per metre (a linear filter's gradient is at most sqrt(3) x the
   // largest step between neighbouring texels per texel): a bound for the empty-space skipping.
-  f.noise_mix.z = float(1.75 * noise.weather_step * kSystemsNoiseSize / system_period);
+  f.system_slope_per_m = float(1.75 * noise.weather_step * kSystemsNoiseSize / system_period);
   // Every layer handed over to the mesh clusters as far as the march reaches: it need not reach
   // past the hand-over.
   float handed_over_m = 0.0f;
   for (const LayerBlock& b : layers.layers)
-    handed_over_m = b.handover.x > 0.0f && b.handover.z >= clouds.max_distance_m ? std::max(handed_over_m, b.handover.x + 0.5f * b.handover.y)
-                                                                               : 3.4e38f;
-  if (!layers.layers.empty()) f.up.w = std::min(f.up.w, handed_over_m);
+    handed_over_m = b.handover_near_m > 0.0f && b.handover_far_m >= clouds.max_distance_m
+                        ? std::max(handed_over_m, b.handover_near_m + 0.5f * b.handover_crossfade_m)
+                        : 3.4e38f;
+  if (!layers.layers.empty()) f.max_distance_m = std::min(f.max_distance_m, handed_over_m);
   f.inverse_view_projection = view.inverse_view_projection;
   return f;
 }

@@ -8,50 +8,20 @@
 #include "noise_volumes.h"
 #include "welkin/clouds/components.h"
 #include "welkin/gfx/camera.h"
+#include "welkin/gfx/gpu_block.h"
 
 namespace welkin::clouds {
 
-// std140 mirror of CloudsFrame (vec4 and mat4 only: no hidden padding).
-struct FrameBlock {
-  glm::vec4 planet{0.0f};  // planet radius m, camera altitude m, camera radius m, layer count
-  glm::vec4 up{0.0f};      // planet-centred up at the camera; w: max march distance m
-  glm::vec4 shell{
-      0.0f};  // lowest base, highest top (altitude m), empty-space step m, largest occupancy block m
-  glm::vec4 shape_origin{0.0f};  // camera in shape periods (fraction); w: 1 / period
-  glm::vec4 detail_origin{0.0f};
-  glm::vec4 steps{0.0f};   // max steps, min step m, max step m, light steps
-  glm::vec4 light{0.0f};   // first light step m, octaves, powder, ground albedo
-  glm::vec4 medium{0.0f};  // scattering, absorption, phase model, droplet diameter um
-  glm::vec4 phase{0.0f};   // g forward, g backward, forward weight, light marched (0 sun, 1 moon)
-  glm::vec4 frame{0.0f};   // frame index, shape detail, march width, march height
-  glm::vec4 light_model{
-      0.0f};  // multiple scattering (0 octaves, 1 diffusion), march pixel angle, bands, step growth
-  glm::vec4 band_low{0.0f};  // altitude bands holding layers (m, at most kMaxBands)
-  glm::vec4 band_high{0.0f};
-  // The painted coverage map's frame (welkin/scene/painted_map.h), relative to the planet's centre.
-  glm::vec4 map_east{0.0f};    // east at the map's centre; w: planet radius / map side
-  glm::vec4 map_north{0.0f};   // w: the largest coverage the map adds
-  glm::vec4 map_up{0.0f};      // w: 1 when the scene has a map
-  glm::vec4 map_origin{0.0f};  // the camera in (east, north, up) from the planet's centre, m
-  glm::vec4 noise_mix{
-      0.0f};  // largest displacement of the detail noise by the curl field m (0: off), weather-system amount
-  glm::vec4 weather_system{0.0f};  // the camera in weather-system periods (fraction; the scene's origin at
-                                   // the anchor, drift applied); w: 1 / period
-  glm::mat4 inverse_view_projection{1.0f};
-};
-static_assert(sizeof(FrameBlock) == 368, "FrameBlock must match the std140 CloudsFrame block");
-
-// std430 mirror of CloudLayerGpu.
-struct LayerBlock {
-  glm::vec4 altitude{0.0f};  // base m, thickness m, base variation m, density per m
-  glm::vec4 shape{0.0f};     // coverage, shape amount, detail amount, coverage filter width
-  glm::vec4 profile{0.0f};   // exp term, exponent, linear term, constant term
-  glm::vec4 weather{0.0f};   // camera in weather periods (fraction); w: 1 / period
-  glm::vec4 model{0.0f};     // dome, weather channel, casts shadow, follows the coverage map
-  // Hand-over to the mesh clusters (clouds.CloudClusters): the march leaves the layer to them from
-  // view distance x to z (m; x = 0: never), cross-fading over y (m).
-  glm::vec4 handover{0.0f};
-};
+// The frame block (std140) and a packed layer (std430), declared once in shaders/clouds/blocks.glsl.h
+// for both languages (welkin/gfx/gpu_block.h).
+namespace gpu_blocks {
+using namespace welkin::gpu_block_types;
+#include "clouds/blocks.glsl.h"
+}  // namespace gpu_blocks
+using FrameBlock = gpu_blocks::CloudsFrameGpu;
+using LayerBlock = gpu_blocks::CloudLayerGpu;
+static_assert(sizeof(FrameBlock) == 368, "FrameBlock: the std140 CloudsFrame block's size");
+static_assert(sizeof(LayerBlock) == 96, "LayerBlock: the std430 CloudLayerGpu struct's size");
 
 // Where the planet is and when it is: what the clouds read of other modules (through reflection).
 struct CloudsContext {

@@ -47,7 +47,7 @@ const VolumetricClouds* first_clouds(World& world) {
 
 bool camera_in_space(World& world, const FrameBlock& f) {
   auto top = scene_scalar(world, "atmosphere.Atmosphere", "top_radius_km");
-  return top && double(f.planet.z) > *top * 1000.0;
+  return top && double(f.camera_radius_m) > *top * 1000.0;
 }
 
 // Uploads this frame's block and layers; false when no layer can hold cloud (nothing to draw).

@@ -10,6 +10,12 @@ namespace welkin::clouds {
 
 namespace {
 
+// The march leaves layer `b` to another path from view distance near_m to far_m, cross-fading.
+void hand_over(LayerBlock& b, float near_m, float crossfade_m, float far_m) {
+  b.handover_near_m = near_m, b.handover_crossfade_m = crossfade_m, b.handover_far_m = far_m;
+  b.handover_unused = 0.0f;
+}
+
 // Where the march hands the clusters' layer over this frame: the clusters' near_m, or with a
 // clouds.CloudLod budget, last frame's distance moved by the clouds' measured GPU time.
 float handover_distance(World& world, const SystemContext& sc, const CloudClusters& clusters,
@@ -56,7 +62,7 @@ void hand_over_layers(World& world, const SystemContext& sc, CloudsGpu& gpu, Pac
     if (clustered) {
       gpu.clusters_layer = int(i);
       gpu.clusters_near_m = near_m;
-      layers.layers[i].handover = {std::max(near_m, 1e-3f), clusters->crossfade_m, clusters->far_m, 0.0f};
+      hand_over(layers.layers[i], std::max(near_m, 1e-3f), clusters->crossfade_m, clusters->far_m);
     }
     if (far) {
       gpu.billboards_layer = int(i);
@@ -67,11 +73,11 @@ void hand_over_layers(World& world, const SystemContext& sc, CloudsGpu& gpu, Pac
         const float w = clusters->crossfade_m;
         gpu.billboards_fade = {clusters->far_m - w, clusters->far_m, std::max(end - w, clusters->far_m),
                                std::max(end, clusters->far_m + 1.0f)};
-        layers.layers[i].handover.z = gpu.billboards_fade.w;
+        layers.layers[i].handover_far_m = gpu.billboards_fade.w;
       } else {
         const float w = billboards->crossfade_m;
         gpu.billboards_fade = {billboards->near_m - 0.5f * w, billboards->near_m + 0.5f * w, end - w, end};
-        layers.layers[i].handover = {std::max(billboards->near_m, 1e-3f), w, end, 0.0f};
+        hand_over(layers.layers[i], std::max(billboards->near_m, 1e-3f), w, end);
       }
     }
   }

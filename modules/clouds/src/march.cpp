@@ -32,7 +32,7 @@ ResourceHandle published(const RenderGraph& g, const char* name) {
 uint64_t march_state(const CloudsGpu& gpu, uint64_t light, uint64_t geometry_state,
                      const ShaderDefines& defines, int n, int w, int h) {
   FrameBlock block = gpu.block;
-  block.frame.x = 0.0f;
+  block.frame_index = 0.0f;
   uint64_t state = fnv1a_64_of(block, fnv1a_64_of(light, fnv1a_64_of(geometry_state)));
   state = fnv1a_64(std::string_view(reinterpret_cast<const char*>(gpu.layers.data()),
                                     gpu.layers.size() * sizeof(LayerBlock)),
@@ -111,7 +111,7 @@ void clouds_system(SystemContext& sc) {
   auto& rc = world.resource<RenderContext>();
   // No layer holds cloud (coverage 0, no thickness or density): nothing is marched.
   if (!gpu.has_layers) return;
-  const int w = int(gpu.block.frame.z), h = int(gpu.block.frame.w);
+  const int w = int(gpu.block.march_width), h = int(gpu.block.march_height);
   const FrameView& view = rc.view;
   const char* ap_mode = camera_in_space(world, gpu.block)                                  ? "2"
                         : clouds->aerial_perspective == CloudAerialPerspective::mean_depth ? "1"

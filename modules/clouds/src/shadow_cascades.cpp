@@ -37,23 +37,24 @@ void place_shadow_cascades(CloudsGpu& gpu, const VolumetricClouds& clouds, const
   for (const LayerBlock& b : layers.layers) {
     key.settings.insert(
         key.settings.end(),
-        {b.altitude.x, b.altitude.y, b.altitude.z, b.altitude.w, b.shape.x, b.shape.y, b.shape.z, b.shape.w,
-         b.profile.x, b.profile.y, b.profile.z, b.profile.w, b.model.x, b.model.y, b.model.z, b.model.w});
+        {b.base_m, b.thickness_m, b.base_variation_m, b.density_per_m, b.coverage, b.shape_amount,
+         b.detail_amount, b.filter_width, b.profile_exp_term, b.profile_exponent, b.profile_linear_term,
+         b.profile_constant_term, b.dome, b.weather_channel, b.casts_shadow, b.follows_map});
   }
   for (const CloudLayer& L : clouds.layers)
     key.max_wind_mps = std::max(key.max_wind_mps, glm::length(L.wind_mps));
-  key.settings.insert(key.settings.end(),
-                      {block.medium.x, block.medium.y, float(clouds.seed), clouds.shape_period_m,
-                       clouds.weather_period_m, clouds.shadow_distance_m, float(cascades), block.map_up.w,
-                       float(ctx.coverage_map_revision & 0xffffffu), clouds.coverage_map_size_m,
-                       clouds.weather_system_amount, clouds.weather_system_period_m});
+  key.settings.insert(
+      key.settings.end(),
+      {block.scattering, block.absorption, float(clouds.seed), clouds.shape_period_m, clouds.weather_period_m,
+       clouds.shadow_distance_m, float(cascades), block.has_map, float(ctx.coverage_map_revision & 0xffffffu),
+       clouds.coverage_map_size_m, clouds.weather_system_amount, clouds.weather_system_period_m});
   // Cascade k (0 nearest) covers a square of side 2 D / 4^(n - 1 - k) around the camera; each is
   // remade on its own, when it is stale at its own texel size (the nearest follows the camera most).
   const glm::vec3 u =
       glm::normalize(glm::cross(l, std::abs(l.z) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1)));
   const glm::vec3 v = glm::cross(l, u);
   const float start =
-      std::max((layers.highest_shadow_m - block.planet.y) / std::max(l.z, 0.05f), 0.0f) + 100.0f;
+      std::max((layers.highest_shadow_m - block.camera_altitude_m) / std::max(l.z, 0.05f), 0.0f) + 100.0f;
   for (int k = 0; k < kMaxShadowCascades; ++k) {
     ShadowKey& held = gpu.shadow_keys[k];
     gpu.shadow_rebuild[k] = false;

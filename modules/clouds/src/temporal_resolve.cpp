@@ -20,7 +20,7 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
   const glm::vec3 moved = glm::vec3(view.camera_position_m - gpu.previous_camera_m);
   const glm::mat4 previous_vp = gpu.previous_view_projection, inverse_vp = view.inverse_view_projection;
   const bool valid = gpu.history_valid;
-  const float inside_cloud_m = 2.0f * gpu.block.steps.y;  // two of the shortest march steps
+  const float inside_cloud_m = 2.0f * gpu.block.min_step_m;  // two of the shortest march steps
   const ShaderDefines resolve_defines = {{"CLOUDS_CLIP", clouds.temporal_clipping ? "1" : "0"},
                                          {"CLOUDS_WITH_CLUSTERS", merge_clusters ? "1" : "0"}};
   auto merged = std::make_shared<ResourceHandle>();

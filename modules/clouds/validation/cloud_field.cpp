@@ -57,17 +57,17 @@ double CloudField::sample(const std::vector<uint8_t>& v, int size, int channels,
 
 double CloudField::altitude(const glm::dvec3& x) const {
   const glm::dvec3 up(frame_.up);
-  const double r_c = frame_.planet.z;
+  const double r_c = frame_.camera_radius_m;
   const double d = 2.0 * r_c * glm::dot(up, x) + glm::dot(x, x);
   const double r = std::sqrt(std::max(r_c * r_c + d, 0.0));
-  return double(frame_.planet.y) + d / std::max(r + r_c, 1.0);
+  return double(frame_.camera_altitude_m) + d / std::max(r + r_c, 1.0);
 }
 
 glm::dvec2 CloudField::sphere(const glm::dvec3& origin, const glm::dvec3& dir, double alt) const {
   const glm::dvec3 up(frame_.up);
-  const double R = double(frame_.planet.x) + alt, r_c = frame_.planet.z;
+  const double R = double(frame_.planet_radius_m) + alt, r_c = frame_.camera_radius_m;
   const double b = r_c * glm::dot(up, dir) + glm::dot(origin, dir);
-  const double c = (alt - double(frame_.planet.y)) * (R + r_c) - (2.0 * r_c * glm::dot(up, origin) + glm::dot(origin, origin));
+  const double c = (alt - double(frame_.camera_altitude_m)) * (R + r_c) - (2.0 * r_c * glm::dot(up, origin) + glm::dot(origin, origin));
   const double disc = b * b + c;
   if (disc < 0.0) return {1.0, -1.0};
   const double s = std::sqrt(disc);
@@ -77,12 +77,12 @@ glm::dvec2 CloudField::sphere(const glm::dvec3& origin, const glm::dvec3& dir, d
 // The painted map at a camera-relative point: projected along the radius onto the map's plane and
 // read bilinearly, clamped to its edge; 0 off the map.
 double CloudField::painted_coverage(const glm::dvec3& x) const {
-  if (frame_.map_up.w < 0.5f || noise_.coverage_map_side < 1) return 0.0;
+  if (frame_.has_map < 0.5f || noise_.coverage_map_side < 1) return 0.0;
   const glm::dvec3 q = glm::dvec3(frame_.map_origin) +
                        glm::dvec3(glm::dot(x, glm::dvec3(frame_.map_east)), glm::dot(x, glm::dvec3(frame_.map_north)),
                                   glm::dot(x, glm::dvec3(frame_.map_up)));
   if (q.z <= 0.0) return 0.0;
-  const glm::dvec2 uv = glm::dvec2(q.x, -q.y) * (double(frame_.map_east.w) / q.z) + 0.5;
+  const glm::dvec2 uv = glm::dvec2(q.x, -q.y) * (double(frame_.map_scale) / q.z) + 0.5;
   if (uv.x < 0.0 || uv.y < 0.0 || uv.x > 1.0 || uv.y > 1.0) return 0.0;
   const int n = noise_.coverage_map_side;
   const glm::dvec2 p = uv * double(n) - 0.5;
@@ -97,61 +97,64 @@ double CloudField::painted_coverage(const glm::dvec3& x) const {
 }
 
 double CloudField::coverage(const LayerBlock& L, const glm::dvec3& x) const {
-  const glm::dvec3 suv = glm::dvec3(frame_.weather_system) + x * double(frame_.weather_system.w);
-  const double c = system_coverage(L.shape.x, sample(noise_.systems, noise_.systems_size, 1, 0, suv), frame_.noise_mix.y);
-  return L.model.w > 0.5f ? clamp01(c + painted_coverage(x)) : c;
+  const glm::dvec3 suv = glm::dvec3(frame_.system_origin) + x * double(frame_.system_per_m);
+  const double c =
+      system_coverage(L.coverage, sample(noise_.systems, noise_.systems_size, 1, 0, suv), frame_.system_amount);
+  return L.follows_map > 0.5f ? clamp01(c + painted_coverage(x)) : c;
 }
 
 double CloudField::layer_density(const LayerBlock& L, const glm::dvec3& x, double h, bool detail) const {
-  const glm::dvec3 wuv = glm::dvec3(L.weather) + x * double(L.weather.w);
-  const int channel = int(L.model.y);
+  const glm::dvec3 wuv = glm::dvec3(L.weather_origin) + x * double(L.weather_per_m);
+  const int channel = int(L.weather_channel);
   const double w = sample(noise_.weather, noise_.weather_size, 4, channel, wuv);
   const double variation = sample(noise_.weather, noise_.weather_size, 4, 3, wuv);
-  const double base = L.altitude.x + L.altitude.z * (variation - 0.5) * 2.0;
-  const double t = (h - base) / std::max(double(L.altitude.y), 1e-3);
+  const double base = L.base_m + L.base_variation_m * (variation - 0.5) * 2.0;
+  const double t = (h - base) / std::max(double(L.thickness_m), 1e-3);
   if (t <= 0.0 || t >= 1.0) return 0.0;
-  const double fw = L.shape.w;
+  const double fw = L.filter_width;
   const double c = coverage(L, x);
   if (c <= 0.0) return 0.0;
   const double lo = (1.0 - c) * (1.0 + fw) - fw;
   const double d0 = clamp01((w - lo) / fw);
   if (d0 <= 0.0) return 0.0;
-  const double top = (1.0 - L.model.x) * 1.0 + L.model.x * std::max(d0, 0.05);
+  const double top = (1.0 - L.dome) * 1.0 + L.dome * std::max(d0, 0.05);
   const double envelope = smoothstep(0.0, 0.08, t) * (1.0 - smoothstep(top * 0.75, top, t));
-  const double profile = clamp01(L.profile.x * std::exp(L.profile.y * t) + L.profile.z * t + L.profile.w);
+  const double profile = clamp01(L.profile_exp_term * std::exp(L.profile_exponent * t) + L.profile_linear_term * t +
+                                 L.profile_constant_term);
   const double b = d0 * envelope * profile;
   if (b <= 0.0) return 0.0;
-  const glm::dvec3 shape_uvw = glm::dvec3(frame_.shape_origin) + x * double(frame_.shape_origin.w);
+  const glm::dvec3 shape_uvw = glm::dvec3(frame_.shape_origin) + x * double(frame_.shape_per_m);
   const double s = sample(noise_.shape, noise_.shape_size, 4, 0, shape_uvw);
-  const double erosion = (1.0 - s) * L.shape.y;
+  const double erosion = (1.0 - s) * L.shape_amount;
   double d = clamp01((b - erosion) / std::max(1.0 - erosion, 1e-3));
-  if (detail && d > 0.0 && L.shape.z > 0.0) {
+  if (detail && d > 0.0 && L.detail_amount > 0.0) {
     // Curl turbulence: the detail noise is read where the curl field (the shape volume's gba) moves
     // the point, in the lowest 30% of the layer, as far as the weather there holds cloud.
-    const double k = double(frame_.noise_mix.x) * d0 * clamp01(1.0 - t / 0.3);
+    const double k = double(frame_.turbulence_m) * d0 * clamp01(1.0 - t / 0.3);
     glm::dvec3 xd = x;
     if (k > 0.0)
       for (int a = 0; a < 3; ++a) xd[a] += k * (2.0 * sample(noise_.shape, noise_.shape_size, 4, 1 + a, shape_uvw) - 1.0);
-    const double n = sample(noise_.detail, noise_.detail_size, 1, 0, glm::dvec3(frame_.detail_origin) + xd * double(frame_.detail_origin.w));
+    const double n = sample(noise_.detail, noise_.detail_size, 1, 0,
+                            glm::dvec3(frame_.detail_origin) + xd * double(frame_.detail_per_m));
     const double m = clamp01(t * 4.0);
-    const double e = (n * (1.0 - m) + (1.0 - n) * m) * L.shape.z * 0.35 * (1.0 - d);
+    const double e = (n * (1.0 - m) + (1.0 - n) * m) * L.detail_amount * 0.35 * (1.0 - d);
     d = clamp01((d - e) / std::max(1.0 - e, 1e-3));
   }
-  return d * L.altitude.w;
+  return d * L.density_per_m;
 }
 
 double CloudField::extinction(const glm::dvec3& x, bool detail) const {
   const double h = altitude(x);
-  if (h < frame_.shell.x || h > frame_.shell.y) return 0.0;
+  if (h < frame_.lowest_m || h > frame_.highest_m) return 0.0;
   double sum = 0.0;
   for (const LayerBlock& L : layers_) sum += layer_density(L, x, h, detail);
-  return sum * (double(frame_.medium.x) + double(frame_.medium.y));
+  return sum * (double(frame_.scattering) + double(frame_.absorption));
 }
 
 double CloudField::majorant() const {
   double sum = 0.0;
-  for (const LayerBlock& L : layers_) sum += L.altitude.w;
-  return sum * (double(frame_.medium.x) + double(frame_.medium.y));
+  for (const LayerBlock& L : layers_) sum += L.density_per_m;
+  return sum * (double(frame_.scattering) + double(frame_.absorption));
 }
 
 }  // namespace welkin::clouds

@@ -29,8 +29,8 @@ class CloudField {
   double altitude(const glm::dvec3& x) const;
   // Distances along a ray from a camera-relative origin to the sphere at `altitude` (near > far: missed).
   glm::dvec2 sphere(const glm::dvec3& origin, const glm::dvec3& dir, double altitude) const;
-  double lowest_m() const { return frame_.shell.x; }
-  double highest_m() const { return frame_.shell.y; }
+  double lowest_m() const { return frame_.lowest_m; }
+  double highest_m() const { return frame_.highest_m; }
   // The largest extinction anywhere: the sum of the layers' full densities (a majorant).
   double majorant() const;
   // The coverage packed layer `layer` has at x: its own, moved by the weather systems and the painted map.

@@ -32,8 +32,8 @@ class CloudMedium final : public ref::Medium {
  public:
   explicit CloudMedium(const CloudField& field) : field_(field) {
     const FrameBlock& f = field.frame();
-    center_ = -glm::dvec3(f.up) * double(f.planet.z);
-    radius_ = f.planet.x;
+    center_ = -glm::dvec3(f.up) * double(f.camera_radius_m);
+    radius_ = f.planet_radius_m;
   }
   double extinction(const glm::dvec3& p) const override { return field_.extinction(p); }
   ref::MajorantSegments segments(const ref::Ray& ray) const override {

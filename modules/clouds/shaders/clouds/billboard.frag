@@ -47,8 +47,7 @@ void main() {
   float scale = v_scale;
   vec3 light;
   float opacity, front = 3.4e38;
-  cl_phase = clb_phase, cl_medium = clb_medium, cl_light = clb_light, cl_light_model = clb_light_model;
-  cl_planet = clb_planet, cl_up = clb_up;
+  cl = clb;
   vec3 l_local = to_local(u_light_dir);
   float mu = dot(dir, u_light_dir);
 #if BILLBOARDS_RENDER_VOLUME

@@ -28,10 +28,10 @@ uniform float u_coverage;  // the coverage the archetypes are baked at
 
 CloudLayerGpu bake_layer() {
   CloudLayerGpu L = cl_layers[u_layer];
-  L.shape.x = u_coverage;
-  L.weather.xyz = vec3(0.0);
-  L.model.w = 0.0;  // no painted map
-  L.handover = vec4(0.0);
+  L.coverage = u_coverage;
+  L.weather_origin = vec3(0.0);
+  L.follows_map = 0.0;  // no painted map
+  L.handover_near_m = 0.0, L.handover_crossfade_m = 0.0, L.handover_far_m = 0.0;
   return L;
 }
 
@@ -39,29 +39,29 @@ CloudLayerGpu bake_layer() {
 float archetype_field(CloudLayerGpu L, vec3 x, float h) {
   clouds_detail_sample = -1.0, clouds_painted_sample = 2.0, clouds_detail_displacement = 0.0;
   clouds_system_g = 0.5;
-  clouds_shape_sample = textureLod(cl_shape_noise, x * cl_shape_origin.w, clouds_lod(1.0 / (cl_shape_origin.w * 128.0)));
+  clouds_shape_sample = textureLod(cl_shape_noise, x * cl.shape_per_m, clouds_lod(1.0 / (cl.shape_per_m * 128.0)));
   float envelope;
-  return clouds_layer_density(L, clouds_weather_fetch(L, x), false, true, x, h, envelope) * (cl_medium.x + cl_medium.y);
+  return clouds_layer_density(L, clouds_weather_fetch(L, x), false, true, x, h, envelope) * (cl.scattering + cl.absorption);
 }
 
 void main() {
   clouds_load();
-  cl_shape_origin.xyz = vec3(0.0), cl_detail_origin.xyz = vec3(0.0);
+  cl.shape_origin = vec3(0.0), cl.detail_origin = vec3(0.0);
   CloudLayerGpu L = bake_layer();
   int id = int(gl_GlobalInvocationID.x);
   float hw = u_box.x, hh = u_box.y;
-  float centre_h = L.altitude.x + u_volume.y;  // the box's centre above the surface
+  float centre_h = L.base_m + u_volume.y;  // the box's centre above the surface
 #if BILLBOARDS_BAKE_STAGE == 0
   if (id >= u_atlas.z) return;
   // Scores are sums of five envelopes (at most 5): archetype k aims at 5 (k + 1/2) / K.
-  float period = 1.0 / L.weather.w, target = 5.0 * (float(id) + 0.5) / float(u_atlas.z), best = 3.4e38, best_score = 0.0;
+  float period = 1.0 / L.weather_per_m, target = 5.0 * (float(id) + 0.5) / float(u_atlas.z), best = 3.4e38, best_score = 0.0;
   vec2 place = vec2(0.0);
   const vec2 columns[5] = vec2[5](vec2(0.0), vec2(0.5, 0.0), vec2(-0.5, 0.0), vec2(0.0, 0.5), vec2(0.0, -0.5));
   for (int j = 0; j < 64; ++j) {
     vec2 p = random4(ivec2(id, 0), j, 2u).xy * period;
     float score = 0.0, t, d0;
     for (int c = 0; c < 5; ++c) {
-      float h = L.altitude.x + 0.33 * L.altitude.y;
+      float h = L.base_m + 0.33 * L.thickness_m;
       vec3 x = vec3(p + columns[c] * 0.84 * hw, h);
       score += clouds_layer_envelope(L, clouds_weather_fetch(L, x), false, x, h, t, d0);
     }

@@ -44,7 +44,7 @@ void main() {
     // No nearer than the fade-in's middle (where the chosen cells' centres begin).
     float inner = 0.5 * (u_fade.x + u_fade.y);
     if (length(en) < inner) en *= inner / max(length(en), 1e-3);
-    vec3 c = layer_point(en, L.altitude.x + u_volume.y);
+    vec3 c = layer_point(en, L.base_m + u_volume.y);
     float rho = length(c);
     // The archetype whose own weather is nearest the cell's (of two equally near, one by the hash).
     float score = bb_cells[cell], nearest = 3.4e38;
@@ -58,7 +58,7 @@ void main() {
     float weather = clamp(score / max(bb_archetypes[archetype].z, 1e-6), 0.0, 1.0);
     float scale = u_density_scale * fade * weather;
     if (scale > 0.0) {
-      vec3 up = normalize(cl_up.xyz * cl_planet.z + c);
+      vec3 up = normalize(cl.up * cl.camera_radius_m + c);
       b.centre = vec4(c, scale);
       b.light = vec4(u_light == 1 ? welkin_moon_irradiance(c) : welkin_sun_irradiance(c), rho);
       b.sky = vec4(welkin_sky_irradiance(up), float(archetype));

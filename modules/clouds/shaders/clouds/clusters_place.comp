@@ -40,7 +40,7 @@ void main() {
   clouds_load();
   int id = int(gl_GlobalInvocationID.x);
   CloudLayerGpu L = cl_layers[u_layer];
-  float base = L.altitude.x, thickness = L.altitude.y;
+  float base = L.base_m, thickness = L.thickness_m;
   float cluster_radius = 0.42 * u_cell_m;
 #if CLUSTERS_STAGE == 0
   if (id >= u_grid * u_grid) return;
@@ -99,7 +99,7 @@ void main() {
     vec2 puff_en = centre_en + offset.x * u_wind_en + offset.y * across_en;
     // The base rises and falls with the weather, as in the field: read once at the cluster's centre.
     vec3 at_centre = layer_point(centre_en, base);
-    float weather_base = base + L.altitude.z * (clouds_weather_fetch(L, at_centre).a - 0.5) * 2.0;
+    float weather_base = base + L.base_variation_m * (clouds_weather_fetch(L, at_centre).a - 0.5) * 2.0;
     vec3 x = layer_point(puff_en, weather_base + height);
     float rho = length(x);
     // The volumetric path hands the layer over across [near - w/2, near + w/2]; the puffs fade out
@@ -111,7 +111,7 @@ void main() {
     float field = field_at(x);
     field = max(field, field_at(layer_point(puff_en + 0.5 * radii.x * u_wind_en, weather_base + height)));
     field = max(field, field_at(layer_point(puff_en - 0.5 * radii.x * u_wind_en, weather_base + height)));
-    float sigma = field * (cl_medium.x + cl_medium.y) * u_genus.z * fade;
+    float sigma = field * (cl.scattering + cl.absorption) * u_genus.z * fade;
     if (sigma > 0.0) {
       puff.centre = vec4(x, sigma);
       puff.radii = vec4(radii, 0.0);
@@ -154,7 +154,7 @@ void main() {
     // Only this stage's fields are written: the other invocations read the centres and radii.
     cp_puffs[id].radii.w = tau[0];
     cp_puffs[id].light_gradient = vec4(tau[1] - tau[2], tau[3] - tau[4], tau[5] - tau[6], 0.0);
-    vec3 up = normalize(cl_up.xyz * cl_planet.z + c);
+    vec3 up = normalize(cl.up * cl.camera_radius_m + c);
     cp_puffs[id].light = vec4(u_light == 1 ? welkin_moon_irradiance(c) : welkin_sun_irradiance(c), length(c));
     cp_puffs[id].sky.rgb = welkin_sky_irradiance(up);
     vec3 t;

@@ -4,64 +4,16 @@
 // the planet-centred frame come from the camera's radius so that float precision does not depend on
 // the planet's size (altitude h = h_camera + (r^2 - r_camera^2) / (r + r_camera)).
 
-// Per frame (src/frame_block.cpp mirrors it, std140).
-layout(std140, binding = 0) uniform CloudsFrame {
-  vec4 clb_planet;          // planet radius m, camera altitude m, camera radius m, layer count
-  vec4 clb_up;              // xyz: planet-centred up at the camera; w: max march distance m
-  vec4 clb_shell;           // lowest base, highest top (altitudes, m) of the layers; empty-space step m
-  vec4 clb_shape_origin;    // camera in shape periods (fraction, drift applied); w: 1 / period
-  vec4 clb_detail_origin;   // the same for the detail noise
-  vec4 clb_steps;           // max steps, min step m, max step m, light steps
-  vec4 clb_light;           // first light step m, octaves, powder, ground albedo
-  vec4 clb_medium;          // scattering, absorption (per unit density), phase model, droplet diameter um
-  vec4 clb_phase;           // g forward, g backward, forward weight, light marched (0 sun, 1 moon)
-  vec4 clb_frame;           // frame index, shape detail on, march width, march height
-  vec4 clb_light_model;     // multiple scattering: 0 octaves, 1 diffusion; y: march pixel angle (rad); z: bands; w: step growth
-  vec4 clb_band_low;        // the altitude bands that hold layers (m): lower bounds
-  vec4 clb_band_high;       // and upper bounds
-  vec4 clb_map_east;        // the painted coverage map's east axis; w: planet radius / map side
-  vec4 clb_map_north;       // its north axis; w: the largest coverage it adds
-  vec4 clb_map_up;          // its up axis; w: 1 when the scene has a map
-  vec4 clb_map_origin;      // the camera in (east, north, up) from the planet's centre, m
-  vec4 clb_noise_mix;       // x: largest displacement of the detail noise by the curl field m; y: weather-system
-                            // amount; z: the largest change of the weather systems' signal per metre
-  vec4 clb_weather_system;  // the camera in weather-system periods (fraction, anchored, drift applied); w: 1 / period
-  mat4 clb_inverse_view_projection;
-};
-// The block's values in private variables, loaded once per invocation (clouds_load): software
-// rasterisers reload uniform and storage blocks at every use inside a loop.
-vec4 cl_planet;
-vec4 cl_up;
-vec4 cl_shell;
-vec4 cl_shape_origin;
-vec4 cl_detail_origin;
-vec4 cl_steps;
-vec4 cl_light;
-vec4 cl_medium;
-vec4 cl_phase;
-vec4 cl_frame;
-vec4 cl_light_model;
-vec4 cl_band_low;
-vec4 cl_band_high;
-vec4 cl_map_east;
-vec4 cl_map_north;
-vec4 cl_map_up;
-vec4 cl_map_origin;
-vec4 cl_noise_mix;
-vec4 cl_weather_system;
-mat4 cl_inverse_view_projection;
+// The frame block and a layer, declared once for GLSL and C++ (src/frame_block.h).
+#include "clouds/blocks.glsl.h"
+// Per frame (src/frame_block.cpp fills it, std140).
+layout(std140, binding = 0) uniform CloudsFrame { CloudsFrameGpu clb; };
+// The block in a private variable, loaded once per invocation (clouds_load): software rasterisers
+// reload uniform and storage blocks at every use inside a loop.
+CloudsFrameGpu cl;
 const int CLOUDS_MAX_BANDS = 4;
 
-
-// One layer (src/frame_block.cpp packs them, std430).
-struct CloudLayerGpu {
-  vec4 altitude;  // base m, thickness m, base variation m, density per m
-  vec4 shape;     // coverage, shape amount, detail amount, coverage filter width
-  vec4 profile;   // exp term, exponent, linear term, constant term
-  vec4 weather;   // camera in weather periods (fraction, drift applied), xyz; w: 1 / period
-  vec4 model;     // dome (0 sheet .. 1 dome), weather channel, casts shadow, follows the coverage map
-  vec4 handover;  // the mesh clusters draw the layer from x to z (view distance m; x = 0: never); y: cross-fade m
-};
+// The layers (src/frame_block.cpp packs them, std430).
 layout(std430, binding = 0) readonly buffer CloudLayers { CloudLayerGpu cl_layers[]; };
 // Up to four layers are copied into private variables too; more are read from the buffer.
 const int CLOUDS_LOCAL_LAYERS = 4;
@@ -70,27 +22,8 @@ int cl_layer_count = 0;
 
 // Call first in every shader that uses the field.
 void clouds_load() {
-  cl_planet = clb_planet;
-  cl_up = clb_up;
-  cl_shell = clb_shell;
-  cl_shape_origin = clb_shape_origin;
-  cl_detail_origin = clb_detail_origin;
-  cl_steps = clb_steps;
-  cl_light = clb_light;
-  cl_medium = clb_medium;
-  cl_phase = clb_phase;
-  cl_frame = clb_frame;
-  cl_light_model = clb_light_model;
-  cl_band_low = clb_band_low;
-  cl_band_high = clb_band_high;
-  cl_map_east = clb_map_east;
-  cl_map_north = clb_map_north;
-  cl_map_up = clb_map_up;
-  cl_map_origin = clb_map_origin;
-  cl_noise_mix = clb_noise_mix;
-  cl_weather_system = clb_weather_system;
-  cl_inverse_view_projection = clb_inverse_view_projection;
-  cl_layer_count = int(cl_planet.w);
+  cl = clb;
+  cl_layer_count = int(cl.layer_count);
   for (int i = 0; i < CLOUDS_LOCAL_LAYERS; ++i)
     if (i < cl_layer_count) cl_local_layers[i] = cl_layers[i];
 }
@@ -109,10 +42,10 @@ float clouds_footprint_m = 0.0;
 float clouds_lod(float texel_m) { return log2(max(clouds_footprint_m / texel_m, 1.0)); }
 
 float clouds_altitude(vec3 x) {
-  float r_c = cl_planet.z;
-  float d = 2.0 * r_c * dot(cl_up.xyz, x) + dot(x, x);  // r^2 - r_camera^2
+  float r_c = cl.camera_radius_m;
+  float d = 2.0 * r_c * dot(cl.up, x) + dot(x, x);  // r^2 - r_camera^2
   float r = sqrt(max(r_c * r_c + d, 0.0));
-  return cl_planet.y + d / max(r + r_c, 1.0);
+  return cl.camera_altitude_m + d / max(r + r_c, 1.0);
 }
 
 // What a layer's weather and vertical envelope allow at x, before the noise erodes it (also the
@@ -144,23 +77,23 @@ bool clouds_view_sample = false;
 // instead of reading it at every sample. Neutral until set.
 float clouds_system_g = 0.5;
 float clouds_weather_system_at(vec3 x) {
-  return textureLod(cl_weather_systems, cl_weather_system.xyz + x * cl_weather_system.w, 0.0).r;
+  return textureLod(cl_weather_systems, cl.system_origin + x * cl.system_per_m, 0.0).r;
 }
 // A layer's coverage c where the weather systems' signal is g (frame_block.cpp's
 // system_coverage): raised where g > 0.5, lowered where g < 0.5, by up to the amount times 4 c (1 - c),
 // so that 0 and 1 stay clear and overcast.
 float clouds_system_coverage(float c, float g) {
-  return clamp(c + cl_noise_mix.y * (2.0 * g - 1.0) * 4.0 * c * (1.0 - c), 0.0, 1.0);
+  return clamp(c + cl.system_amount * (2.0 * g - 1.0) * 4.0 * c * (1.0 - c), 0.0, 1.0);
 }
 
 // The coverage the painted map adds at x: the point is projected along the planet's radius onto the
 // map's tangent plane (a column of air reads one texel at every altitude); 0 off the map.
 float clouds_painted_coverage(vec3 x) {
   if (clouds_painted_sample <= 1.5) return clouds_painted_sample;
-  vec3 q = cl_map_origin.xyz + vec3(dot(x, cl_map_east.xyz), dot(x, cl_map_north.xyz), dot(x, cl_map_up.xyz));
+  vec3 q = cl.map_origin + vec3(dot(x, cl.map_east), dot(x, cl.map_north), dot(x, cl.map_up));
   clouds_painted_sample = 0.0;
   if (q.z <= 0.0) return 0.0;
-  vec2 uv = vec2(q.x, -q.y) * (cl_map_east.w / q.z) + 0.5;
+  vec2 uv = vec2(q.x, -q.y) * (cl.map_scale / q.z) + 0.5;
   if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 0.0;
   clouds_painted_sample = (textureLod(cl_coverage_map, uv, 0.0).r * 255.0 - 128.0) / 127.0;
   return clouds_painted_sample;
@@ -168,7 +101,7 @@ float clouds_painted_coverage(vec3 x) {
 
 // The weather sample a layer reads at x (its three genus channels and the base's variation).
 vec4 clouds_weather_fetch(CloudLayerGpu L, vec3 x) {
-  return textureLod(cl_weather_noise, L.weather.xyz + x * L.weather.w, clouds_lod(1.0 / (L.weather.w * 64.0)));
+  return textureLod(cl_weather_noise, L.weather_origin + x * L.weather_per_m, clouds_lod(1.0 / (L.weather_per_m * 64.0)));
 }
 
 // Scales what the weather allows (the billboards' bake windows the field around each cloud it bakes).
@@ -177,30 +110,30 @@ float clouds_weather_scale = 1.0;
 // `w4`: the layer's weather sample at x; `follows_map`: the painted map adds to its coverage.
 float clouds_layer_envelope(CloudLayerGpu L, vec4 w4, bool follows_map, vec3 x, float h, out float t, out float d0) {
   t = 0.0, d0 = 0.0;
-  if (h < L.altitude.x - L.altitude.z || h > L.altitude.x + L.altitude.y + L.altitude.z) return 0.0;
-  float c = clouds_system_coverage(L.shape.x, clouds_system_g);
+  if (h < L.base_m - L.base_variation_m || h > L.base_m + L.thickness_m + L.base_variation_m) return 0.0;
+  float c = clouds_system_coverage(L.coverage, clouds_system_g);
   if (follows_map) c = clamp(c + clouds_painted_coverage(x), 0.0, 1.0);
   if (c <= 0.0) return 0.0;
-  int channel = int(L.model.y);
+  int channel = int(L.weather_channel);
   float w = channel == 0 ? w4.r : channel == 1 ? w4.g : w4.b;
-  float base = L.altitude.x + L.altitude.z * (w4.a - 0.5) * 2.0;
-  t = (h - base) / max(L.altitude.y, 1e-3);
+  float base = L.base_m + L.base_variation_m * (w4.a - 0.5) * 2.0;
+  t = (h - base) / max(L.thickness_m, 1e-3);
   if (t <= 0.0 || t >= 1.0) return 0.0;
   // Coverage c covers a fraction c of the sky (the weather channels are equalised to uniform).
-  float fw = L.shape.w;
+  float fw = L.filter_width;
   float lo = (1.0 - c) * (1.0 + fw) - fw;
   d0 = clamp((w - lo) / fw, 0.0, 1.0) * clouds_weather_scale;
   if (d0 <= 0.0) return 0.0;
   // Domes: the top rises with the weather's strength; sheets fill the layer. Flat, soft bases.
-  float top = mix(1.0, max(d0, 0.05), L.model.x);
+  float top = mix(1.0, max(d0, 0.05), L.dome);
   float envelope = smoothstep(0.0, 0.08, t) * (1.0 - smoothstep(top * 0.75, top, t));
-  float profile = clamp(L.profile.x * exp(L.profile.y * t) + L.profile.z * t + L.profile.w, 0.0, 1.0);
+  float profile = clamp(L.profile_exp_term * exp(L.profile_exponent * t) + L.profile_linear_term * t + L.profile_constant_term, 0.0, 1.0);
   return d0 * envelope * profile;
 }
 
 // The detail noise at xd (what the layers erode with).
 float clouds_detail_fetch(vec3 xd) {
-  return textureLod(cl_detail_noise, cl_detail_origin.xyz + xd * cl_detail_origin.w, clouds_lod(1.0 / (cl_detail_origin.w * 32.0))).r;
+  return textureLod(cl_detail_noise, cl.detail_origin + xd * cl.detail_per_m, clouds_lod(1.0 / (cl.detail_per_m * 32.0))).r;
 }
 
 // Extinction (1/m) of one layer at x, from the shape sample already read (clouds_shape_sample);
@@ -211,15 +144,15 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
   envelope = clouds_layer_envelope(L, w4, follows_map, x, h, t, d0);
   if (envelope <= 0.0) return 0.0;
   float s = clouds_shape_sample.x;
-  float erosion = (1.0 - s) * L.shape.y;
+  float erosion = (1.0 - s) * L.shape_amount;
   float d = clamp((envelope - erosion) / max(1.0 - erosion, 1e-3), 0.0, 1.0);
-  if (detail && d > 0.0 && L.shape.z > 0.0) {
+  if (detail && d > 0.0 && L.detail_amount > 0.0) {
 #if CLOUDS_TURBULENCE
     // Curl turbulence (Schneider 2015): the detail noise is read where the curl field, fetched with
     // the shape, moves the point; in the lowest 30% of the layer, as far as the weather there holds
     // cloud (takram's weighting). A compile-time switch: a software rasteriser pays for the
     // arithmetic of a branch even where no pixel takes it.
-    float k = cl_noise_mix.x * d0 * clamp(1.0 - t / 0.3, 0.0, 1.0);
+    float k = cl.turbulence_m * d0 * clamp(1.0 - t / 0.3, 0.0, 1.0);
     if (k != clouds_detail_displacement || clouds_detail_sample < 0.0) {
       clouds_detail_displacement = k;
       clouds_detail_sample = clouds_detail_fetch(x + (clouds_shape_sample.yzw * 2.0 - 1.0) * k);
@@ -230,22 +163,22 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
 #endif
     float n = clouds_detail_sample;
     // Wisps at the base, billows at the top (Schneider): the detail erodes thin parts most.
-    float e = mix(n, 1.0 - n, clamp(t * 4.0, 0.0, 1.0)) * L.shape.z * 0.35 * (1.0 - d);
+    float e = mix(n, 1.0 - n, clamp(t * 4.0, 0.0, 1.0)) * L.detail_amount * 0.35 * (1.0 - d);
     d = clamp((d - e) / max(1.0 - e, 1e-3), 0.0, 1.0);
   }
 #if CLOUDS_HANDOVER
   // Seen from the camera, a layer the mesh clusters take over fades out across the hand-over; its
   // light and shadow samples keep the whole layer (the clusters' clouds still shade what is near).
-  if (clouds_view_sample && L.handover.x > 0.0) {
+  if (clouds_view_sample && L.handover_near_m > 0.0) {
     // The complement of the puffs' fade (clusters_place.comp): in across [near - w/2, near + w/2],
     // out across [far - w, far]; the two paths' densities add up to the field's.
     float r = length(x);
-    d *= 1.0 - smoothstep(L.handover.x - 0.5 * L.handover.y, L.handover.x + 0.5 * L.handover.y + 1e-3, r) *
-                   (1.0 - smoothstep(L.handover.z - L.handover.y - 1e-3, L.handover.z, r));
+    d *= 1.0 - smoothstep(L.handover_near_m - 0.5 * L.handover_crossfade_m, L.handover_near_m + 0.5 * L.handover_crossfade_m + 1e-3, r) *
+                   (1.0 - smoothstep(L.handover_far_m - L.handover_crossfade_m - 1e-3, L.handover_far_m, r));
   }
 #endif
-  clouds_depth_below_m += d * L.altitude.w * t * L.altitude.y;
-  return d * L.altitude.w;
+  clouds_depth_below_m += d * L.density_per_m * t * L.thickness_m;
+  return d * L.density_per_m;
 }
 
 // The field's layers are compiled in (CLOUDS_LAYERS of them, at most CLOUDS_LOCAL_LAYERS), each with
@@ -293,9 +226,9 @@ float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
   clouds_detail_displacement = 0.0;
   clouds_depth_below_m = 0.0;
   float h = clouds_altitude(x);
-  if (h < cl_shell.x || h > cl_shell.y) return 0.0;
+  if (h < cl.lowest_m || h > cl.highest_m) return 0.0;
   // The shape noise is the same for every layer: read once.
-  clouds_shape_sample = textureLod(cl_shape_noise, cl_shape_origin.xyz + x * cl_shape_origin.w, clouds_lod(1.0 / (cl_shape_origin.w * 128.0)));
+  clouds_shape_sample = textureLod(cl_shape_noise, cl.shape_origin + x * cl.shape_per_m, clouds_lod(1.0 / (cl.shape_per_m * 128.0)));
   float sum = 0.0, envelope;
 #if CLOUDS_LAYERS > 0
 #if !CLOUDS_TURBULENCE
@@ -308,13 +241,14 @@ float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
   if (CLOUDS_LAYERS > 2) { CLOUDS_ADD_LAYER(2) }
   if (CLOUDS_LAYERS > 3) { CLOUDS_ADD_LAYER(3) }
 #else
-  detail = detail && cl_frame.y > 0.5;
+  detail = detail && cl.shape_detail > 0.5;
   vec4 weather_at = vec4(-1.0), w4 = vec4(0.0);
   for (int i = 0; i < cl_layer_count; ++i) {
     CloudLayerGpu L = cl_layers[i];
-    if (shadow_only && L.model.z < 0.5) continue;
-    if (L.weather != weather_at) weather_at = L.weather, w4 = clouds_weather_fetch(L, x);
-    sum += clouds_layer_density(L, w4, L.model.w > 0.5, detail, x, h, envelope);
+    if (shadow_only && L.casts_shadow < 0.5) continue;
+    vec4 weather = vec4(L.weather_origin, L.weather_per_m);
+    if (weather != weather_at) weather_at = weather, w4 = clouds_weather_fetch(L, x);
+    sum += clouds_layer_density(L, w4, L.follows_map > 0.5, detail, x, h, envelope);
     empty = empty && envelope <= 0.0;
   }
 #endif
@@ -328,7 +262,7 @@ float clouds_density(vec3 x, bool detail, bool shadow_only) {
 
 // The occupancy of a layer's weather around x: the largest signal in the 16^3 block x lies in.
 vec4 clouds_weather_block(CloudLayerGpu L, vec3 x) {
-  vec3 cells = fract(L.weather.xyz + x * L.weather.w) * 16.0;
+  vec3 cells = fract(L.weather_origin + x * L.weather_per_m) * 16.0;
   return texelFetch(cl_weather_maximum, clamp(ivec3(cells), ivec3(0), ivec3(15)), 0);
 }
 
@@ -336,27 +270,27 @@ vec4 clouds_weather_block(CloudLayerGpu L, vec3 x) {
 // occupancy block x lies in, when no layer within reach (altitudes widened by the largest block) can
 // hold cloud anywhere in its block. 0 when one might. `m`: the layer's block maximum.
 float clouds_skip_layer(CloudLayerGpu L, vec4 m, vec3 x, vec3 dir, float h, float skip) {
-  float reach = 1.8 * cl_shell.w;
-  if (h < L.altitude.x - L.altitude.z - reach || h > L.altitude.x + L.altitude.y + L.altitude.z + reach) return skip;
-  int channel = int(L.model.y);
+  float reach = 1.8 * cl.largest_block_m;
+  if (h < L.base_m - L.base_variation_m - reach || h > L.base_m + L.thickness_m + L.base_variation_m + reach) return skip;
+  int channel = int(L.weather_channel);
   float w = channel == 0 ? m.r : channel == 1 ? m.g : m.b;
   // The weather systems may raise the coverage anywhere in the block by what their signal changes
   // over the block, and by what interpolating it along the stretch may miss (0.03: a stretch of
   // 200 km across their finest features); a layer that follows the painted map may be as covered as
   // the map's largest texel makes it.
-  float block_m = 1.0 / (16.0 * L.weather.w);
-  float g = min(clouds_system_g + cl_noise_mix.z * 1.8 * block_m + 0.03, 1.0);
-  float fw = L.shape.w, c = min(clouds_system_coverage(L.shape.x, g) + L.model.w * max(cl_map_north.w, 0.0), 1.0);
+  float block_m = 1.0 / (16.0 * L.weather_per_m);
+  float g = min(clouds_system_g + cl.system_slope_per_m * 1.8 * block_m + 0.03, 1.0);
+  float fw = L.filter_width, c = min(clouds_system_coverage(L.coverage, g) + L.follows_map * max(cl.map_raise, 0.0), 1.0);
   if (w > (1.0 - c) * (1.0 + fw) - fw) return 0.0;
   // Metres to the block's far side along dir (cells per metre: 16 x the layer's 1 / period).
-  vec3 f = fract(fract(L.weather.xyz + x * L.weather.w) * 16.0);
-  vec3 rate = abs(dir) * (16.0 * L.weather.w) + 1e-12;
+  vec3 f = fract(fract(L.weather_origin + x * L.weather_per_m) * 16.0);
+  vec3 rate = abs(dir) * (16.0 * L.weather_per_m) + 1e-12;
   vec3 to_side = mix(f, 1.0 - f, step(0.0, dir)) / rate;
   return min(skip, min(to_side.x, min(to_side.y, to_side.z)) + 1.0);
 }
 
 float clouds_empty_skip(vec3 x, vec3 dir) {
-  float h = clouds_altitude(x), skip = cl_shell.w;
+  float h = clouds_altitude(x), skip = cl.largest_block_m;
 #if CLOUDS_LAYERS > 0
   // Layers that share a weather sample share its block too.
   vec4 m[CLOUDS_LOCAL_LAYERS];
@@ -378,10 +312,10 @@ float clouds_empty_skip(vec3 x, vec3 dir) {
 // planet's surface: (near, far), or near > far when missed. Differences of squares are formed first
 // (R^2 - r_c^2 = (R - r_c)(R + r_c)) so that precision does not depend on the planet's size.
 vec2 clouds_sphere_from(vec3 origin, vec3 dir, float altitude) {
-  float R = cl_planet.x + altitude;
-  float r_c = cl_planet.z;
-  float b = r_c * dot(cl_up.xyz, dir) + dot(origin, dir);
-  float c = (altitude - cl_planet.y) * (R + r_c) - (2.0 * r_c * dot(cl_up.xyz, origin) + dot(origin, origin));
+  float R = cl.planet_radius_m + altitude;
+  float r_c = cl.camera_radius_m;
+  float b = r_c * dot(cl.up, dir) + dot(origin, dir);
+  float c = (altitude - cl.camera_altitude_m) * (R + r_c) - (2.0 * r_c * dot(cl.up, origin) + dot(origin, origin));
   float disc = b * b + c;
   if (disc < 0.0) return vec2(1.0, -1.0);
   float s = sqrt(disc);

@@ -16,15 +16,15 @@
 #ifdef CLOUDS_MULTIPLE_SCATTERING
 const bool clouds_diffusion_model = CLOUDS_MULTIPLE_SCATTERING == 1;
 #else
-#define clouds_diffusion_model (cl_light_model.x > 0.5)
+#define clouds_diffusion_model (cl.multiple_scattering > 0.5)
 #endif
 
-// Schneider's beer-powder darkening of thin edges (cl_light.z = 0: off).
+// Schneider's beer-powder darkening of thin edges (cl.powder = 0: off).
 float clouds_powder(float sigma_t) {
 #ifdef CLOUDS_POWDER
   if (CLOUDS_POWDER == 0) return 1.0;
 #endif
-  return 1.0 - cl_light.z * exp(-2.0 * sigma_t * cl_light.x);
+  return 1.0 - cl.powder * exp(-2.0 * sigma_t * cl.light_step_m);
 }
 
 // The diffusion model's source from the two transmittances (see clouds_sample_source).
@@ -41,9 +41,9 @@ vec3 clouds_diffusion_source(float mu, float phase_single, float direct, float d
   // Sky from above and the lit ground from below, diffused through the cloud: the two-stream
   // transmittance 1 / (1 + 0.75 (1 - g) tau) with g = 0.8, tau the optical depth toward the light
   // (no extra samples: on software rasterisers each density sample is most of a step's cost).
-  vec3 e_ground = cl_light.w * (e_light * max(dot(l, up), 0.0) * direct + e_sky);
+  vec3 e_ground = cl.ground_albedo * (e_light * max(dot(l, up), 0.0) * direct + e_sky);
   vec3 ambient = (e_sky + e_ground) * diffuse / (2.0 * CLOUDS_PI);
-  float albedo = cl_medium.x / max(cl_medium.x + cl_medium.y, 1e-9);
+  float albedo = cl.scattering / max(cl.scattering + cl.absorption, 1e-9);
   return albedo * (e_light * scattered + ambient);
 }
 
@@ -55,7 +55,7 @@ vec3 clouds_sample_source(float mu, float phase_single, float tau, float sigma_t
   // Wrenninge 2015: octave k scatters b^k of the light, sees a^k of the optical depth, and a
   // phase whose anisotropy is scaled by c^k (a = b = c = 1/2).
   float scattered = 0.0;
-  int octaves = int(cl_light.y);
+  int octaves = int(cl.octaves);
   float weight = 1.0;
   for (int k = 0; k < octaves; ++k) {
     scattered += weight * clouds_phase(mu, weight) * exp(-weight * tau);
@@ -63,8 +63,8 @@ vec3 clouds_sample_source(float mu, float phase_single, float tau, float sigma_t
   }
   scattered *= clouds_powder(sigma_t);
   float direct = exp(-tau);
-  vec3 e_ground = cl_light.w * (e_light * max(dot(l, up), 0.0) * direct + e_sky);
+  vec3 e_ground = cl.ground_albedo * (e_light * max(dot(l, up), 0.0) * direct + e_sky);
   vec3 ambient = (e_sky + e_ground) * clouds_diffuse_transmittance(tau) / (2.0 * CLOUDS_PI);
-  float albedo = cl_medium.x / max(cl_medium.x + cl_medium.y, 1e-9);
+  float albedo = cl.scattering / max(cl.scattering + cl.absorption, 1e-9);
   return albedo * (e_light * scattered + ambient);
 }

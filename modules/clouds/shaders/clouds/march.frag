@@ -32,7 +32,7 @@ layout(binding = CLOUDS_UNIT_CLUSTER_FRONT) uniform sampler2D u_cluster_front;
 float scene_distance(vec2 ndc) {
   float depth = textureLod(u_depth, ndc * 0.5 + 0.5, 0.0).r;
   if (depth <= 0.0) return 3.4e38;
-  vec4 p = cl_inverse_view_projection * vec4(ndc, depth, 1.0);
+  vec4 p = cl.inverse_view_projection * vec4(ndc, depth, 1.0);
   return length(p.xyz / p.w);
 }
 
@@ -41,14 +41,14 @@ float scene_distance(vec2 ndc) {
 // optical depth between the sun and where the steps end; layers that cast shadows only). The detail
 // noise is left out: it erodes edges the light crosses at most once.
 float light_optical_depth(vec3 x, vec3 l, float extinction_per_density) {
-  float tau = 0.0, s = 0.0, step_m = cl_light.x;
-  int n = int(cl_steps.w);
+  float tau = 0.0, s = 0.0, step_m = cl.light_step_m;
+  int n = int(cl.light_steps);
   for (int k = 0; k < n; ++k) {
     tau += clouds_density(x + l * (s + 0.5 * step_m), false, false) * step_m;
     s += step_m;
     step_m *= 2.0;
   }
-  if (cl_phase.w < 0.5) tau += clouds_shadow_optical_depth(x + l * s) / max(extinction_per_density, 1e-9);
+  if (cl.moon_marched < 0.5) tau += clouds_shadow_optical_depth(x + l * s) / max(extinction_per_density, 1e-9);
   return tau;
 }
 
@@ -64,18 +64,18 @@ struct Accumulated {
 
 void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) {
   bool detail = true;  // for the layers that use it (density.glsl)
-  vec3 l = cl_phase.w > 0.5 ? welkin_moon_direction() : welkin_sun_direction();
+  vec3 l = cl.moon_marched > 0.5 ? welkin_moon_direction() : welkin_sun_direction();
   float mu = dot(dir, l);
-  float extinction_per_density = cl_medium.x + cl_medium.y;
+  float extinction_per_density = cl.scattering + cl.absorption;
   float t = segment.x;
   bool first = true;
   // The light reaching the clouds and the air in front of them change over kilometres, not metres:
   // they are looked up at both ends of the segment and interpolated along it. (A software rasteriser
   // runs a lookup inside the loop for a whole group of pixels whenever any one of them needs it.)
   vec3 x0 = dir * segment.x, x1 = dir * segment.y;
-  vec3 up0 = normalize(cl_up.xyz * cl_planet.z + x0), up1 = normalize(cl_up.xyz * cl_planet.z + x1);
-  vec3 e_light0 = cl_phase.w > 0.5 ? welkin_moon_irradiance(x0) : welkin_sun_irradiance(x0);
-  vec3 e_light1 = cl_phase.w > 0.5 ? welkin_moon_irradiance(x1) : welkin_sun_irradiance(x1);
+  vec3 up0 = normalize(cl.up * cl.camera_radius_m + x0), up1 = normalize(cl.up * cl.camera_radius_m + x1);
+  vec3 e_light0 = cl.moon_marched > 0.5 ? welkin_moon_irradiance(x0) : welkin_sun_irradiance(x0);
+  vec3 e_light1 = cl.moon_marched > 0.5 ? welkin_moon_irradiance(x1) : welkin_sun_irradiance(x1);
   vec3 e_sky0 = welkin_sky_irradiance(up0), e_sky1 = welkin_sky_irradiance(up1);
 #if CLOUDS_AP_MODE == 0
   vec3 ap_t0, ap_t1;
@@ -86,15 +86,15 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
   float phase_single = clouds_phase(mu, 1.0);
   // At least eight samples through each stretch: a layer crossed far away and steeply (seen from
   // orbit) would otherwise get one or two, and the jitter would decide whether the cloud is there.
-  float longest_m = max(min(cl_steps.z, (segment.y - segment.x) * 0.125), cl_steps.y);
-  while (t < segment.y && acc.steps < int(cl_steps.x) && acc.transmittance > 0.01) {
+  float longest_m = max(min(cl.max_step_m, (segment.y - segment.x) * 0.125), cl.min_step_m);
+  while (t < segment.y && acc.steps < int(cl.max_steps) && acc.transmittance > 0.01) {
     // Steps grow with distance (a pixel's footprint grows with it), within [min, max].
-    float step_m = clamp(cl_steps.y + t * cl_light_model.w, cl_steps.y, longest_m);
+    float step_m = clamp(cl.min_step_m + t * cl.step_growth, cl.min_step_m, longest_m);
     if (first) step_m *= jitter, first = false;
     step_m = min(step_m, segment.y - t);
     vec3 x = dir * (t + 0.5 * step_m);
     ++acc.steps;
-    clouds_footprint_m = (t + 0.5 * step_m) * cl_light_model.y;
+    clouds_footprint_m = (t + 0.5 * step_m) * cl.pixel_angle_rad;
     clouds_system_g = mix(system0, system1, clamp((t + 0.5 * step_m - segment.x) * inverse_length, 0.0, 1.0));
     // Whole blocks of empty weather are skipped without reading the noise.
     float skip = clouds_empty_skip(x, dir);
@@ -109,7 +109,7 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
     if (density <= 0.0) {
       // Empty space: skip ahead by up to a quarter of the weather's texel (the weather cannot rise
       // from nothing to cloud much faster); where the noise eroded the cloud, the usual step.
-      t += empty ? max(step_m, min(cl_steps.z, cl_shell.z)) : step_m;
+      t += empty ? max(step_m, min(cl.max_step_m, cl.empty_step_m)) : step_m;
       continue;
     }
     {
@@ -146,8 +146,8 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
 void main() {
   clouds_load();
   ivec2 pixel = ivec2(gl_FragCoord.xy) * u_stride_offset.x + u_stride_offset.yz;
-  vec2 ndc = (vec2(pixel) + 0.5) / cl_frame.zw * 2.0 - 1.0;
-  vec3 dir = view_ray_direction(cl_inverse_view_projection, ndc);
+  vec2 ndc = (vec2(pixel) + 0.5) / vec2(cl.march_width, cl.march_height) * 2.0 - 1.0;
+  vec3 dir = view_ray_direction(cl.inverse_view_projection, ndc);
   float t_max = scene_distance(ndc);
 #if CLOUDS_CLUSTER_FRONT
   // The farthest of the texels this march pixel covers: behind a cluster's edge the march goes on
@@ -157,8 +157,8 @@ void main() {
 #endif
   vec2 ground = clouds_sphere(dir, 0.0);
   if (ground.x <= ground.y && ground.x > 0.0) t_max = min(t_max, ground.x);
-  Accumulated acc = Accumulated(vec3(0.0), 1.0, 0.0, 0.0, cl_up.w, false, vec3(0.0), vec3(1.0), 0);
-  float jitter = fract(texelFetch(u_blue_noise, pixel % 64, 0).r + cl_frame.x * 0.618034);
+  Accumulated acc = Accumulated(vec3(0.0), 1.0, 0.0, 0.0, cl.max_distance_m, false, vec3(0.0), vec3(1.0), 0);
+  float jitter = fract(texelFetch(u_blue_noise, pixel % 64, 0).r + cl.frame_index * 0.618034);
   jitter = 0.25 + 0.75 * jitter;  // the first step: never so short that it wastes a sample
   // The ray's stretches through each altitude band that holds layers (two per band at most: in
   // front of and behind the band's inner sphere), in order along the ray: the gaps between bands
@@ -167,8 +167,8 @@ void main() {
   int count = 0;
   float first = 3.4e38;
   for (int i = 0; i < CLOUDS_MAX_BANDS; ++i) {
-    if (i >= int(cl_light_model.z)) break;
-    vec2 outer = clouds_sphere(dir, cl_band_high[i]), inner = clouds_sphere(dir, cl_band_low[i]);
+    if (i >= int(cl.band_count)) break;
+    vec2 outer = clouds_sphere(dir, cl.band_high[i]), inner = clouds_sphere(dir, cl.band_low[i]);
     if (outer.x > outer.y || outer.y <= 0.0) continue;
     vec2 a = vec2(max(outer.x, 0.0), outer.y), b = vec2(1.0, -1.0);
     if (inner.x <= inner.y && inner.y > 0.0) {
@@ -180,7 +180,7 @@ void main() {
   }
   // The march reaches max distance beyond where the ray first enters a band (from orbit, that is a
   // thousand kilometres away).
-  t_max = min(t_max, first + cl_up.w);
+  t_max = min(t_max, first + cl.max_distance_m);
   for (int i = 1; i < count; ++i)
     for (int j = i; j > 0 && segments[j].x < segments[j - 1].x; --j) {
       vec2 swap = segments[j];
@@ -200,5 +200,5 @@ void main() {
   acc.color = acc.color * acc.ap_transmittance + acc.ap_inscattering * (1.0 - acc.transmittance);
 #endif
   o_color = vec4(max(acc.color, vec3(0.0)), acc.transmittance);
-  o_distance = vec2(acc.depth_weight > 0.0 ? acc.weighted_depth / acc.depth_weight : cl_up.w, acc.front);
+  o_distance = vec2(acc.depth_weight > 0.0 ? acc.weighted_depth / acc.depth_weight : cl.max_distance_m, acc.front);
 }

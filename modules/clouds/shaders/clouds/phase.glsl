@@ -30,11 +30,11 @@ float clouds_phase(float mu, float octave_scale) {
 #ifdef CLOUDS_PHASE_MODEL
   const bool droplets = CLOUDS_PHASE_MODEL == 1;
 #else
-  bool droplets = cl_medium.z > 0.5;
+  bool droplets = cl.phase_model > 0.5;
 #endif
   if (droplets) {
     // The droplet fit has no g to scale: blend it toward isotropic instead.
-    return mix(1.0 / (4.0 * CLOUDS_PI), clouds_droplet_mie(mu, cl_medium.w), octave_scale);
+    return mix(1.0 / (4.0 * CLOUDS_PI), clouds_droplet_mie(mu, cl.droplet_diameter_um), octave_scale);
   }
-  return mix(clouds_hg(mu, cl_phase.y * octave_scale), clouds_hg(mu, cl_phase.x * octave_scale), cl_phase.z);
+  return mix(clouds_hg(mu, cl.g_backward * octave_scale), clouds_hg(mu, cl.g_forward * octave_scale), cl.forward_weight);
 }

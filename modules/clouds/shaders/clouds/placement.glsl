@@ -12,9 +12,9 @@ uniform uint u_seed;
 // A point at altitude h above the surface at camera-relative (east, north): the planet's curvature
 // taken exactly, written so that float keeps it to a metre at 100 km.
 vec3 layer_point(vec2 en, float h) {
-  float r_c = cl_planet.z, R = cl_planet.x + h, rho2 = dot(en, en);
-  float z = ((h - cl_planet.y) * (R + r_c) - rho2) / (sqrt(max(R * R - rho2, 0.0)) + r_c);
-  return en.x * u_east + en.y * u_north + z * cl_up.xyz;
+  float r_c = cl.camera_radius_m, R = cl.planet_radius_m + h, rho2 = dot(en, en);
+  float z = ((h - cl.camera_altitude_m) * (R + r_c) - rho2) / (sqrt(max(R * R - rho2, 0.0)) + r_c);
+  return en.x * u_east + en.y * u_north + z * cl.up;
 }
 
 // Hash (Jarzynski & Olano 2020, PCG) of a cell, an index and the seed into [0, 1)^4.
@@ -37,11 +37,11 @@ float weather_score(CloudLayerGpu L, vec2 en, float radius) {
   const vec2 columns[5] = vec2[5](vec2(0.0), vec2(0.5, 0.0), vec2(-0.5, 0.0), vec2(0.0, 0.5), vec2(0.0, -0.5));
   float score = 0.0;
   for (int c = 0; c < 5; ++c) {
-    vec3 x = layer_point(en + columns[c] * radius, L.altitude.x + L.altitude.y * 0.33);
+    vec3 x = layer_point(en + columns[c] * radius, L.base_m + L.thickness_m * 0.33);
     clouds_system_g = clouds_weather_system_at(x);
     clouds_painted_sample = 2.0;
     float t, d0;
-    score += clouds_layer_envelope(L, clouds_weather_fetch(L, x), L.model.w > 0.5, x, clouds_altitude(x), t, d0);
+    score += clouds_layer_envelope(L, clouds_weather_fetch(L, x), L.follows_map > 0.5, x, clouds_altitude(x), t, d0);
   }
   return score;
 }

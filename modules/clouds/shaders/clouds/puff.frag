@@ -24,8 +24,7 @@ layout(location = 1) out float o_front;  // where the puff turns opaque (m; blen
 
 void main() {
   // What the light model reads of the block.
-  cl_phase = clb_phase, cl_medium = clb_medium, cl_light = clb_light, cl_light_model = clb_light_model;
-  cl_planet = clb_planet, cl_up = clb_up;
+  cl = clb;
   // The puff's fields are loaded as they are needed: most of a quad's pixels stop at the chord.
   vec4 centre = cp_puffs[v_puff].centre, radii = cp_puffs[v_puff].radii;
   vec3 dir = normalize(v_position);

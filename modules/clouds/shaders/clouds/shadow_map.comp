@@ -21,7 +21,7 @@ void main() {
   vec2 uv = (vec2(id) + 0.5) / vec2(size);
   vec3 start = u_centre + ((uv.x - 0.5) * u_axis_u + (uv.y - 0.5) * u_axis_v) * u_extent_m + u_light * u_start_m;
   vec3 dir = -u_light;
-  vec2 outer = clouds_sphere_from(start, dir, cl_shell.y), inner = clouds_sphere_from(start, dir, cl_shell.x);
+  vec2 outer = clouds_sphere_from(start, dir, cl.highest_m), inner = clouds_sphere_from(start, dir, cl.lowest_m);
   // No cloud: the front at the column's end and no optical depth, so that filtering between a cloudy
   // texel and a clear one blends their optical depths instead of jumping at the texel's edge.
   vec4 result = vec4(0.0);
@@ -34,7 +34,7 @@ void main() {
     clouds_system_g = clouds_weather_system_at(start + dir * (0.5 * (seg.x + seg.y)));  // columns are a few km long
     for (int i = 0; i < u_steps; ++i) {
       float t = seg.x + (float(i) + 0.5) * step_m;
-      float d = clouds_density(start + dir * t, false, true) * (cl_medium.x + cl_medium.y);
+      float d = clouds_density(start + dir * t, false, true) * (cl.scattering + cl.absorption);
       if (d > 0.0) {
         if (front < 0.0) front = t - 0.5 * step_m;
         back = t + 0.5 * step_m;

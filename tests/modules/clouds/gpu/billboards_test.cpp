@@ -169,7 +169,9 @@ TEST(CloudBillboards, BeyondTheClustersTheyTakeOverWhereThePuffsFadeOut) {
   ASSERT_GE(gpu.billboards_layer, 0);
   EXPECT_EQ(gpu.billboards_layer, gpu.clusters_layer);
   EXPECT_EQ(gpu.billboards_fade, glm::vec4(19000.0f, 20000.0f, 59000.0f, 60000.0f));
-  EXPECT_EQ(gpu.layers[size_t(gpu.billboards_layer)].handover, glm::vec4(3000.0f, 1000.0f, 60000.0f, 0.0f))
+  const LayerBlock& handed = gpu.layers[size_t(gpu.billboards_layer)];
+  EXPECT_EQ(glm::vec3(handed.handover_near_m, handed.handover_crossfade_m, handed.handover_far_m),
+            glm::vec3(3000.0f, 1000.0f, 60000.0f))
       << "the march draws the layer nearer than the clusters and beyond the billboards";
   EXPECT_TRUE(r.ran("clouds.billboards_draw"));
   EXPECT_TRUE(r.ran("clouds.clusters_draw"));

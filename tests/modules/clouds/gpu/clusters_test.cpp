@@ -384,7 +384,7 @@ TEST(CloudLod, TheHandOverFollowsTheFramesBudget) {
     const CloudsGpu& gpu = r.world->resource<CloudsGpu>();
     EXPECT_NEAR(gpu.clusters_near_m, expected, 1e-3 * expected) << "budget " << budget_ms << " ms";
     ASSERT_GE(gpu.clusters_layer, 0);
-    EXPECT_NEAR(gpu.layers[size_t(gpu.clusters_layer)].handover.x, expected, 1e-3 * expected) << "the march's hand-over";
+    EXPECT_NEAR(gpu.layers[size_t(gpu.clusters_layer)].handover_near_m, expected, 1e-3 * expected) << "the march's hand-over";
     r.renderer->render_frame({.index = 50, .alone = true}, 32, 18);
     EXPECT_EQ(gpu.clusters_near_m, 3000.0f) << "a frame rendered alone";
   }

@@ -57,8 +57,8 @@ TEST(CloudsCoverageMap, PaintedFullIsOvercastPaintedEmptyIsClearNeutralChangesNo
   EXPECT_TRUE(east.ran("clouds.march"));
   const CloudsGpu& gpu = east.world->resource<CloudsGpu>();
   ASSERT_EQ(gpu.layers.size(), 1u);
-  EXPECT_EQ(gpu.layers[0].model.w, 1.0f);
-  EXPECT_FLOAT_EQ(gpu.block.map_north.w, 1.0f);  // texel 255 adds a full coverage
+  EXPECT_EQ(gpu.layers[0].follows_map, 1.0f);
+  EXPECT_FLOAT_EQ(gpu.block.map_raise, 1.0f);  // texel 255 adds a full coverage
   test::Rendered ignoring = test::render(sheet(0.0, split, 8000.0, false), 48, 27);
   EXPECT_FALSE(ignoring.ran("clouds.march"));
   const ImageF clear_sky = ignoring.renderer->read_hdr();

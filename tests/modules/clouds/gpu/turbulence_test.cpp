@@ -100,8 +100,8 @@ TEST(CloudsTurbulence, ItStirsTheBaseLeavesTheTopHalfAndKeepsTheAmountOfCloud) {
   test::Rendered stirred = test::render(cumulus("high", 350.0), 96, 54);
   const CloudsGpu& gs = still.world->resource<CloudsGpu>();
   const CloudsGpu& gt = stirred.world->resource<CloudsGpu>();
-  EXPECT_EQ(gs.block.noise_mix.x, 0.0f);
-  EXPECT_EQ(gt.block.noise_mix.x, 350.0f);
+  EXPECT_EQ(gs.block.turbulence_m, 0.0f);
+  EXPECT_EQ(gt.block.turbulence_m, 350.0f);
   const CloudField a(read_noise(gs), gs.block, gs.layers), b(read_noise(gt), gt.block, gt.layers);
 
   // A grid of points through the layer's lowest fifth and through its upper half.
@@ -138,13 +138,13 @@ TEST(CloudsTurbulence, ItStirsTheBaseLeavesTheTopHalfAndKeepsTheAmountOfCloud) {
 }
 
 TEST(CloudsTurbulence, LowAndMediumLeaveItOutCustomChooses) {
-  EXPECT_EQ(test::render(cumulus("low", 350.0), 8, 4).world->resource<CloudsGpu>().block.noise_mix.x, 0.0f);
-  EXPECT_EQ(test::render(cumulus("medium", 350.0), 8, 4).world->resource<CloudsGpu>().block.noise_mix.x, 0.0f);
-  EXPECT_EQ(test::render(cumulus("ultra", 200.0), 8, 4).world->resource<CloudsGpu>().block.noise_mix.x, 200.0f);
+  EXPECT_EQ(test::render(cumulus("low", 350.0), 8, 4).world->resource<CloudsGpu>().block.turbulence_m, 0.0f);
+  EXPECT_EQ(test::render(cumulus("medium", 350.0), 8, 4).world->resource<CloudsGpu>().block.turbulence_m, 0.0f);
+  EXPECT_EQ(test::render(cumulus("ultra", 200.0), 8, 4).world->resource<CloudsGpu>().block.turbulence_m, 200.0f);
   json custom = cumulus("custom", 120.0);
   for (auto& e : custom["entities"])
     if (e["components"].contains("clouds.VolumetricClouds")) e["components"]["clouds.VolumetricClouds"]["turbulence"] = false;
-  EXPECT_EQ(test::render(custom, 8, 4).world->resource<CloudsGpu>().block.noise_mix.x, 0.0f);
+  EXPECT_EQ(test::render(custom, 8, 4).world->resource<CloudsGpu>().block.turbulence_m, 0.0f);
 }
 
 }  // namespace

@@ -34,8 +34,8 @@ Field field(double amount) {
   const CloudsGpu& gpu = r.world->resource<CloudsGpu>();
   Field f;
   f.field = std::make_unique<CloudField>(read_noise(gpu), gpu.block, gpu.layers);
-  f.radius = gpu.block.planet.x;
-  f.camera_from_centre = glm::dvec3(gpu.block.up) * double(gpu.block.planet.z);
+  f.radius = gpu.block.planet_radius_m;
+  f.camera_from_centre = glm::dvec3(gpu.block.up) * double(gpu.block.camera_radius_m);
   return f;
 }
 
