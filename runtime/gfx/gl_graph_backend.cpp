@@ -25,6 +25,7 @@ void GlGraphBackend::begin_frame() {
   for (auto& s : pool_) s.in_use = false;
   next_query_ = 0;
   serial_ms_.clear();
+  waited_ms_ = 0.0;
   if (!mode_decided_) {
     // A software rasteriser bins draws and runs them at the next flush, so GPU timestamps land at
     // submission and credit one pass with another's work. There, each pass is finished on its own.
@@ -49,8 +50,10 @@ void GlGraphBackend::record_timestamp() {
 void GlGraphBackend::begin_pass(const std::string& name) {
   glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, name.c_str());
   if (serial_) {
+    const auto t0 = std::chrono::steady_clock::now();
     glFinish();
     pass_start_ = std::chrono::steady_clock::now();
+    waited_ms_ += std::chrono::duration<double, std::milli>(pass_start_ - t0).count();
   } else {
     record_timestamp();
   }
@@ -60,6 +63,7 @@ void GlGraphBackend::end_pass() {
   if (serial_) {
     glFinish();
     serial_ms_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pass_start_).count());
+    waited_ms_ += serial_ms_.back();
   } else {
     record_timestamp();
   }
@@ -68,6 +72,7 @@ void GlGraphBackend::end_pass() {
 
 std::vector<double> GlGraphBackend::resolve_gpu_times() {
   if (serial_) return serial_ms_;
+  const auto waiting_since = std::chrono::steady_clock::now();
   std::vector<double> ms;
   for (size_t i = 0; i + 1 < next_query_; i += 2) {
     GLuint64 t0 = 0, t1 = 0;
@@ -75,6 +80,7 @@ std::vector<double> GlGraphBackend::resolve_gpu_times() {
     glGetQueryObjectui64v(queries_[i + 1].id(), GL_QUERY_RESULT, &t1);
     ms.push_back(t1 > t0 ? double(t1 - t0) * 1e-6 : 0.0);
   }
+  waited_ms_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - waiting_since).count();
   return ms;
 }
 

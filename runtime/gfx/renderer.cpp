@@ -3,12 +3,14 @@
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 
 #include "welkin/core/error.h"
 #include "welkin/gfx/gl_objects.h"
 #include "welkin/gfx/light_environment.h"
+#include "welkin/gfx/tonemap_pass.h"
 
 #ifndef WELKIN_SOURCE_SHADER_DIR
 #error "WELKIN_SOURCE_SHADER_DIR must be defined by the build"
@@ -39,11 +41,16 @@ Renderer::Renderer(World& world) : world_(world), ctx_(world.resource<RenderCont
     ctx_.empty_vao = GlVertexArrayName(vao);
     ctx_.shaders.add_search_dir(runtime_shader_dir());
   }
+  if (!ctx_.forms.measured) {
+    ctx_.forms.device = device_pass_form(ctx_.shaders).chosen;
+    ctx_.forms.measured = true;
+  }
   // Reversed Z: depth 1 at the near plane, 0 at infinity, compared with GREATER.
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
 }
 
 FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height, const Camera* view_camera) {
+  const auto started = std::chrono::steady_clock::now();
   if (width < 1 || height < 1 || width > 16384 || height > 16384)
     throw Error(ErrorInfo{.expected = "a frame size between 1x1 and 16384x16384",
                           .found = std::to_string(width) + "x" + std::to_string(height)});
@@ -107,24 +114,13 @@ FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height
   result.geometry = targets.geometry;
 
   const FrameView& view = ctx_.view;
-  const bool upscale = rendered_width != width || rendered_height != height;
+  const ToneMap tone_map{.tonemapper = int(view.tonemapper), .exposure = view.exposure};
+  const PassForm tonemap_form = ctx_.forms.of("tonemap");
   graph.add_pass("tonemap", [&](PassBuilder& b) {
     b.read(targets.color);
     b.write(output);
   }, [&, this](PassContext& pc) {
-    Framebuffer fb(&pc.texture(output), nullptr);
-    fb.bind();
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
-    const Program& p = ctx_.shaders.graphics("fullscreen.vert", "tonemap.frag",
-                                             {{"TONEMAPPER", std::to_string(int(view.tonemapper))},
-                                              {"TONEMAP_UPSCALE", upscale ? "1" : "0"}});
-    p.use();
-    glBindTextureUnit(0, pc.texture(targets.color).id());
-    p.set("u_hdr", 0);
-    p.set("u_exposure", view.exposure);
-    if (upscale) p.set("u_output_size", glm::vec2(width, height));
-    ctx_.draw_fullscreen_triangle();
+    run_tonemap(ctx_.shaders, ctx_.empty_vao.id(), pc.texture(targets.color), pc.texture(output), tone_map, tonemap_form);
   });
   graph.present(output);
   graph.compile();
@@ -134,6 +130,8 @@ FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height
   result.timings = graph.timings();
   ctx_.last_timings = result.timings;
   result.culled_passes = graph.culled_passes();
+  result.cpu_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count() -
+                  ctx_.backend.waited_ms();
   return result;
 }
 

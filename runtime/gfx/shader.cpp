@@ -21,6 +21,7 @@ void Program::set(const std::string& u, int v) const { glProgramUniform1i(id(), 
 void Program::set(const std::string& u, const glm::vec2& v) const { glProgramUniform2fv(id(), location(u), 1, glm::value_ptr(v)); }
 void Program::set(const std::string& u, const glm::vec3& v) const { glProgramUniform3fv(id(), location(u), 1, glm::value_ptr(v)); }
 void Program::set(const std::string& u, const glm::vec4& v) const { glProgramUniform4fv(id(), location(u), 1, glm::value_ptr(v)); }
+void Program::set(const std::string& u, const glm::ivec2& v) const { glProgramUniform2iv(id(), location(u), 1, glm::value_ptr(v)); }
 void Program::set(const std::string& u, const glm::ivec3& v) const { glProgramUniform3iv(id(), location(u), 1, glm::value_ptr(v)); }
 void Program::set(const std::string& u, const glm::mat3& v) const { glProgramUniformMatrix3fv(id(), location(u), 1, GL_FALSE, glm::value_ptr(v)); }
 void Program::set(const std::string& u, const glm::mat4& v) const { glProgramUniformMatrix4fv(id(), location(u), 1, GL_FALSE, glm::value_ptr(v)); }

@@ -1,29 +1,4 @@
-#include "welkin/tonemap.glsl"
-in vec2 v_ndc;
+// The tone map as a fragment pass (welkin/tonemap_pixel.glsl).
+#include "welkin/tonemap_pixel.glsl"
 out vec4 o_color;
-uniform sampler2D u_hdr;
-uniform float u_exposure;
-#if TONEMAP_UPSCALE
-uniform vec2 u_output_size;  // the HDR colour is smaller: a moving view (Camera::moving_render_scale)
-#endif
-// One variant per curve (TONEMAPPER 0 ACES, 1 AgX, 2 linear, clamped): a software rasteriser would
-// otherwise evaluate every curve for every pixel and select one.
-void main() {
-#if TONEMAP_UPSCALE
-  // Bilinear: Catmull-Rom (five reads) cost 2.5 times as much here for no gain against the whole
-  // frame (PSNR 41.3 against 41.5 dB on the demo at half size): the level of detail differs more.
-  vec3 hdr = texture(u_hdr, gl_FragCoord.xy / u_output_size).rgb * u_exposure;
-#else
-  vec3 hdr = texelFetch(u_hdr, ivec2(gl_FragCoord.xy), 0).rgb * u_exposure;
-#endif
-  // A NaN or negative upstream must not turn into a black or white block on screen.
-  hdr = clamp(hdr, vec3(0.0), vec3(65504.0));
-#if TONEMAPPER == 0
-  vec3 display = tonemap_aces(hdr);
-#elif TONEMAPPER == 1
-  vec3 display = tonemap_agx(hdr);
-#else
-  vec3 display = clamp(hdr, 0.0, 1.0);
-#endif
-  o_color = vec4(linear_to_srgb(display), 1.0);
-}
+void main() { o_color = tonemap_pixel(gl_FragCoord.xy); }

@@ -186,6 +186,17 @@ TEST(WelkinCli, BenchReportsRatiosAndRunsOnlyWhatChanged) {
   EXPECT_GT(j["frame_ratio_to_copy"].get<double>(), 1.0) << "a frame costs more than one copy";
   EXPECT_FALSE(passes_of(still).count("atmosphere.sky_view"));
   EXPECT_FALSE(passes_of(still).count("atmosphere.aerial_perspective"));
+  // The CPU's share of a frame (without its waits for the GPU) is within the frame's finished time.
+  EXPECT_GT(j["cpu_frame_median_ms"].get<double>(), 0.0);
+  EXPECT_LE(j["cpu_frame_median_ms"].get<double>(), j["frame_median_ms"].get<double>());
+  // The full-screen passes' form: measured for the device, or forced for a comparison.
+  EXPECT_EQ(j["pass_form"]["used"], j["pass_form"]["measured"]);
+  EXPECT_GT(j["pass_form"]["probe_fragment_ms"].get<double>(), 0.0);
+  EXPECT_GT(j["pass_form"]["probe_compute_ms"].get<double>(), 0.0);
+  CliRun compute = run("bench " + scene + " --form compute", false);
+  ASSERT_EQ(compute.code, 0) << compute.out;
+  EXPECT_EQ(nlohmann::json::parse(compute.out)["pass_form"]["used"], "compute");
+  EXPECT_NE(run("bench " + scene + " --form vertex").code, 0);
   CliRun turning = run("bench " + scene + " --turn-deg 2", false);
   ASSERT_EQ(turning.code, 0) << turning.out;
   EXPECT_FALSE(passes_of(turning).count("atmosphere.sky_view"));

@@ -20,6 +20,9 @@ class GlGraphBackend : public GraphBackend {
   size_t pooled_textures() const { return pool_.size(); }
   // True when passes are timed by finishing each one (software rasterisers), not by GPU timestamps.
   bool serial_timing() const { return serial_; }
+  // Milliseconds the CPU waited for the GPU since the frame began (finishing passes to time them,
+  // reading timestamps back): what a frame's CPU time leaves out.
+  double waited_ms() const { return waited_ms_; }
 
  private:
   void record_timestamp();
@@ -33,6 +36,7 @@ class GlGraphBackend : public GraphBackend {
   bool serial_ = false, mode_decided_ = false;
   std::chrono::steady_clock::time_point pass_start_;
   std::vector<double> serial_ms_;
+  double waited_ms_ = 0.0;
 };
 
 }  // namespace welkin

@@ -11,6 +11,7 @@
 #include "welkin/gfx/gl_graph_backend.h"
 #include "welkin/gfx/image.h"
 #include "welkin/gfx/render_graph.h"
+#include "welkin/gfx/screen_pass.h"
 #include "welkin/gfx/shader.h"
 
 namespace welkin {
@@ -47,6 +48,8 @@ struct RenderContext {
   TextureFormat radiance_format() const { return full_precision ? TextureFormat::rgba32f : TextureFormat::rgba16f; }
   // The last frame's pass timings (what a system that keeps to a frame budget reads).
   std::vector<PassTiming> last_timings;
+  // The form of each full-screen pass (fragment or compute), measured for the device at start-up.
+  PassForms forms;
   void draw_fullscreen_triangle() const;
 };
 
@@ -58,6 +61,9 @@ struct FrameResult {
   std::vector<std::string> systems_run;
   std::vector<std::string> culled_passes;
   PixelRect geometry;  // FrameTargets::geometry as the frame's systems left it
+  // Milliseconds the CPU spent on the frame (systems, graph, recording GL calls), without the time it
+  // waited for the GPU to finish passes or report their timestamps.
+  double cpu_ms = 0.0;
   int rendered_width = 0, rendered_height = 0;  // smaller than the output while the view moves (Camera::moving_render_scale)
 };
 

@@ -30,6 +30,7 @@ class Program {
   void set(const std::string& u, const glm::vec2& v) const;
   void set(const std::string& u, const glm::vec3& v) const;
   void set(const std::string& u, const glm::vec4& v) const;
+  void set(const std::string& u, const glm::ivec2& v) const;
   void set(const std::string& u, const glm::ivec3& v) const;
   void set(const std::string& u, const glm::mat3& v) const;
   void set(const std::string& u, const glm::mat4& v) const;
