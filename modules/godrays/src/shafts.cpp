@@ -10,7 +10,9 @@
 
 #include "welkin/core/world.h"
 #include "welkin/gfx/light_environment.h"
+#include "welkin/gfx/compute.h"
 #include "welkin/gfx/renderer.h"
+#include "welkin/gfx/screen_pass.h"
 #include "welkin/scene/painted_map.h"
 
 namespace welkin::godrays {
@@ -118,18 +120,28 @@ void shafts_system(SystemContext& sc) {
           *loss = b.create("godrays.loss", TextureDesc{.width = w, .height = h, .format = rc.radiance_format()});
         },
         [&rc, &world, t, loss, defines, max_distance, reach, sun_at, jitter, set_common](PassContext& pc) {
-          Framebuffer fb(&pc.texture(*loss), nullptr);
-          fb.bind();
-          glDisable(GL_DEPTH_TEST);
-          glDisable(GL_BLEND);
+          const bool compute = rc.forms.compute("godrays.shafts");
+          const Texture& target = pc.texture(*loss);
           world.resource<LightEnvironment>().bind();
           glBindTextureUnit(0, pc.texture(t.depth).id());
-          const Program& p = rc.shaders.graphics("fullscreen.vert", "godrays/shafts.frag", defines);
-          p.use();
+          ShaderDefines d = defines;
+          if (compute) d["GODRAYS_LOSS_FORMAT"] = image_format_qualifier(target.desc().format);
+          const Program& p = compute ? rc.shaders.compute("godrays/shafts.comp", d)
+                                     : rc.shaders.graphics("fullscreen.vert", "godrays/shafts.frag", d);
           set_common(p, max_distance);
           p.set("u_sun_uv", sun_at);
           p.set("u_reach", reach);
           p.set("u_jitter", jitter);
+          if (compute) {
+            bind_image_for_write(0, target);
+            dispatch_screen(p, PixelRect{0, 0, target.desc().width, target.desc().height});
+            return;
+          }
+          Framebuffer fb(&target, nullptr);
+          fb.bind();
+          glDisable(GL_DEPTH_TEST);
+          glDisable(GL_BLEND);
+          p.use();
           rc.draw_fullscreen_triangle();
         });
     // The marched shafts' jitter is filtered out at their resolution; the screen-space path stays
@@ -171,7 +183,27 @@ void shafts_system(SystemContext& sc) {
       },
       [&rc, &world, t, loss, shafts, tiles, loss_size, haze_on = haze != nullptr, apply_defines, set_common,
        sun_direction = sun.value_or(glm::vec3(0.0f, 0.0f, 1.0f))](PassContext& pc) {
-        Framebuffer fb(&pc.texture(t.color), nullptr);
+        const bool compute = rc.forms.compute("godrays.apply");
+        const Texture& color = pc.texture(t.color);
+        if (shafts) glBindTextureUnit(0, pc.texture(*loss).id());
+        if (haze_on) {
+          world.resource<LightEnvironment>().bind();
+          glBindTextureUnit(1, pc.texture(t.depth).id());
+        }
+        ShaderDefines d = apply_defines;
+        if (compute) d["GODRAYS_COLOR_FORMAT"] = image_format_qualifier(color.desc().format);
+        const Program& p = compute ? rc.shaders.compute("godrays/apply.comp", d)
+                                   : rc.shaders.graphics("godrays/apply.vert", "godrays/apply.frag", d);
+        if (haze_on) {
+          set_common(p, 0.0f);
+          p.set("u_sun_direction", sun_direction);
+        }
+        if (compute) {
+          bind_image_read_write(0, color);
+          dispatch_screen(p, PixelRect{0, 0, color.desc().width, color.desc().height});
+          return;
+        }
+        Framebuffer fb(&color, nullptr);
         fb.bind();
         glDisable(GL_DEPTH_TEST);
         glEnable(GL_BLEND);
@@ -182,17 +214,7 @@ void shafts_system(SystemContext& sc) {
           glBlendEquation(GL_FUNC_REVERSE_SUBTRACT);  // the frame less the shafts (alpha less 0)
           glBlendFunc(GL_ONE, GL_ONE);
         }
-        if (shafts) glBindTextureUnit(0, pc.texture(*loss).id());
-        if (haze_on) {
-          world.resource<LightEnvironment>().bind();
-          glBindTextureUnit(1, pc.texture(t.depth).id());
-        }
-        const Program& p = rc.shaders.graphics("godrays/apply.vert", "godrays/apply.frag", apply_defines);
         p.use();
-        if (haze_on) {
-          set_common(p, 0.0f);
-          p.set("u_sun_direction", sun_direction);
-        }
         if (tiles) {
           const glm::ivec2 count = (loss_size + kApplyTileTexels - 1) / kApplyTileTexels;
           glBindVertexArray(rc.empty_vao.id());

@@ -1,8 +1,6 @@
 // The sky's geometry. Without ATM_SKY_DISCS: one full-screen triangle at depth 0 (infinity in
-// reversed Z), so the depth test, not the shader, keeps it off the geometry. v_dir is linear in
-// screen space (the inverse projection of a constant depth is affine), so interpolating it is exact;
-// for the sky-view LUT it is already in the LUT's frame, which saves a matrix per pixel (not when the
-// ground's light is changed, which needs world axes).
+// reversed Z), so the depth test, not the shader, keeps it off the geometry; v_dir from
+// sky_direction.glsl.
 // With ATM_SKY_DISCS: a small square of directions around the sun (instance 0) and the moon
 // (instance 1) as points at infinity, so only the pixels near a disc run the disc code.
 #include "atmosphere/common.glsl"
@@ -15,6 +13,7 @@
 #ifndef ATM_SKY_GROUND_LIGHT
 #define ATM_SKY_GROUND_LIGHT 0
 #endif
+#include "atmosphere/sky_direction.glsl"
 out vec3 v_dir;
 uniform float u_pixel_angle;
 
@@ -36,12 +35,7 @@ void main() {
   gl_Position = on ? atm_view_projection * vec4(dir, 0.0) : vec4(0.0);
 #else
   vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2) * 2.0 - 1.0;
-  vec4 far_point = atm_inverse_view_projection * vec4(p, 0.5, 1.0);
-  vec3 dir = far_point.xyz / far_point.w;
-#if ATM_SKY_MODE == 0 && !ATM_SKY_GROUND_LIGHT
-  dir = transpose(mat3(atm_sky_frame)) * dir;  // with the ground's light the fragment needs world axes
-#endif
-  v_dir = dir;
+  v_dir = sky_direction(p);
   gl_Position = vec4(p, 0.0, 1.0);
 #endif
 }

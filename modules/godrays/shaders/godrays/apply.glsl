@@ -9,8 +9,13 @@ layout(binding = 0) uniform sampler2D u_loss;   // the shafts' light to take awa
 #if GODRAYS_HAZE
 #include "godrays/haze.glsl"
 layout(binding = 1) uniform sampler2D u_depth;  // the frame's
+#ifdef GODRAYS_APPLY_COMPUTE
+shared vec3 v_sun_irradiance;  // found once per work group (apply.comp)
+shared vec3 v_sky_radiance;
+#else
 flat in vec3 v_sun_irradiance;  // at the camera (apply.vert)
 flat in vec3 v_sky_radiance;
+#endif
 uniform vec3 u_sun_direction;
 #endif
 
