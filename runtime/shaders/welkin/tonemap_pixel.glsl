@@ -14,7 +14,7 @@ vec4 tonemap_pixel(vec2 centre) {
 #if TONEMAP_UPSCALE
   // Bilinear: Catmull-Rom (five reads) cost 2.5 times as much here for no gain against the whole
   // frame (PSNR 41.3 against 41.5 dB on the demo at half size): the level of detail differs more.
-  vec3 hdr = textureLod(u_hdr, centre / u_output_size, 0.0).rgb * u_exposure;
+  vec3 hdr = texture(u_hdr, centre / u_output_size).rgb * u_exposure;
 #else
   vec3 hdr = texelFetch(u_hdr, ivec2(centre), 0).rgb * u_exposure;
 #endif

@@ -19,16 +19,17 @@ class ShaderLibrary;
 enum class PassForm { fragment, compute };
 const char* pass_form_name(PassForm form);
 
-// The start-up measurement: the tone map, both forms, the same pixels (median milliseconds).
+// The start-up measurement: the tone map, both forms, the same pixels (the fastest of several runs, ms).
 struct PassFormProbe {
   double fragment_ms = 0.0, compute_ms = 0.0;
   int width = 0, height = 0;
   PassForm chosen = PassForm::fragment;
 };
 // Times the tone map in both forms on the current context; compute is chosen where it takes at most
-// 0.8 of the fragment form's time (a margin against a shared machine's noise: forms that cost about
-// the same keep the fragment one, whose passes skip pixels by the depth test).
-PassFormProbe probe_pass_form(ShaderLibrary& shaders, int width = 512, int height = 288, int repeats = 5);
+// half the fragment form's time. On the H100 a copy took an eighth as compute, on llvmpipe 1.1-1.7 times
+// as long; under a shared machine's load (6 agents on 2 cores) a probe on llvmpipe once came to 0.8,
+// and forms that cost about the same keep the fragment one, whose passes skip pixels by the depth test.
+PassFormProbe probe_pass_form(ShaderLibrary& shaders, int width = 512, int height = 288, int repeats = 7);
 // The probe's result for the current GL renderer, measured once per process and renderer.
 const PassFormProbe& device_pass_form(ShaderLibrary& shaders);
 

@@ -138,7 +138,7 @@ TEST(ScreenPassForms, TheDevicesFormIsMeasuredAndCanBeForced) {
   const PassFormProbe p = probe_pass_form(shaders, 67, 43, 3);
   EXPECT_GT(p.fragment_ms, 0.0);
   EXPECT_GT(p.compute_ms, 0.0);
-  EXPECT_EQ(p.chosen, p.compute_ms <= 0.8 * p.fragment_ms ? PassForm::compute : PassForm::fragment);
+  EXPECT_EQ(p.chosen, p.compute_ms <= 0.5 * p.fragment_ms ? PassForm::compute : PassForm::fragment);
   PassForms forms{.device = PassForm::compute, .measured = true};
   EXPECT_TRUE(forms.compute("atmosphere.sky"));
   forms.forced["*"] = PassForm::fragment;
