@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <memory>
 
 #include "welkin/core/world.h"
@@ -54,6 +55,96 @@ bool sun_lights_air(const MapFrame& planet, const glm::vec3& sun, const glm::dve
   const double dip = std::acos(std::clamp(planet.planet_radius_m / r, -1.0, 1.0));
   const double elevation = std::asin(std::clamp(double(glm::dot(glm::dvec3(sun), from_centre / glm::length(from_centre))), -1.0, 1.0));
   return elevation > -dip;
+}
+
+// Sets the uniforms both passes share: the view ray, the planet, the haze (and the shafts' reach).
+using SetCommon = std::function<void(const Program&, float max_distance)>;
+
+struct ShaftsDraw {
+  ShaderDefines defines;
+  float max_distance = 0.0f, reach = 0.0f;
+  glm::vec2 sun_at{0.5f};
+  float jitter = 0.0f;
+};
+
+// The shafts' loss at its resolution, in the pass's form (welkin/gfx/screen_pass.h).
+void run_shafts(RenderContext& rc, World& world, const Texture& target, const Texture& depth, const ShaftsDraw& s,
+                const SetCommon& set_common) {
+  const bool compute = rc.forms.compute("godrays.shafts");
+  world.resource<LightEnvironment>().bind();
+  glBindTextureUnit(0, depth.id());
+  ShaderDefines d = s.defines;
+  if (compute) d["GODRAYS_LOSS_FORMAT"] = image_format_qualifier(target.desc().format);
+  const Program& p = compute ? rc.shaders.compute("godrays/shafts.comp", d)
+                             : rc.shaders.graphics("fullscreen.vert", "godrays/shafts.frag", d);
+  set_common(p, s.max_distance);
+  p.set("u_sun_uv", s.sun_at);
+  p.set("u_reach", s.reach);
+  p.set("u_jitter", s.jitter);
+  if (compute) {
+    bind_image_for_write(0, target);
+    dispatch_screen(p, PixelRect{0, 0, target.desc().width, target.desc().height});
+    return;
+  }
+  Framebuffer fb(&target, nullptr);
+  fb.bind();
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  p.use();
+  rc.draw_fullscreen_triangle();
+}
+
+struct ApplyDraw {
+  bool shafts = false, haze = false, tiles = false;
+  glm::ivec2 loss_size{1};
+  ShaderDefines defines;
+  glm::vec3 sun_direction{0.0f, 0.0f, 1.0f};
+};
+
+// The shafts and the haze applied to the frame, in the pass's form: blending over a triangle (or the
+// tiles the shafts touch), or a compute pass loading and storing the frame in place.
+void run_apply(RenderContext& rc, World& world, const Texture& color, const Texture* loss, const Texture* depth,
+               const ApplyDraw& a, const SetCommon& set_common) {
+  const bool compute = rc.forms.compute("godrays.apply");
+  if (loss) glBindTextureUnit(0, loss->id());
+  if (depth) {
+    world.resource<LightEnvironment>().bind();
+    glBindTextureUnit(1, depth->id());
+  }
+  ShaderDefines d = a.defines;
+  if (compute) d["GODRAYS_COLOR_FORMAT"] = image_format_qualifier(color.desc().format);
+  const Program& p = compute ? rc.shaders.compute("godrays/apply.comp", d)
+                             : rc.shaders.graphics("godrays/apply.vert", "godrays/apply.frag", d);
+  if (a.haze) {
+    set_common(p, 0.0f);
+    p.set("u_sun_direction", a.sun_direction);
+  }
+  if (compute) {
+    bind_image_read_write(0, color);
+    dispatch_screen(p, PixelRect{0, 0, color.desc().width, color.desc().height});
+    return;
+  }
+  Framebuffer fb(&color, nullptr);
+  fb.bind();
+  glDisable(GL_DEPTH_TEST);
+  glEnable(GL_BLEND);
+  if (a.haze) {
+    // haze light - shafts + the haze's transmittance x the frame; the frame's alpha stays
+    glBlendFuncSeparate(GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_ONE);
+  } else {
+    glBlendEquation(GL_FUNC_REVERSE_SUBTRACT);  // the frame less the shafts (alpha less 0)
+    glBlendFunc(GL_ONE, GL_ONE);
+  }
+  p.use();
+  if (a.tiles) {
+    const glm::ivec2 count = (a.loss_size + kApplyTileTexels - 1) / kApplyTileTexels;
+    glBindVertexArray(rc.empty_vao.id());
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, count.x * count.y);
+  } else {
+    rc.draw_fullscreen_triangle();
+  }
+  glBlendEquation(GL_FUNC_ADD);
+  glDisable(GL_BLEND);
 }
 
 }  // namespace
@@ -120,29 +211,8 @@ void shafts_system(SystemContext& sc) {
           *loss = b.create("godrays.loss", TextureDesc{.width = w, .height = h, .format = rc.radiance_format()});
         },
         [&rc, &world, t, loss, defines, max_distance, reach, sun_at, jitter, set_common](PassContext& pc) {
-          const bool compute = rc.forms.compute("godrays.shafts");
-          const Texture& target = pc.texture(*loss);
-          world.resource<LightEnvironment>().bind();
-          glBindTextureUnit(0, pc.texture(t.depth).id());
-          ShaderDefines d = defines;
-          if (compute) d["GODRAYS_LOSS_FORMAT"] = image_format_qualifier(target.desc().format);
-          const Program& p = compute ? rc.shaders.compute("godrays/shafts.comp", d)
-                                     : rc.shaders.graphics("fullscreen.vert", "godrays/shafts.frag", d);
-          set_common(p, max_distance);
-          p.set("u_sun_uv", sun_at);
-          p.set("u_reach", reach);
-          p.set("u_jitter", jitter);
-          if (compute) {
-            bind_image_for_write(0, target);
-            dispatch_screen(p, PixelRect{0, 0, target.desc().width, target.desc().height});
-            return;
-          }
-          Framebuffer fb(&target, nullptr);
-          fb.bind();
-          glDisable(GL_DEPTH_TEST);
-          glDisable(GL_BLEND);
-          p.use();
-          rc.draw_fullscreen_triangle();
+          const ShaftsDraw draw{defines, max_distance, reach, sun_at, jitter};
+          run_shafts(rc, world, pc.texture(*loss), pc.texture(t.depth), draw, set_common);
         });
     // The marched shafts' jitter is filtered out at their resolution; the screen-space path stays
     // unfiltered to stay cheap (its taps' jitter shows as fine noise).
@@ -181,49 +251,11 @@ void shafts_system(SystemContext& sc) {
         b.read(t.color);
         b.write(t.color);
       },
-      [&rc, &world, t, loss, shafts, tiles, loss_size, haze_on = haze != nullptr, apply_defines, set_common,
-       sun_direction = sun.value_or(glm::vec3(0.0f, 0.0f, 1.0f))](PassContext& pc) {
-        const bool compute = rc.forms.compute("godrays.apply");
-        const Texture& color = pc.texture(t.color);
-        if (shafts) glBindTextureUnit(0, pc.texture(*loss).id());
-        if (haze_on) {
-          world.resource<LightEnvironment>().bind();
-          glBindTextureUnit(1, pc.texture(t.depth).id());
-        }
-        ShaderDefines d = apply_defines;
-        if (compute) d["GODRAYS_COLOR_FORMAT"] = image_format_qualifier(color.desc().format);
-        const Program& p = compute ? rc.shaders.compute("godrays/apply.comp", d)
-                                   : rc.shaders.graphics("godrays/apply.vert", "godrays/apply.frag", d);
-        if (haze_on) {
-          set_common(p, 0.0f);
-          p.set("u_sun_direction", sun_direction);
-        }
-        if (compute) {
-          bind_image_read_write(0, color);
-          dispatch_screen(p, PixelRect{0, 0, color.desc().width, color.desc().height});
-          return;
-        }
-        Framebuffer fb(&color, nullptr);
-        fb.bind();
-        glDisable(GL_DEPTH_TEST);
-        glEnable(GL_BLEND);
-        if (haze_on) {
-          // haze light - shafts + the haze's transmittance x the frame; the frame's alpha stays
-          glBlendFuncSeparate(GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_ONE);
-        } else {
-          glBlendEquation(GL_FUNC_REVERSE_SUBTRACT);  // the frame less the shafts (alpha less 0)
-          glBlendFunc(GL_ONE, GL_ONE);
-        }
-        p.use();
-        if (tiles) {
-          const glm::ivec2 count = (loss_size + kApplyTileTexels - 1) / kApplyTileTexels;
-          glBindVertexArray(rc.empty_vao.id());
-          glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, count.x * count.y);
-        } else {
-          rc.draw_fullscreen_triangle();
-        }
-        glBlendEquation(GL_FUNC_ADD);
-        glDisable(GL_BLEND);
+      [&rc, &world, t, loss, set_common,
+       draw = ApplyDraw{shafts, haze != nullptr, tiles, loss_size, apply_defines, sun.value_or(glm::vec3(0.0f, 0.0f, 1.0f))}](
+          PassContext& pc) {
+        run_apply(rc, world, pc.texture(t.color), draw.shafts ? &pc.texture(*loss) : nullptr,
+                  draw.haze ? &pc.texture(t.depth) : nullptr, draw, set_common);
       });
 }
 
