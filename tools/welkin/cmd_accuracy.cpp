@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "comparison_panels.h"
 #include "error_plot.h"
 #include "session.h"
 #include "validation/accuracy_set.h"
@@ -42,7 +43,9 @@ using atmosphere::SkyMethod;
 struct AccuracyOptions {
   std::string technique, out = "out/accuracy", cache, size;  // size: each technique's own default when empty
   std::string ghosting_scene = "assets/scenes/clouds-peer.json";
-  std::string scene;  // godrays, clusters: the scene measured (each has its own default)
+  std::string scene;  // godrays, clusters, clouds: the scene measured (each has its own default)
+  std::string rays, image;  // clouds: a file of view rays; a scene whose path-traced image is made
+  int paths_per_pixel = 64;
   std::vector<std::string> methods{"lut", "raymarch"}, qualities{"low", "medium", "high", "ultra"};
   int frames = 7, threads = 2;
   bool quick = false, json = false, check = false;
@@ -302,7 +305,7 @@ void write_panoramas(const AccuracyOptions& o, const ref::AtmosphereModel& model
   parse_size(o.panorama_size, w, h);
   if (w > 360 || h > 90)
     throw Error(ErrorInfo{.path = "--panorama-size", .expected = "at most 360x90 rays", .found = o.panorama_size});
-  constexpr int kCell = 8, kGap = 4;
+  constexpr int kCell = 8;
   const atmosphere::Atmosphere earth;
   atmosphere::GpuProbe probe(earth, SkyMethod::lut, /*single_scattering=*/false);
   const atmosphere::ReferenceSettings settings{.samples = o.panorama_paths,
@@ -330,39 +333,17 @@ void write_panoramas(const AccuracyOptions& o, const ref::AtmosphereModel& model
       }
       std::fprintf(stderr, "\rpanorama, sun %g: row %d/%d", sun, y + 1, h);
     }
-    std::vector<double> sorted;
-    for (const glm::dvec3& c : pt) sorted.push_back(luminance(c));
-    std::sort(sorted.begin(), sorted.end());
-    const double exposure = std::max(sorted[size_t(0.97 * (sorted.size() - 1))], 1e-30);
-    ImageU8 img;
-    img.width = w * kCell;
-    img.height = 3 * h * kCell + 2 * kGap;
-    img.rgba.assign(size_t(img.width) * img.height * 4, 255);
-    auto fill = [&](int panel, int x, int y, glm::dvec3 c) {
-      for (int dy = 0; dy < kCell; ++dy)
-        for (int dx = 0; dx < kCell; ++dx) {
-          uint8_t* p = &img.rgba[(size_t(panel * (h * kCell + kGap) + y * kCell + dy) * img.width + x * kCell + dx) * 4];
-          for (int k = 0; k < 3; ++k) p[k] = uint8_t(std::lround(255.0 * std::clamp(c[k], 0.0, 1.0)));
-        }
-    };
+    ComparisonPanels panels{.width = w, .height = h, .approximation = lut, .reference = pt};
     double ci_sum = 0.0;
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) {
-        const size_t i = size_t(y) * w + x;
-        for (int panel = 0; panel < 2; ++panel) {
-          const glm::dvec3 c = (panel == 0 ? lut[i] : pt[i]) / exposure;
-          fill(panel, x, y, glm::pow(glm::max(c, glm::dvec3(0.0)), glm::dvec3(1.0 / 2.2)));
-        }
-        const double ref_l = luminance(pt[i]);
-        const double rel = ref_l > 0.0 ? (luminance(lut[i]) - ref_l) / ref_l : 0.0;
-        ci_sum += ref_l > 0.0 ? luminance(ci[i]) / ref_l : 0.0;
-        const double a = std::min(std::abs(rel) / 0.2, 1.0);
-        fill(2, x, y, rel > 0 ? glm::dvec3(1.0, 1.0 - a, 1.0 - a) : glm::dvec3(1.0 - a, 1.0 - a, 1.0));
-      }
+    for (size_t i = 0; i < pt.size(); ++i) {
+      const double ref_l = luminance(pt[i]);
+      panels.relative.push_back(ref_l > 0.0 ? (luminance(lut[i]) - ref_l) / ref_l : 0.0);
+      ci_sum += ref_l > 0.0 ? luminance(ci[i]) / ref_l : 0.0;
+    }
     char name[64];
     std::snprintf(name, sizeof name, "panorama-sun%+g.png", sun);
     const std::string path = (fs::path(o.out) / name).string();
-    write_png(path, img);
+    write_comparison_panels(path, panels, kCell, 0.2);
     std::fprintf(stderr, "\n");
     std::printf("panorama, sun %g deg (%dx%d rays from the ground, %llu paths each, %s): LUT at high against the "
                 "path tracer, RMSE %.1f%%, worst %.1f%% over rays and channels; mean 95%% half-width of the "
@@ -388,10 +369,12 @@ int run_accuracy(const AccuracyOptions& options) {
     return run_billboard_accuracy({.out = o.out, .size = o.size.empty() ? "320x180" : o.size,
                                    .scene = o.scene.empty() ? BillboardAccuracyOptions{}.scene : o.scene,
                                    .frames = o.frames, .quick = o.quick, .json = o.json});
-  if (o.size.empty()) o.size = "640x360";
   if (o.technique == "clouds")
-    return run_cloud_accuracy({.out = o.out, .size = o.size, .ghosting_scene = o.ghosting_scene,
-                               .qualities = o.qualities, .frames = o.frames, .quick = o.quick, .json = o.json});
+    return run_cloud_accuracy({.out = o.out, .size = o.size.empty() ? (o.image.empty() ? "640x360" : "96x54") : o.size,
+                               .ghosting_scene = o.ghosting_scene, .scene = o.scene, .rays = o.rays, .image = o.image,
+                               .paths_per_pixel = o.paths_per_pixel, .qualities = o.qualities, .frames = o.frames,
+                               .quick = o.quick, .json = o.json});
+  if (o.size.empty()) o.size = "640x360";
   if (o.technique != "atmosphere")
     throw Error(ErrorInfo{.path = "technique", .expected = "atmosphere, clouds, clusters, billboards or godrays", .found = "'" + o.technique + "'"});
   int width = 0, height = 0;
@@ -617,8 +600,20 @@ void add_accuracy_command(CLI::App& app, int& exit_code) {
   cmd->add_option("-s,--size", o->size, "Frame size WxH for GPU time (godrays: also of the measured frame; default 320x180, else 640x360)");
   cmd->add_option("--ghosting-scene", o->ghosting_scene, "clouds: the scene the temporal upscaling flies through")
       ->capture_default_str();
-  cmd->add_option("--scene", o->scene, "godrays, clusters: the scene whose frame is measured (default assets/scenes/godrays-sunset.json, clouds-clusters.json)")
-      ->check(CLI::ExistingFile);
+  cmd->add_option("--scene", o->scene,
+                  "godrays, clusters: the scene whose frame is measured (default assets/scenes/godrays-sunset.json, "
+                  "clouds-clusters.json); clouds: the scene whose layers and sun are measured (default: a cumulus "
+                  "layer under a sun 40 degrees up)");
+  cmd->add_option("--rays", o->rays,
+                  "clouds: the view rays measured, JSON {\"rays\": [{\"position_m\": [east, north, up], "
+                  "\"heading_deg\": h, \"pitch_deg\": p}, ...]} (default: 18 rays below, inside, above the layer and "
+                  "from orbit)");
+  cmd->add_option("--image", o->image,
+                  "clouds: instead of the sweep, the scene's view marched at each quality beside the path tracer's "
+                  "image of the same rays and their difference (size from --size, default 96x54)");
+  cmd->add_option("--paths-per-pixel", o->paths_per_pixel, "clouds --image: paths per pixel of the path-traced image")
+      ->check(CLI::Range(1, 65536))
+      ->capture_default_str();
   cmd->add_option("-n,--frames", o->frames, "Frames per GPU time (median)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();

@@ -19,7 +19,11 @@
 #include "welkin/gfx/gl_context.h"
 #include "welkin/gfx/image.h"
 #include "welkin/gfx/renderer.h"
+#include "welkin/scene/json_fields.h"
 #include "welkin/scene/scene_file.h"
+#include "welkin/atmosphere/components.h"
+#include "welkin/gfx/debug_content.h"
+#include "comparison_panels.h"
 
 namespace welkin::cli {
 
@@ -44,6 +48,80 @@ clouds::VolumetricClouds measured_clouds() {
   c.weather_system_amount = 0.0f;  // the layer's own coverage everywhere: the lighting is what is measured
   // Shadows on (the default): the march reads the optical depth beyond its light steps from the shadow map.
   return c;
+}
+
+// The clouds and the sun measured: a scene file's (after one update, so that a time of day has placed
+// the sun), or the built-in cumulus layer under a sun 40 degrees up.
+struct MeasuredCase {
+  clouds::VolumetricClouds clouds;
+  double sun_azimuth_deg = 200.0, sun_elevation_deg = 40.0;
+  Camera camera;
+};
+
+MeasuredCase case_from_scene(const std::string& file) {
+  if (file.empty()) return {measured_clouds()};
+  auto world = make_world();
+  load_scene_file(*world, file);
+  world->update(FrameInfo{});
+  Registry& reg = world->registry();
+  MeasuredCase m;
+  const Entity clouds = reg.first<clouds::VolumetricClouds>();
+  if (clouds.is_null())
+    throw Error(ErrorInfo{.file = file, .path = "/entities", .expected = "an entity with clouds.VolumetricClouds", .found = "none"});
+  m.clouds = *reg.get<clouds::VolumetricClouds>(clouds);
+  if (const Entity sun = reg.first<atmosphere::Sun>(); !sun.is_null())
+    m.sun_azimuth_deg = reg.get<atmosphere::Sun>(sun)->azimuth_deg, m.sun_elevation_deg = reg.get<atmosphere::Sun>(sun)->elevation_deg;
+  else if (const Entity light = reg.first<DirectionalLight>(); !light.is_null())
+    m.sun_azimuth_deg = reg.get<DirectionalLight>(light)->azimuth_deg, m.sun_elevation_deg = reg.get<DirectionalLight>(light)->elevation_deg;
+  else
+    throw Error(ErrorInfo{.file = file, .path = "/entities", .expected = "an entity with atmosphere.Sun or core.DirectionalLight", .found = "none"});
+  if (!(m.sun_elevation_deg > 0.0))
+    throw Error(ErrorInfo{.file = file, .path = "/entities (the sun)", .expected = "a sun above the horizon (the probe's light is the sun alone)",
+                          .found = "elevation " + std::to_string(m.sun_elevation_deg) + " degrees"});
+  if (const Entity camera = reg.first<Camera>(); !camera.is_null()) m.camera = *reg.get<Camera>(camera);
+  return m;
+}
+
+// --rays FILE: {"rays": [{"position_m": [east, north, up], "heading_deg": h, "pitch_deg": p}, ...]}, at most
+// kMaxRays rays, every value a finite number, pitch within [-90, 90] degrees.
+std::vector<CloudView> read_rays(const std::string& file) {
+  constexpr size_t kMaxRays = 4096;
+  const nlohmann::json doc = read_json_file(file);
+  auto fail = [&](const std::string& path, const std::string& expected, const nlohmann::json& found) {
+    return Error(ErrorInfo{.file = file, .path = path, .expected = expected, .found = describe_json(found)});
+  };
+  if (!doc.is_object() || !doc.contains("rays")) throw fail("", "an object with \"rays\": [...]", doc);
+  for (const auto& [key, value] : doc.items())
+    if (key != "rays") throw fail("/" + key, "only \"rays\"", value);
+  const nlohmann::json& rays = doc["rays"];
+  if (!rays.is_array() || rays.empty() || rays.size() > kMaxRays)
+    throw fail("/rays", "an array of 1 to " + std::to_string(kMaxRays) + " rays", rays);
+  auto number = [&](const nlohmann::json& j, const std::string& path, double lo, double hi) {
+    if (!j.is_number() || !std::isfinite(j.get<double>()) || j.get<double>() < lo || j.get<double>() > hi)
+      throw fail(path, "a number from " + std::to_string(lo) + " to " + std::to_string(hi), j);
+    return j.get<double>();
+  };
+  std::vector<CloudView> views;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const std::string at = "/rays/" + std::to_string(i);
+    const nlohmann::json& r = rays[i];
+    if (!r.is_object()) throw fail(at, "an object", r);
+    for (const char* key : {"position_m", "heading_deg", "pitch_deg"})
+      if (!r.contains(key)) throw fail(at + "/" + key, "a value", nlohmann::json());
+    for (const auto& [key, value] : r.items())
+      if (key != "position_m" && key != "heading_deg" && key != "pitch_deg")
+        throw fail(at + "/" + key, "position_m, heading_deg or pitch_deg", value);
+    const nlohmann::json& p = r["position_m"];
+    if (!p.is_array() || p.size() != 3) throw fail(at + "/position_m", "[east, north, up] in metres", p);
+    CloudView v{.name = "ray " + std::to_string(i)};
+    v.east_m = number(p[0], at + "/position_m/0", -1e7, 1e7);
+    v.north_m = number(p[1], at + "/position_m/1", -1e7, 1e7);
+    v.altitude_m = number(p[2], at + "/position_m/2", 0.0, 1e8);
+    v.heading_deg = number(r["heading_deg"], at + "/heading_deg", -360.0, 360.0);
+    v.pitch_deg = number(r["pitch_deg"], at + "/pitch_deg", -90.0, 90.0);
+    views.push_back(v);
+  }
+  return views;
 }
 
 std::vector<CloudView> measured_views(bool quick) {
@@ -175,6 +253,49 @@ ApComparison compare_aerial_perspective(const ApCase& scene, const std::string& 
 
 }  // namespace
 
+// --image SCENE: the scene's view under the probe's light (the sun alone: no sky, no air, no ground),
+// marched at each quality beside the path tracer's image of the same rays through the same field and
+// their difference; prints the image-wide relative RMSE over the pixels that see clouds.
+int write_cloud_images(const CloudAccuracyOptions& o, const std::map<std::string, Quality>& names, int width, int height) {
+  if (int64_t(width) * height > 640 * 360)
+    throw Error(ErrorInfo{.path = "--size", .expected = "at most 640x360 pixels for --image (each is path traced)", .found = o.size});
+  const MeasuredCase measured = case_from_scene(o.image);
+  fs::create_directories(o.out);
+  std::unique_ptr<GlContext> gl = create_headless_context();
+  clouds::CloudProbe probe(measured.clouds, measured.sun_azimuth_deg, measured.sun_elevation_deg);
+  clouds::reference::PathTraceSettings settings;
+  settings.samples = uint64_t(o.paths_per_pixel);
+  std::fprintf(stderr, "path tracing %dx%d pixels, %d paths each\n", width, height, o.paths_per_pixel);
+  const auto reference = probe.reference_image(measured.camera, width, height, settings);
+  const std::string stem = fs::path(o.image).stem().string();
+  for (const std::string& q : o.qualities) {
+    probe.clouds().quality = names.at(q);
+    const std::vector<double> gpu = probe.gpu_image(measured.camera, width, height);
+    ComparisonPanels panels{.width = width, .height = height};
+    double sum = 0.0, mean = 0.0, noise = 0.0;
+    int cloud_pixels = 0;
+    for (size_t i = 0; i < gpu.size(); ++i) {
+      const double r = reference[i].radiance();
+      panels.approximation.push_back(glm::dvec3(gpu[i])), panels.reference.push_back(glm::dvec3(r));
+      panels.relative.push_back(0.0);
+      if (reference[i].transmittance.mean > 0.999 && gpu[i] <= 0.0) continue;  // no cloud on this pixel
+      sum += (gpu[i] - r) * (gpu[i] - r), mean += r, ++cloud_pixels;
+      noise += std::pow(reference[i].scattered.ci95 / 1.96, 2.0);
+    }
+    mean /= std::max(cloud_pixels, 1);
+    for (size_t i = 0; i < gpu.size(); ++i) panels.relative[i] = mean > 0.0 ? (gpu[i] - reference[i].radiance()) / mean : 0.0;
+    const double rmse = std::sqrt(sum / std::max(cloud_pixels, 1)) / std::max(mean, 1e-30);
+    const double noise_rmse = std::sqrt(noise / std::max(cloud_pixels, 1)) / std::max(mean, 1e-30);
+    const std::string png = (fs::path(o.out) / ("clouds-image-" + stem + "-" + q + ".png")).string();
+    write_comparison_panels(png, panels, std::max(1, 384 / width), 0.25);
+    std::printf("%s at %s, %dx%d: real time above, path tracer (%d paths a pixel) in the middle, difference below "
+                "(full red or blue at 25%% of the mean): relative RMSE %.1f%% over %d cloud pixels (the reference's "
+                "own noise %.1f%%); wrote %s\n",
+                stem.c_str(), q.c_str(), width, height, o.paths_per_pixel, 100 * rmse, cloud_pixels, 100 * noise_rmse, png.c_str());
+  }
+  return kOk;
+}
+
 int run_cloud_accuracy(const CloudAccuracyOptions& o) {
   int width = 0, height = 0;
   parse_size(o.size, width, height);
@@ -185,11 +306,13 @@ int run_cloud_accuracy(const CloudAccuracyOptions& o) {
       if (!names.count(q)) throw Error(ErrorInfo{.path = "--qualities", .expected = "low, medium, high or ultra", .found = "'" + q + "'"});
       configs.push_back({names.at(q), m, std::string(m == MultipleScattering::diffusion ? "diffusion" : "octaves") + "/" + q});
     }
+  if (!o.image.empty()) return write_cloud_images(o, names, width, height);
+  const MeasuredCase measured = case_from_scene(o.scene);
+  const std::vector<CloudView> views = o.rays.empty() ? measured_views(o.quick) : read_rays(o.rays);
   fs::create_directories(o.out);
   std::unique_ptr<GlContext> gl = create_headless_context();
   const std::string renderer = gl->info().renderer;
-  clouds::CloudProbe probe(measured_clouds(), 200.0, 40.0);
-  const std::vector<CloudView> views = measured_views(o.quick);
+  clouds::CloudProbe probe(measured.clouds, measured.sun_azimuth_deg, measured.sun_elevation_deg);
 
   // References once per ray (they do not depend on the GPU's settings).
   clouds::reference::PathTraceSettings settings;
@@ -226,6 +349,7 @@ int run_cloud_accuracy(const CloudAccuracyOptions& o) {
     }
     const double rmse = std::sqrt(sum / double(views.size()));
     c.temporal_upscaling = true;
+    // Frames that march: the view turns half a degree a frame (a still view keeps its clouds).
     const clouds::CloudProbe::Cost cost = probe.cost({"cost", 100.0, 210.0, 8.0}, width, height, o.frames);
     c.temporal_upscaling = false;
     csv << cfg.name << "," << cost.clouds_ms << "," << cost.copy_ms << "," << cost.clouds_ms / cost.copy_ms << "," << rmse << "," << worst << "\n";

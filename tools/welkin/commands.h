@@ -28,6 +28,10 @@ void check_assembly_options(const RunManifest& run, const std::string& video, co
 struct CloudAccuracyOptions {
   std::string out = "out/accuracy", size = "640x360";
   std::string ghosting_scene = "assets/scenes/clouds-peer.json";  // the temporal upscaling's flight
+  std::string scene;  // the layers and sun measured ("": the built-in cumulus case)
+  std::string rays;   // the view rays measured ("": the built-in set)
+  std::string image;  // a scene: path-traced image panels instead of the sweep
+  int paths_per_pixel = 64;
   std::vector<std::string> qualities{"low", "medium", "high", "ultra"};
   int frames = 5;
   bool quick = false, json = false;

@@ -1,6 +1,8 @@
 #include "cloud_probe.h"
 
 #include <algorithm>
+#include <atomic>
+#include <thread>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -88,7 +90,7 @@ VolumetricClouds& CloudProbe::clouds() {
 void CloudProbe::aim(const CloudView& view) {
   Registry& reg = world_->registry();
   Camera& cam = *reg.get<Camera>(reg.first<Camera>());
-  cam.position_m = {0.0, 0.0, view.altitude_m};
+  cam.position_m = {view.east_m, view.north_m, view.altitude_m};
   cam.heading_deg = float(view.heading_deg);
   cam.pitch_deg = float(view.pitch_deg);
 }
@@ -99,28 +101,76 @@ double CloudProbe::gpu_radiance(const CloudView& view) {
   return renderer_->read_hdr().rgba[1];
 }
 
+struct CloudProbe::ReferenceScene {
+  CloudField field;
+  CloudMedium medium;
+  std::unique_ptr<ref::PhaseFunction> phase;
+  ReferenceScene(CloudField f, const VolumetricClouds& c) : field(std::move(f)), medium(field) {
+    if (c.phase == PhaseModel::droplet_mie) phase = std::make_unique<ref::ApproximateMie>(c.droplet_diameter_um);
+    else phase = std::make_unique<ref::DualLobeHenyeyGreenstein>(c.phase_g_forward, c.phase_g_backward, 1.0 - c.phase_mix);
+    medium.single_scattering_albedo =
+        c.scattering_coefficient / std::max(double(c.scattering_coefficient + c.absorption_coefficient), 1e-12);
+  }
+};
+
+std::unique_ptr<CloudProbe::ReferenceScene> CloudProbe::reference_scene() {
+  const CloudsGpu& gpu = world_->resource<CloudsGpu>();
+  return std::make_unique<ReferenceScene>(CloudField(read_noise(gpu), gpu.block, gpu.layers), clouds());
+}
+
 ref::CloudRadianceEstimate CloudProbe::reference_radiance(const CloudView& view, const ref::PathTraceSettings& settings) {
   aim(view);
   renderer_->render_frame(FrameInfo{.index = frame_++}, 1, 1);  // this view's frame block and layers
-  const CloudsGpu& gpu = world_->resource<CloudsGpu>();
-  const CloudField field(read_noise(gpu), gpu.block, gpu.layers);
-  CloudMedium medium(field);
-  const VolumetricClouds& c = clouds();
-  std::unique_ptr<ref::PhaseFunction> phase;
-  if (c.phase == PhaseModel::droplet_mie) phase = std::make_unique<ref::ApproximateMie>(c.droplet_diameter_um);
-  else phase = std::make_unique<ref::DualLobeHenyeyGreenstein>(c.phase_g_forward, c.phase_g_backward, 1.0 - c.phase_mix);
-  const double albedo = c.scattering_coefficient / std::max(double(c.scattering_coefficient + c.absorption_coefficient), 1e-12);
-  medium.single_scattering_albedo = albedo;
+  const std::unique_ptr<ReferenceScene> scene = reference_scene();
   const glm::dvec3 dir = direction_from_azimuth_elevation(view.heading_deg, view.pitch_deg);
-  return ref::path_trace(medium, *phase, ref::Ray{glm::dvec3(0.0), dir},
+  return ref::path_trace(scene->medium, *scene->phase, ref::Ray{glm::dvec3(0.0), dir},
                          ref::Lighting{.sun_direction = sun_direction_, .sun_irradiance = kSunIlluminance}, settings);
 }
 
-CloudProbe::Cost CloudProbe::cost(const CloudView& view, int width, int height, int frames) {
-  aim(view);
+std::vector<double> CloudProbe::gpu_image(const Camera& camera, int width, int height) {
+  Registry& reg = world_->registry();
+  *reg.get<Camera>(reg.first<Camera>()) = camera;
+  renderer_->render_frame(FrameInfo{.index = frame_++}, width, height);
+  const ImageF hdr = renderer_->read_hdr();
+  std::vector<double> image(size_t(width) * height);
+  for (int y = 0; y < height; ++y)  // read_hdr's rows run from the bottom
+    for (int x = 0; x < width; ++x) image[size_t(y) * width + x] = hdr.pixel(x, height - 1 - y)[1];
+  return image;
+}
+
+std::vector<ref::CloudRadianceEstimate> CloudProbe::reference_image(const Camera& camera, int width, int height,
+                                                                    const ref::PathTraceSettings& settings) {
+  gpu_image(camera, width, height);  // this view's frame block and layers
+  const std::unique_ptr<ReferenceScene> scene = reference_scene();
+  const FrameView view = make_frame_view(camera, width, height);
+  const ref::Lighting lighting{.sun_direction = sun_direction_, .sun_irradiance = kSunIlluminance};
+  std::vector<ref::CloudRadianceEstimate> image(size_t(width) * height);
+  std::atomic<size_t> next{0};
+  auto worker = [&] {
+    ref::PathTraceSettings s = settings;
+    s.threads = 1;
+    s.batch_size = std::max<std::uint64_t>(settings.samples, 1);
+    for (size_t i = next++; i < image.size(); i = next++) {
+      s.seed = settings.seed + i;
+      const glm::dvec3 dir = glm::normalize(glm::dvec3(pixel_direction(view, double(i % width) + 0.5, double(i / width) + 0.5)));
+      image[i] = ref::path_trace(scene->medium, *scene->phase, ref::Ray{glm::dvec3(0.0), dir}, lighting, s);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::max(settings.threads, 1); ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  return image;
+}
+
+CloudProbe::Cost CloudProbe::cost(const CloudView& view, int width, int height, int frames, double turn_deg) {
+  CloudView turning = view;
+  aim(turning);
   for (int i = 0; i < 2; ++i) renderer_->render_frame(FrameInfo{.index = frame_++}, width, height);
   std::vector<double> ms;
   for (int i = 0; i < frames; ++i) {
+    turning.heading_deg += turn_deg;
+    aim(turning);
     const FrameResult r = renderer_->render_frame(FrameInfo{.index = frame_++}, width, height);
     double sum = 0.0;
     for (const PassTiming& t : r.timings)

@@ -8,6 +8,7 @@
 
 #include "reference/cloud_path_tracer.h"
 #include "welkin/clouds/components.h"
+#include "welkin/gfx/camera.h"
 
 namespace welkin {
 class World;
@@ -21,6 +22,7 @@ struct CloudView {
   double altitude_m = 100.0;
   double heading_deg = 0.0;  // clockwise from north
   double pitch_deg = 30.0;
+  double east_m = 0.0, north_m = 0.0;  // the camera over the scene's origin
 };
 
 class CloudProbe {
@@ -38,11 +40,23 @@ class CloudProbe {
   struct Cost {
     double clouds_ms = 0.0, copy_ms = 0.0;
   };
-  Cost cost(const CloudView& view, int width, int height, int frames);
+  // The frame `camera` sees (its position, heading, pitch, roll and field of view), width x height,
+  // row by row from the top: the radiance (green) marched with the probe's clouds, and path traced
+  // through the same field (settings.samples paths per pixel; pixels shared among settings.threads
+  // workers, each pixel its own seed, so the image does not depend on the thread count).
+  std::vector<double> gpu_image(const Camera& camera, int width, int height);
+  std::vector<reference::CloudRadianceEstimate> reference_image(const Camera& camera, int width, int height,
+                                                                const reference::PathTraceSettings& settings);
+  // The view turns by turn_deg a frame, so that the temporal upscaling marches every frame (a still view
+  // keeps its clouds and skips the march).
+  Cost cost(const CloudView& view, int width, int height, int frames, double turn_deg = 0.5);
   VolumetricClouds& clouds();
 
  private:
   void aim(const CloudView& view);
+  struct ReferenceScene;
+  // The field, medium and phase of the frame just rendered.
+  std::unique_ptr<ReferenceScene> reference_scene();
   std::unique_ptr<World> world_;
   std::unique_ptr<Renderer> renderer_;
   glm::dvec3 sun_direction_;
