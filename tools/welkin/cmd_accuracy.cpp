@@ -46,6 +46,8 @@ struct AccuracyOptions {
   std::string scene;  // godrays, clusters, clouds: the scene measured (each has its own default)
   std::string rays, image;  // clouds: a file of view rays; a scene whose path-traced image is made
   int paths_per_pixel = 64;
+  bool fit = false;
+  int fit_evaluations = 120;
   std::vector<std::string> methods{"lut", "raymarch"}, qualities{"low", "medium", "high", "ultra"};
   int frames = 7, threads = 2;
   bool quick = false, json = false, check = false;
@@ -372,7 +374,8 @@ int run_accuracy(const AccuracyOptions& options) {
   if (o.technique == "clouds")
     return run_cloud_accuracy({.out = o.out, .size = o.size.empty() ? (o.image.empty() ? "640x360" : "96x54") : o.size,
                                .ghosting_scene = o.ghosting_scene, .scene = o.scene, .rays = o.rays, .image = o.image,
-                               .paths_per_pixel = o.paths_per_pixel, .qualities = o.qualities, .frames = o.frames,
+                               .paths_per_pixel = o.paths_per_pixel, .fit = o.fit,
+                               .fit_evaluations = o.fit_evaluations, .qualities = o.qualities, .frames = o.frames,
                                .quick = o.quick, .json = o.json});
   if (o.size.empty()) o.size = "640x360";
   if (o.technique != "atmosphere")
@@ -611,6 +614,12 @@ void add_accuracy_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--image", o->image,
                   "clouds: instead of the sweep, the scene's view marched at each quality beside the path tracer's "
                   "image of the same rays and their difference (size from --size, default 96x54)");
+  cmd->add_flag("--fit", o->fit,
+               "clouds: fit the multiple-scattering estimate's coefficients to the path tracer on the rays measured "
+               "(at high and low) and write light_model_fit.glsl into --out");
+  cmd->add_option("--fit-evaluations", o->fit_evaluations, "clouds --fit: the most evaluations of the rays")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
   cmd->add_option("--paths-per-pixel", o->paths_per_pixel, "clouds --image: paths per pixel of the path-traced image")
       ->check(CLI::Range(1, 65536))
       ->capture_default_str();

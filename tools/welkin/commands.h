@@ -32,6 +32,8 @@ struct CloudAccuracyOptions {
   std::string rays;   // the view rays measured ("": the built-in set)
   std::string image;  // a scene: path-traced image panels instead of the sweep
   int paths_per_pixel = 64;
+  bool fit = false;  // fit the multiple-scattering coefficients instead of the sweep
+  int fit_evaluations = 120;
   std::vector<std::string> qualities{"low", "medium", "high", "ultra"};
   int frames = 5;
   bool quick = false, json = false;

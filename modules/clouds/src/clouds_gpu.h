@@ -1,4 +1,6 @@
 #pragma once
+#include <map>
+#include <string>
 // The clouds' GPU state, private to the module: one world resource (CloudsGpu) holding the noise,
 // this frame's block and layers, the shadow cascades, the temporal history and the mid- and far-range
 // paths' state.
@@ -32,6 +34,9 @@ struct CloudsGpu {
   uint64_t coverage_map_revision = 0;
   float coverage_map_raise = 0.0f;
   int noise_seed = -1;  // the seed the noise was made from (-1: none yet)
+  // The multiple-scattering coefficients as defines (light_model_fit.glsl's names), set only while
+  // `welkin accuracy clouds --fit` searches; empty, the committed fit is compiled in.
+  std::map<std::string, std::string> light_model_fit;
   NoiseFacts noise_facts;
   int noise_builds = 0;       // how often the noise was generated (tests, stats)
   int noise_cache_reads = 0;  // how often it was read from the disk cache instead

@@ -19,9 +19,11 @@ void bind_field(const CloudsGpu& gpu) {
 }
 
 ShaderDefines light_model_defines(const CloudsGpu& gpu) {
-  return {{"CLOUDS_MULTIPLE_SCATTERING", gpu.block.multiple_scattering > 0.5f ? "1" : "0"},
-          {"CLOUDS_POWDER", gpu.block.powder != 0.0f ? "1" : "0"},
-          {"CLOUDS_PHASE_MODEL", gpu.block.phase_model > 0.5f ? "1" : "0"}};
+  ShaderDefines d = {{"CLOUDS_MULTIPLE_SCATTERING", gpu.block.multiple_scattering > 0.5f ? "1" : "0"},
+                     {"CLOUDS_POWDER", gpu.block.powder != 0.0f ? "1" : "0"},
+                     {"CLOUDS_PHASE_MODEL", gpu.block.phase_model > 0.5f ? "1" : "0"}};
+  for (const auto& [name, value] : gpu.light_model_fit) d[name] = value;
+  return d;
 }
 
 // The density field's compile-time description (density.glsl): which layers there are and what each

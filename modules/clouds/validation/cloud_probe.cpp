@@ -82,6 +82,16 @@ CloudProbe::CloudProbe(const VolumetricClouds& clouds, double sun_azimuth_deg, d
 
 CloudProbe::~CloudProbe() = default;
 
+void CloudProbe::set_light_model_fit(const std::map<std::string, double>& coefficients) {
+  std::map<std::string, std::string>& fit = world_->resource<CloudsGpu>().light_model_fit;
+  fit.clear();
+  char text[32];
+  for (const auto& [name, value] : coefficients) {
+    std::snprintf(text, sizeof text, "%.9g", value);
+    fit[name] = std::string(text) + (std::string(text).find_first_of(".e") == std::string::npos ? ".0" : "");
+  }
+}
+
 VolumetricClouds& CloudProbe::clouds() {
   Registry& reg = world_->registry();
   return *reg.get<VolumetricClouds>(reg.first<VolumetricClouds>());

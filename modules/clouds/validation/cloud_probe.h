@@ -3,6 +3,7 @@
 // with the clouds, a white sun (core.DirectionalLight, 100 klx, no sky light, no air, no ground
 // bounce) so that both see exactly the same light, and a 1x1 frame aimed along each ray.
 #include <glm/glm.hpp>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -51,6 +52,9 @@ class CloudProbe {
   // keeps its clouds and skips the march).
   Cost cost(const CloudView& view, int width, int height, int frames, double turn_deg = 0.5);
   VolumetricClouds& clouds();
+  // Compiles the multiple-scattering estimate with these coefficients (light_model_fit.glsl's define
+  // names) instead of the committed fit; empty: the committed fit again.
+  void set_light_model_fit(const std::map<std::string, double>& coefficients);
 
  private:
   void aim(const CloudView& view);

@@ -111,7 +111,7 @@ void main() {
   // The averaged diffuse transmittance toward the light, and the optical depth it stands for (the
   // direct beam's own average, kept in a third layer, measured no better: 10.0% against 10.1%).
   float tau = scale * (1.0 / billboard_transmittance(sh_diffuse, l_local, 0.02) - 1.0) / 0.15;
-  float direct = exp(-tau), diffuse = clouds_diffuse_transmittance(tau);
+  float direct = clouds_direct_transmittance(tau), diffuse = clouds_diffuse_transmittance(tau);
   float phase_single = clouds_phase(mu, 1.0);
   Billboard b = bb_billboards[v_billboard];
   vec3 source = clouds_diffusion_model
