@@ -11,7 +11,7 @@ namespace {
 
 // Bump when the C++ that finishes the volumes (equalise, pack_turbulence, void_and_cluster) changes:
 // the cache's key holds the shaders' sources, not this code.
-constexpr int kNoiseCacheVersion = 1;
+constexpr int kNoiseCacheVersion = 2;
 
 }  // namespace
 
@@ -27,7 +27,8 @@ std::string noise_key(const ShaderLibrary& shaders, int seed) {
 }
 
 std::optional<NoiseBytes> load_noise(const DiskCache& cache, const std::string& key) {
-  auto bytes = cache.read(key, kShapeBytes + kDetailBytes + kWeatherBytes + kSystemsBytes + kBlueBytes);
+  auto bytes =
+      cache.read(key, kShapeBytes + kDetailBytes + kWeatherBytes + kSystemsBytes + kBlueBytes + kMipBytes);
   if (!bytes) return std::nullopt;
   NoiseBytes n;
   auto at = bytes->begin();
@@ -40,6 +41,8 @@ std::optional<NoiseBytes> load_noise(const DiskCache& cache, const std::string& 
   }
   n.blue.resize(size_t(kBlueNoiseSize) * kBlueNoiseSize);
   std::memcpy(n.blue.data(), &*at, kBlueBytes);
+  at += std::ptrdiff_t(kBlueBytes);
+  n.mips.assign(at, bytes->end());
   return n;
 }
 
@@ -47,6 +50,7 @@ void store_noise(const DiskCache& cache, const std::string& key, const NoiseByte
   std::string bytes;
   for (const auto* v : {&n.shape, &n.detail, &n.weather, &n.systems}) bytes.append(v->begin(), v->end());
   bytes.append(reinterpret_cast<const char*>(n.blue.data()), kBlueBytes);
+  bytes.append(n.mips.begin(), n.mips.end());
   cache.write(key, bytes);
 }
 

@@ -103,6 +103,24 @@ TEST(CloudsGpu, NoiseReadFromTheDiskCacheBitForBit) {
   EXPECT_EQ(cached.detail, generated.detail);
   EXPECT_EQ(cached.weather, generated.weather);
   EXPECT_EQ(cached.systems, generated.systems);
+  // The coarser levels the march reads far away come from the cache too (made once, read back).
+  auto levels = [](const CloudsGpu& g) {
+    std::vector<uint8_t> bytes;
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    for (const Texture* t : {g.shape.get(), g.detail.get(), g.weather.get(), g.systems.get()})
+      for (int level = 1, s = t->desc().width / 2; s >= 1; ++level, s /= 2) {
+        const size_t at = bytes.size(), size = size_t(s) * size_t(s) * size_t(s) * 4;
+        bytes.resize(at + size);
+        glGetTextureImage(t->id(), level, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(size), bytes.data() + at);
+      }
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    return bytes;
+  };
+  const std::vector<uint8_t> generated_levels = levels(g1);
+  EXPECT_GT(std::count_if(generated_levels.begin(), generated_levels.end(),
+                          [](uint8_t b) { return b != 0 && b != 255; }),
+            1000);
+  EXPECT_EQ(levels(g2), generated_levels);
   EXPECT_EQ(read.renderer->read_hdr().rgba, first.rgba);
   test::Rendered other = render(noon({{"seed", 7}}));
   EXPECT_EQ(other.world->resource<CloudsGpu>().noise_builds, 1);
