@@ -29,6 +29,13 @@ template <class T> void read_value(const json& doc, const char* key, T& out, std
 
 }  // namespace
 
+size_t layout_sections(std::string_view ini) {
+  size_t n = 0;
+  for (size_t i = 0; i < ini.size(); ++i)
+    if (ini[i] == '[' && (i == 0 || ini[i - 1] == '\n')) ++n;
+  return n;
+}
+
 fs::path editor_config_path() {
   if (const char* xdg = std::getenv("XDG_CONFIG_HOME"); xdg && *xdg) return fs::path(xdg) / "welkin" / "editor.json";
   if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".config" / "welkin" / "editor.json";
@@ -66,6 +73,13 @@ EditorConfig editor_config_from_json(const json& doc, std::vector<std::string>& 
     c.window_height = std::clamp(c.window_height, 240, 16384);
   }
   read_value(doc, "imgui_layout", c.imgui_layout, warnings);
+  // Dear ImGui 1.86 looks each [Window][...] section of its .ini up in a list of those read so far,
+  // so its work grows with the square of the sections: the layout is bounded before it gets there.
+  if (size_t sections = layout_sections(c.imgui_layout); sections > kMaxLayoutSections) {
+    warnings.push_back("editor config: ignoring /imgui_layout (" + std::to_string(sections) + " sections, at most " +
+                       std::to_string(kMaxLayoutSections) + ")");
+    c.imgui_layout.clear();
+  }
   read_value(doc, "panels", c.panels, warnings);
   read_value(doc, "fly_speed_multiplier", c.fly_speed_multiplier, warnings);
   if (!(c.fly_speed_multiplier > 1e-6 && c.fly_speed_multiplier < 1e6)) c.fly_speed_multiplier = 1;

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "model/fly_camera.h"
@@ -23,6 +24,11 @@ struct EditorConfig {
   bool look_through_scene_camera = false;
   friend bool operator==(const EditorConfig&, const EditorConfig&) = default;
 };
+
+// Sections ("[Window][Viewport]" lines) of a Dear ImGui .ini text, and the most a config may hold:
+// ImGui's reader is quadratic in them; the editor's own windows and popups are a few dozen.
+size_t layout_sections(std::string_view ini);
+inline constexpr size_t kMaxLayoutSections = 1024;
 
 // Empty when neither XDG_CONFIG_HOME nor HOME is set.
 std::filesystem::path editor_config_path();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <unordered_set>
 
 #include "welkin/core/error.h"
 #include "welkin/scene/json_fields.h"
@@ -24,6 +25,8 @@ std::vector<ModulePanelSpec> parse_panels(const ModuleManifest& m, const json& d
   const json& panels = doc["panels"];
   if (!panels.is_array()) fail(file, "/panels", "array of panels", panels);
   std::vector<ModulePanelSpec> out;
+  // Looked up once per listed component: a long list against a long manifest stays linear.
+  const std::unordered_set<std::string> declared(m.components.begin(), m.components.end());
   for (size_t i = 0; i < panels.size(); ++i) {
     std::string pp = "/panels/" + std::to_string(i);
     const json& p = panels[i];
@@ -37,7 +40,7 @@ std::vector<ModulePanelSpec> parse_panels(const ModuleManifest& m, const json& d
     spec.title = p["title"].get<std::string>();
     auto component_of_module = [&](const json& name, const std::string& at) {
       if (!name.is_string()) fail(file, at, "component name", name);
-      if (std::find(m.components.begin(), m.components.end(), name.get<std::string>()) == m.components.end())
+      if (!declared.count(name.get_ref<const std::string&>()))
         fail(file, at, "a component module '" + m.name + "' declares", name);
       return name.get<std::string>();
     };

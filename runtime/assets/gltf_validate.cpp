@@ -621,13 +621,18 @@ class Validator {
   }
 
   void scenes() {
+    // Marks of the roots listed by the scene being checked, cleared after each scene: one array for
+    // all scenes (an array per scene would cost scenes x nodes).
+    std::vector<bool> listed(parents_.size(), false);
+    std::vector<int> marked;
     for (size_t i = 0; i < sizes_["scenes"]; ++i) {
       const json& s = at("scenes", i);
       const std::string p = "/scenes/" + std::to_string(i);
       const json* ns = opt(s, "nodes");
       if (!ns) continue;
       if (!ns->is_array()) bad(p + "/nodes", "an array of root node indices", *ns);
-      std::vector<bool> listed(parents_.size(), false);  // the spec requires each root once
+      for (int nd : marked) listed[size_t(nd)] = false;
+      marked.clear();
       for (size_t k = 0; k < ns->size(); ++k) {
         const std::string np = p + "/nodes/" + std::to_string(k);
         const int nd = index_value((*ns)[k], np, "nodes");
@@ -635,7 +640,8 @@ class Validator {
           fail(src_, np, "a root node",
                "node " + std::to_string(nd) + ", a child of node " + std::to_string(parents_[nd]));
         if (listed[size_t(nd)]) fail(src_, np, "each root node once", "node " + std::to_string(nd) + " again");
-        listed[size_t(nd)] = true;
+        listed[size_t(nd)] = true;  // the spec requires each root once per scene
+        marked.push_back(nd);
       }
     }
     index(doc_, "scene", "", "scenes", false);

@@ -64,8 +64,9 @@ ModuleManifest parse_module_manifest(const std::string& text, const std::string&
   if (!m.library.empty() && (lib.find_first_of("/\\") != std::string::npos || lib == "." || lib == ".."))
     throw Error(ErrorInfo{.file = origin, .path = "/library", .expected = "a file name beside the manifest (no folders)",
                           .found = "'" + lib + "'"});
+  const std::string prefix = m.name + ".";  // once: a name and a list may both be long
   for (const auto& c : m.components)
-    if (c.rfind(m.name + ".", 0) != 0)
+    if (!c.starts_with(prefix))
       throw Error(ErrorInfo{.file = origin, .path = "/components", .expected = "names starting with '" + m.name + ".'", .found = "'" + c + "'"});
   return m;
 }

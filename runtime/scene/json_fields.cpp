@@ -270,49 +270,86 @@ std::string line_column(const std::string& text, size_t byte) {
   return std::to_string(line) + ":" + std::to_string(col);
 }
 
-// The parser callback of parse_json_unique_keys: one hash set per open object.
-class DuplicateKeyCheck {
+// Builds the document as nlohmann's own DOM parser does and refuses a repeated key on the way: the
+// insert into an object's map says whether the key was there. One pass, linear in the text. (Not a
+// parser callback: nlohmann 3.11's callback parser scans the enclosing container at the end of every
+// object or array, which is quadratic in the members of one object.)
+class UniqueKeyDom {
  public:
-  bool operator()(int, json::parse_event_t event, json& parsed) {
-    using E = json::parse_event_t;
-    switch (event) {
-      case E::object_start: open_.push_back(Frame{.object = true}); break;
-      case E::array_start: open_.push_back(Frame{.object = false}); break;
-      case E::key: {
-        Frame& top = open_.back();
-        top.key = parsed.get<std::string>();
-        if (!top.keys.insert(top.key).second) throw DuplicateJsonKey{path()};
-        break;
-      }
-      case E::object_end:
-      case E::array_end:
-        open_.pop_back();
-        [[fallthrough]];
-      case E::value:
-        if (!open_.empty() && !open_.back().object) ++open_.back().index;
-        break;
-    }
+  json root;
+
+  bool null() { return place(nullptr); }
+  bool boolean(bool v) { return place(v); }
+  bool number_integer(json::number_integer_t v) { return place(v); }
+  bool number_unsigned(json::number_unsigned_t v) { return place(v); }
+  bool number_float(json::number_float_t v, const json::string_t&) { return place(v); }
+  bool string(json::string_t& v) { return place(v); }
+  bool binary(json::binary_t& v) { return place(json::binary(v)); }
+  bool start_object(std::size_t) { return open(json::object()); }
+  bool start_array(std::size_t) { return open(json::array()); }
+  bool end_object() { return close(); }
+  bool end_array() { return close(); }
+  bool key(json::string_t& k) {
+    Frame& f = open_.back();
+    auto [it, inserted] = f.value->get_ref<json::object_t&>().emplace(k, nullptr);
+    if (!inserted) throw DuplicateJsonKey{path() + "/" + k};
+    f.key = &it->first;
+    member_ = &it->second;  // map nodes stay where they are: safe to hold
     return true;
   }
+  // A syntax error: parse_json_unique_keys parses again for nlohmann's own exception and position.
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) { return false; }
 
  private:
   struct Frame {
-    bool object = true;
-    std::unordered_set<std::string> keys;
-    std::string key;   // the member being parsed (objects)
-    size_t index = 0;  // the element being parsed (arrays)
+    json* value = nullptr;
+    const std::string* key = nullptr;  // objects: the member being parsed
   };
+  // Puts a value where the document is at: the root, the next element of an array, or the member
+  // whose key came last. An array's elements may move as it grows, but none is held open then.
+  json* put(json&& v) {
+    if (open_.empty()) {
+      root = std::move(v);
+      return &root;
+    }
+    json& parent = *open_.back().value;
+    if (parent.is_array()) {
+      parent.push_back(std::move(v));
+      return &parent.back();
+    }
+    *member_ = std::move(v);
+    return member_;
+  }
+  bool place(json v) {
+    put(std::move(v));
+    return true;
+  }
+  bool open(json container) {
+    open_.push_back(Frame{.value = put(std::move(container))});
+    return true;
+  }
+  bool close() {
+    open_.pop_back();
+    return true;
+  }
+  // Where the innermost open object is: each open container's member or element, from the root.
   std::string path() const {
     std::string p;
-    for (const Frame& f : open_) p += "/" + (f.object ? f.key : std::to_string(f.index));
+    for (size_t i = 0; i + 1 < open_.size(); ++i)
+      p += "/" + (open_[i].value->is_object() ? *open_[i].key : std::to_string(open_[i].value->size() - 1));
     return p;
   }
   std::vector<Frame> open_;
+  json* member_ = nullptr;
 };
 
 }  // namespace
 
-json parse_json_unique_keys(std::string_view text) { return json::parse(text, DuplicateKeyCheck{}); }
+json parse_json_unique_keys(std::string_view text) {
+  UniqueKeyDom dom;
+  if (json::sax_parse(text, &dom)) return std::move(dom.root);
+  return json::parse(text);  // not valid JSON: throws nlohmann's exception, with the position
+}
 
 json parse_json_text(const std::string& text, const std::string& file) {
   if (text.size() > kMaxJsonBytes)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <nlohmann/json.hpp>
+#include <unordered_set>
 
 #include "welkin/core/error.h"
 #include "welkin/scene/json_fields.h"
@@ -38,26 +39,34 @@ void check_header(const json& doc, const std::string& file) {
   if (!ents.is_array()) fail(file, "/entities", "array of entities", ents);
 }
 
+// The document's shape: header, entity objects, component objects. Calls `component` with each
+// entity's components object.
+template <class Fn> void check_shape(const json& doc, const std::string& file, Fn&& components) {
+  check_header(doc, file);
+  const json& ents = doc["entities"];
+  for (size_t i = 0; i < ents.size(); ++i) {
+    if (!ents[i].is_object()) fail(file, "/entities/" + std::to_string(i), "entity object", ents[i]);
+    auto comps = ents[i].find("components");
+    if (comps == ents[i].end()) continue;
+    if (!comps->is_object()) fail(file, "/entities/" + std::to_string(i) + "/components", "object of components", *comps);
+    components(*comps);
+  }
+}
+
 }  // namespace
 
 std::vector<std::string> scene_component_names(const json& doc, const std::string& file) {
-  check_header(doc, file);
   std::vector<std::string> names;
-  const json& ents = doc["entities"];
-  for (size_t i = 0; i < ents.size(); ++i) {
-    std::string ep = "/entities/" + std::to_string(i);
-    if (!ents[i].is_object()) fail(file, ep, "entity object", ents[i]);
-    auto comps = ents[i].find("components");
-    if (comps == ents[i].end()) continue;
-    if (!comps->is_object()) fail(file, ep + "/components", "object of components", *comps);
-    for (auto it = comps->begin(); it != comps->end(); ++it)
-      if (std::find(names.begin(), names.end(), it.key()) == names.end()) names.push_back(it.key());
-  }
+  std::unordered_set<std::string_view> seen;  // a scene may name very many components: no linear search per name
+  check_shape(doc, file, [&](const json& comps) {
+    for (auto it = comps.begin(); it != comps.end(); ++it)
+      if (seen.insert(it.key()).second) names.push_back(it.key());
+  });
   return names;
 }
 
 void load_scene(World& world, const json& doc, const std::string& file) {
-  scene_component_names(doc, file);  // validates the document's shape first
+  check_shape(doc, file, [](const json&) {});  // the document's shape first, before any module loads
   if (auto mods = doc.find("modules"); mods != doc.end()) {
     if (!mods->is_array()) fail(file, "/modules", "array of module names", *mods);
     for (size_t i = 0; i < mods->size(); ++i) {
@@ -70,8 +79,9 @@ void load_scene(World& world, const json& doc, const std::string& file) {
       }
     }
     std::vector<std::string>& listed = world.resource<SceneModules>().names;
+    std::unordered_set<std::string> known(listed.begin(), listed.end());
     for (const json& m : *mods)
-      if (std::find(listed.begin(), listed.end(), m.get<std::string>()) == listed.end()) listed.push_back(m.get<std::string>());
+      if (known.insert(m.get<std::string>()).second) listed.push_back(m.get<std::string>());
   }
   Registry& reg = world.registry();
   const json& ents = doc["entities"];

@@ -40,8 +40,8 @@ int run_info(const InfoOptions& o) {
   if (!o.scene.empty()) {
     nlohmann::json doc = read_json_file(o.scene);
     j["scene"] = o.scene;
+    load_scene(*world, doc, o.scene);  // first: a bad scene is refused at its first error, before any listing
     j["scene_components"] = scene_component_names(doc, o.scene);
-    load_scene(*world, doc, o.scene);
     j["scene_modules"] = world->modules().loaded();
     j["entities"] = world->registry().alive_count();
   }
