@@ -9,15 +9,18 @@
 #include <imgui_stdlib.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <set>
 
 #include "app/module_dirs.h"
 #include "app/script_player.h"
 #include "model/editor_config.h"
+#include "model/panel_layout.h"
 #include "ui/panel_registry.h"
 #include "ui/viewport_panel.h"
 #include "welkin/core/error.h"
@@ -95,24 +98,15 @@ void write_window_image(int width, int height, const std::string& path) {
   write_png(path, image);
 }
 
-// Placement of the panels on first run (afterwards ImGui's remembered layout wins) and again,
-// proportionally, whenever the window changes size.
-void place_panel(const std::string& title, int w, int h, ImGuiCond cond) {
-  float W = float(w), H = float(h), top = ImGui::GetFrameHeight();
-  // Side columns and the timeline strip scale with the window, within readable limits.
-  float left = std::clamp(W * 0.23f, 240.0f, 420.0f), right = std::clamp(W * 0.27f, 280.0f, 470.0f);
-  float bottom = std::clamp(H * 0.28f, 150.0f, 320.0f);
-  ImVec2 pos, size;
-  if (title == "Outliner") pos = {0, top}, size = {left, (H - top) * 0.35f};
-  else if (title == "Inspector") pos = {0, top + (H - top) * 0.35f}, size = {left, (H - top) * 0.65f};
-  else if (title == "Viewport") pos = {left, top}, size = {W - left - right, H - top - bottom};
-  else if (title == "Timeline") pos = {left, H - bottom}, size = {W - left - right, bottom};
-  else if (title == "Presets") pos = {W - right, top}, size = {right, (H - top) * 0.58f};
-  else if (title == "Profiler") pos = {W - right, top + (H - top) * 0.58f}, size = {right, (H - top) * 0.42f};
-  else if (title == "Time of day") pos = {W - right, top + (H - top) * 0.58f}, size = {right, (H - top) * 0.42f};
-  else pos = {left + 40, top + 40}, size = {420, 360};
-  ImGui::SetNextWindowPos(pos, cond);
-  ImGui::SetNextWindowSize(size, cond);
+// Puts the next window at a rectangle of the default layout (model/panel_layout.h).
+void place_panel(const PanelRect& r, ImGuiCond cond) {
+  ImGui::SetNextWindowPos(ImVec2(r.x, r.y), cond);
+  ImGui::SetNextWindowSize(ImVec2(r.w, r.h), cond);
+}
+
+// Whether a window is where the layout put it (to a pixel): then it is docked and follows the layout.
+bool at_rect(ImVec2 pos, ImVec2 size, const PanelRect& r) {
+  return std::abs(pos.x - r.x) < 1 && std::abs(pos.y - r.y) < 1 && std::abs(size.x - r.w) < 1 && std::abs(size.y - r.h) < 1;
 }
 
 std::vector<std::string> scene_files() {
@@ -167,6 +161,13 @@ class EditorApp {
   std::string open_path_, save_path_;
   uint64_t frame_index_ = 0;
   int laid_out_w_ = 0, laid_out_h_ = 0;  // the window size the panels were placed for
+  // Each panel's last rectangle from the layout, and whether it is still there (docked): a docked
+  // panel moves with the layout as other panels open and close; one the user moved stays put.
+  struct Placement {
+    PanelRect rect;
+    bool docked = false;
+  };
+  std::map<std::string, Placement> placed_;
   std::set<std::string> available_panels_;  // panels whose module was loaded last frame
   std::set<std::string> focus_pending_;     // panels to bring to the front next frame
 };
@@ -403,13 +404,23 @@ void EditorApp::draw_ui() {
   glfwGetWindowSize(window_->handle(), &w, &h);
   bool resized = laid_out_w_ && (w != laid_out_w_ || h != laid_out_h_);
   laid_out_w_ = w, laid_out_h_ = h;
+  std::vector<std::string> shown;  // in the Panels menu's order, which the columns stack in
+  for (EditorPanel& p : panels_.panels())
+    if (p.open && panels_.available(p, *ctx_)) shown.push_back(p.title);
+  const std::map<std::string, PanelRect> layout = layout_panels(shown, float(w), float(h), ImGui::GetFrameHeight());
   for (EditorPanel& p : panels_.panels()) {
     bool available = panels_.available(p, *ctx_);
     bool appeared = available && !available_panels_.count(p.title);
     if (available) available_panels_.insert(p.title);
     else available_panels_.erase(p.title);
     if (!p.open || !available) continue;
-    place_panel(p.title, w, h, resized ? ImGuiCond_Always : ImGuiCond_FirstUseEver);
+    // First use: the layout, unless the remembered one (ImGui's .ini) places the panel. Afterwards
+    // docked panels follow the layout; a change of window size lays every panel out again.
+    const PanelRect& rect = layout.at(p.title);
+    auto placement = placed_.find(p.title);
+    if (resized) place_panel(rect, ImGuiCond_Always);
+    else if (placement == placed_.end()) place_panel(rect, ImGuiCond_FirstUseEver);
+    else if (placement->second.docked && !(placement->second.rect == rect)) place_panel(rect, ImGuiCond_Always);
     // A module's panel that just arrived comes to the front, a frame later so that panels created in
     // the same first frame cannot cover it.
     if (focus_pending_.erase(p.title)) ImGui::SetNextWindowFocus();
@@ -417,6 +428,7 @@ void EditorApp::draw_ui() {
     ImGuiWindowFlags flags = p.title == "Viewport" ? ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse : 0;
     if (p.title == "Viewport") ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(2, 2));
     bool visible = ImGui::Begin(p.title.c_str(), &p.open, flags);
+    placed_[p.title] = Placement{rect, at_rect(ImGui::GetWindowPos(), ImGui::GetWindowSize(), rect)};
     if (p.title == "Viewport") ImGui::PopStyleVar();
     if (visible) p.draw(*ctx_);
     ImGui::End();
