@@ -2,7 +2,8 @@
 # Builds the fuzz targets with clang (libFuzzer + ASan + UBSan) in their own build folder and runs each
 # for SECONDS: the glTF loader on a seed corpus of generated files, OpenSubdiv refinement on small
 # control meshes, then the scene, sequence and preset JSON readers on the shipped documents; then the
-# runtime's unit tests, built in the same folder, under ASan and UBSan.
+# runtime's unit tests, built in the same folder, under ASan and UBSan; then the editor's session
+# fuzzer (random script sessions over the editor model) for SECONDS, also under ASan and UBSan.
 # Usage: run_fuzz.sh [SECONDS (default 30)] [BUILD_DIR]
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -12,7 +13,7 @@ build="${2:-$root/build/fuzz-assets}"
 jobs="${WELKIN_FUZZ_JOBS:-2}"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DWELKIN_FUZZ=ON \
-  -DWELKIN_BUILD_EDITOR=OFF -DWELKIN_BUILD_BENCHMARKS=OFF -DWELKIN_BUILD_MODULES=OFF > "$build.configure.log"
+  -DWELKIN_BUILD_EDITOR=ON -DWELKIN_BUILD_BENCHMARKS=OFF -DWELKIN_BUILD_MODULES=OFF > "$build.configure.log"
 cmake --build "$build" -j"$jobs" --target welkin_gltf_fuzzer welkin_assets_fuzz_seeds welkin_json_fuzzer \
   welkin_subdivision_fuzzer
 corpus="$build/fuzz-corpus"
@@ -64,3 +65,11 @@ cmake --build "$build" -j"$jobs" --target welkin_runtime_core_tests welkin_runti
 for t in welkin_runtime_core_tests welkin_runtime_scene_tests; do
   (cd "$root" && UBSAN_OPTIONS=print_stacktrace=1 ASAN_OPTIONS=detect_leaks=1 "$build/bin/$t" --gtest_brief=1)
 done
+
+# The editor's session fuzzer (tests/editor/fuzz): random sessions of script verbs over the editor
+# model (only the model is built here, no window), its promises checked after every line. A failure
+# writes the shrunk session to fuzz-artifacts/ as a script to keep under tests/editor/sessions/fuzz/.
+cmake --build "$build" -j"$jobs" --target welkin_editor_session_fuzz
+UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ASAN_OPTIONS=detect_leaks=1 \
+  "$build/bin/welkin_editor_session_fuzz" --seconds "$seconds" --seed "${WELKIN_SESSION_FUZZ_SEED:-1000}" \
+  --out "$build/fuzz-artifacts"
