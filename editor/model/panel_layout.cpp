@@ -40,7 +40,8 @@ PanelColumn column_of_panel(const std::string& title) {
   return PanelColumn::right;  // presets, profiler, time of day and whatever modules add
 }
 
-std::map<std::string, PanelRect> layout_panels(const std::vector<std::string>& shown, float w, float h, float top) {
+std::map<std::string, PanelRect> layout_panels(const std::vector<std::string>& shown, float w, float h,
+                                               float top) {
   // Side columns and the timeline strip scale with the window, within readable limits.
   const float left = std::floor(std::clamp(w * 0.23f, 240.0f, 420.0f));
   const float right = std::floor(std::clamp(w * 0.27f, 280.0f, 470.0f));
@@ -55,10 +56,18 @@ std::map<std::string, PanelRect> layout_panels(const std::vector<std::string>& s
   std::map<std::string, PanelRect> out;
   for (const std::string& t : shown) {
     switch (column_of_panel(t)) {
-      case PanelColumn::left: left_titles.push_back(t); break;
-      case PanelColumn::right: right_titles.push_back(t); break;
-      case PanelColumn::centre: out[t] = PanelRect{left, top, middle, body - strip}; break;
-      case PanelColumn::bottom: out[t] = PanelRect{left, top + body - strip, middle, strip}; break;
+      case PanelColumn::left:
+        left_titles.push_back(t);
+        break;
+      case PanelColumn::right:
+        right_titles.push_back(t);
+        break;
+      case PanelColumn::centre:
+        out[t] = PanelRect{left, top, middle, body - strip};
+        break;
+      case PanelColumn::bottom:
+        out[t] = PanelRect{left, top + body - strip, middle, strip};
+        break;
     }
   }
   stack(left_titles, 0, left, top, body, out);

@@ -11,7 +11,9 @@ namespace welkin::editor {
 
 struct PanelRect {
   float x = 0, y = 0, w = 0, h = 0;
-  bool overlaps(const PanelRect& o) const { return x < o.x + o.w && o.x < x + w && y < o.y + o.h && o.y < y + h; }
+  bool overlaps(const PanelRect& o) const {
+    return x < o.x + o.w && o.x < x + w && y < o.y + o.h && o.y < y + h;
+  }
   friend bool operator==(const PanelRect&, const PanelRect&) = default;
 };
 
@@ -21,6 +23,7 @@ PanelColumn column_of_panel(const std::string& title);
 // The rectangle of each shown panel (titles in the Panels menu's order) in a window of w x h pixels
 // whose menu bar is `top` pixels tall. Panels of one column share its height in proportion to their
 // weights; no two rectangles overlap and all lie inside the window.
-std::map<std::string, PanelRect> layout_panels(const std::vector<std::string>& shown, float w, float h, float top);
+std::map<std::string, PanelRect> layout_panels(const std::vector<std::string>& shown, float w, float h,
+                                               float top);
 
 }  // namespace welkin::editor

@@ -5,8 +5,8 @@
 // (about 10 and 10 when linear, 100 and 100 when quadratic) with a generous factor, never a time
 // against a fixed limit, so a slow machine changes the times but not the verdict.
 #include <algorithm>
-#include <ctime>
 #include <cstdio>
+#include <ctime>
 #include <functional>
 #include <string>
 
@@ -19,8 +19,8 @@ struct Growth {
   double x100() const { return t100 / t10; }
   std::string describe() const {
     char buf[160];
-    std::snprintf(buf, sizeof buf, "%.3g ms, %.3g ms, %.3g ms: x%.1f then x%.1f", t1 * 1e3, t10 * 1e3, t100 * 1e3, x10(),
-                  x100());
+    std::snprintf(buf, sizeof buf, "%.3g ms, %.3g ms, %.3g ms: x%.1f then x%.1f", t1 * 1e3, t10 * 1e3,
+                  t100 * 1e3, x10(), x100());
     return buf;
   }
   // Each step of 10x in the input costs at most `factor` times 10x in time (quadratic work: 100x).
@@ -34,7 +34,8 @@ inline double thread_seconds() {
 }
 
 // `make(size)` builds an input (not timed); `run(input)` is the work under test (timed).
-template <class Make, class Run> Growth measure_growth(size_t n, Make make, Run run) {
+template <class Make, class Run>
+Growth measure_growth(size_t n, Make make, Run run) {
   auto best_of = [&](size_t size, int repeats) {
     auto input = make(size);
     double best = 1e30;
@@ -50,6 +51,7 @@ template <class Make, class Run> Growth measure_growth(size_t n, Make make, Run 
   g.t1 = best_of(n, 7);
   g.t10 = best_of(10 * n, 4);
   g.t100 = best_of(100 * n, 2);
+  std::printf("[  growth  ] %s\n", g.describe().c_str());  // the figures, in the test log
   return g;
 }
 

@@ -53,10 +53,12 @@ std::string first_difference(const std::string& a, const std::string& b) {
 std::string compare(const State& want, const State& got, bool flags) {
   if (want.scene != got.scene) return "scene differs " + first_difference(want.scene, got.scene);
   if (want.maps != got.maps) return "painted maps differ " + first_difference(want.maps, got.maps);
-  if (want.sequence != got.sequence) return "sequence differs " + first_difference(want.sequence, got.sequence);
+  if (want.sequence != got.sequence)
+    return "sequence differs " + first_difference(want.sequence, got.sequence);
   if (flags && (want.scene_dirty != got.scene_dirty || want.sequence_dirty != got.sequence_dirty))
-    return "dirty flags differ (scene " + std::to_string(want.scene_dirty) + " -> " + std::to_string(got.scene_dirty) +
-           ", sequence " + std::to_string(want.sequence_dirty) + " -> " + std::to_string(got.sequence_dirty) + ")";
+    return "dirty flags differ (scene " + std::to_string(want.scene_dirty) + " -> " +
+           std::to_string(got.scene_dirty) + ", sequence " + std::to_string(want.sequence_dirty) + " -> " +
+           std::to_string(got.sequence_dirty) + ")";
   return {};
 }
 
@@ -84,7 +86,8 @@ std::vector<std::string> map_files(EditorDocument& doc) {
   std::vector<std::string> files;
   for (const EntityRow& row : doc.entities()) {
     json w = doc.get_component(row.id, "test.Weather");
-    if (w.is_object() && w["map"].is_string() && !w["map"].get<std::string>().empty()) files.push_back(w["map"].get<std::string>());
+    if (w.is_object() && w["map"].is_string() && !w["map"].get<std::string>().empty())
+      files.push_back(w["map"].get<std::string>());
   }
   return files;
 }
@@ -115,14 +118,16 @@ State state_of(EditorDocument& doc) {
 
 // The autosave's files, as bytes: a write shows as a change.
 std::string autosave_bytes(const fs::path& folder) {
-  return read_text(folder / "meta.json") + "|" + read_text(folder / "scene.json") + "|" + read_text(folder / "sequence.json");
+  return read_text(folder / "meta.json") + "|" + read_text(folder / "scene.json") + "|" +
+         read_text(folder / "sequence.json");
 }
 
 // Every file of the session's folder outside the autosave (what the user saved).
 std::map<std::string, std::string> saved_files(const fs::path& root) {
   std::map<std::string, std::string> files;
   for (const auto& e : fs::recursive_directory_iterator(root))
-    if (e.is_regular_file() && e.path().parent_path().filename() != "autosave") files[e.path().string()] = read_text(e.path());
+    if (e.is_regular_file() && e.path().parent_path().filename() != "autosave")
+      files[e.path().string()] = read_text(e.path());
   return files;
 }
 
@@ -163,9 +168,11 @@ class Session {
     // A failed line changes nothing; but an answer "save" that saved and then could not go on (the
     // file to open does not load) has rightly left the saved parts clean.
     if (!ok)
-      if (std::string d = compare(before, after, line.verb != "answer"); !d.empty()) return "failed-line-changed-state: " + d;
+      if (std::string d = compare(before, after, line.verb != "answer"); !d.empty())
+        return "failed-line-changed-state: " + d;
     if (std::string f = check_recovery(line, prompt, autosaved, files_before, after); !f.empty()) return f;
-    if (ok && line.verb == "save-scene" && !guard_->prompt() && doc_->scene_dirty()) return "save-left-dirty: the scene";
+    if (ok && line.verb == "save-scene" && !guard_->prompt() && doc_->scene_dirty())
+      return "save-left-dirty: the scene";
     if (ok && line.verb == "save-sequence" && doc_->sequence_dirty()) return "save-left-dirty: the sequence";
     if (std::string f = tick(); !f.empty()) return f;
     if (doc_->world_generation() != generation_) {  // loaded, new or recovered: a new history began
@@ -210,18 +217,23 @@ class Session {
   std::string check_recovery(const ScriptLine& line, const std::optional<Prompt>& prompt,
                              const std::optional<AutosaveContents>& autosaved,
                              const std::map<std::string, std::string>& files_before, const State& after) {
-    if (!prompt || prompt->kind != PromptKind::recover || line.verb != "answer" || guard_->prompt()) return {};
+    if (!prompt || prompt->kind != PromptKind::recover || line.verb != "answer" || guard_->prompt())
+      return {};
     if (line.args.size() != 1 || line.args[0] != "recover") return {};
     if (!autosaved) return "recover-without-autosave";
     const fs::path folder = folder_.root() / "autosave";
     if (autosaved->scene) {
       if (after.scene != normalized_scene_file((folder / "scene.json").string()))
-        return "recovered-scene: " + first_difference(after.scene, normalized_scene_file((folder / "scene.json").string()));
-      if (!doc_->scene_dirty() || doc_->scene_path() != autosaved->scene_path) return "recovered-scene-not-dirty-or-renamed";
+        return "recovered-scene: " +
+               first_difference(after.scene, normalized_scene_file((folder / "scene.json").string()));
+      if (!doc_->scene_dirty() || doc_->scene_path() != autosaved->scene_path)
+        return "recovered-scene-not-dirty-or-renamed";
     }
     if (autosaved->sequence) {
-      if (after.sequence != normalized_sequence_file((folder / "sequence.json").string())) return "recovered-sequence";
-      if (!doc_->sequence_dirty() || doc_->sequence_path() != autosaved->sequence_path) return "recovered-sequence-not-dirty-or-renamed";
+      if (after.sequence != normalized_sequence_file((folder / "sequence.json").string()))
+        return "recovered-sequence";
+      if (!doc_->sequence_dirty() || doc_->sequence_path() != autosaved->sequence_path)
+        return "recovered-sequence-not-dirty-or-renamed";
     }
     if (saved_files(folder_.root()) != files_before) return "recover-changed-a-saved-file";
     return {};
@@ -247,7 +259,8 @@ class Session {
       return "autosave-scene-is-not-the-document";
     if (contents->sequence && normalized_sequence_file((folder / "sequence.json").string()) != s.sequence)
       return "autosave-sequence-is-not-the-document";
-    if (contents->scene != s.scene_dirty || contents->sequence != s.sequence_dirty) return "autosave-parts-are-not-the-unsaved-ones";
+    if (contents->scene != s.scene_dirty || contents->sequence != s.sequence_dirty)
+      return "autosave-parts-are-not-the-unsaved-ones";
     return {};
   }
 
@@ -271,7 +284,8 @@ class Session {
     if (std::string d = compare(base_, state_of(*doc_), false); !d.empty()) return "undo-all: " + d;
     try {
       for (size_t i = 0; i < undone; ++i)
-        if (!doc_->redo()) return "redo-all: stopped after " + std::to_string(i) + " of " + std::to_string(undone);
+        if (!doc_->redo())
+          return "redo-all: stopped after " + std::to_string(i) + " of " + std::to_string(undone);
     } catch (const Error& e) {
       return std::string("redo-threw: ") + e.what();
     }
@@ -284,7 +298,8 @@ class Session {
     const State s = state_of(*doc_);
     if (!s.scene_dirty && !doc_->scene_path().empty()) {
       if (normalized_scene_file(doc_->scene_path()) != s.scene)
-        return "clean-scene-differs-from-its-file: " + first_difference(normalized_scene_file(doc_->scene_path()), s.scene);
+        return "clean-scene-differs-from-its-file: " +
+               first_difference(normalized_scene_file(doc_->scene_path()), s.scene);
       for (const std::string& file : map_files(*doc_)) {
         PaintedMaps on_disk;
         std::string want;
@@ -302,7 +317,8 @@ class Session {
         if (want != got) return "clean-scene-map-differs-from-its-file: " + file;
       }
     }
-    if (!s.sequence_dirty && !doc_->sequence_path().empty() && normalized_sequence_file(doc_->sequence_path()) != s.sequence)
+    if (!s.sequence_dirty && !doc_->sequence_path().empty() &&
+        normalized_sequence_file(doc_->sequence_path()) != s.sequence)
       return "clean-sequence-differs-from-its-file";
     return {};
   }
@@ -311,8 +327,8 @@ class Session {
   std::unique_ptr<EditorDocument> doc_;
   std::unique_ptr<PresetLibrary> presets_;
   std::unique_ptr<SessionGuard> guard_;
-  State base_;                 // when the current history began
-  uint64_t generation_ = 0;    // the document's world generation then
+  State base_;               // when the current history began
+  uint64_t generation_ = 0;  // the document's world generation then
   double clock_s_ = 0;
   std::string last_autosave_;  // the autosave's bytes when last checked
 };
@@ -331,7 +347,10 @@ class Rng {
   size_t below(size_t n) { return size_t(next() % n); }
   double uniform(double a, double b) { return a + (b - a) * double(next() >> 11) / double(1ull << 53); }
   bool chance(double p) { return uniform(0, 1) < p; }
-  template <class T> const T& pick(const std::vector<T>& v) { return v[below(v.size())]; }
+  template <class T>
+  const T& pick(const std::vector<T>& v) {
+    return v[below(v.size())];
+  }
 
  private:
   uint64_t s_;
@@ -346,26 +365,44 @@ std::string number(double v) {
 std::string layers(Rng& r) {
   std::string s = "[";
   for (size_t i = 0, n = r.below(6); i < n; ++i)  // up to 5: one more than the field allows
-    s += (i ? ", " : "") + ("{\"coverage\": " + number(r.uniform(-0.1, 1.1)) + ", \"octaves\": " + std::to_string(r.below(10)) + "}");
+    s += (i ? ", " : "") + ("{\"coverage\": " + number(r.uniform(-0.1, 1.1)) +
+                            ", \"octaves\": " + std::to_string(r.below(10)) + "}");
   return s + "]";
 }
 
 // A value for one of the test module's fields: mostly valid, sometimes out of range or mistyped.
 std::string set_line(Rng& r) {
   switch (r.below(13)) {
-    case 0: return "set test.Clouds/density " + number(r.uniform(-10, 110));
-    case 1: return "set test.Clouds/steps " + (r.chance(0.1) ? std::string("2.5") : std::to_string(int(r.below(300)) - 5));
-    case 2: return "set test.Clouds/altitude_m " + number(r.uniform(-100, 21000));
-    case 3: return "set test.Clouds/mode " + r.pick<std::string>({"fast", "precise", "slow"});
-    case 4: return "set test.Clouds/tint [" + number(r.uniform(-0.2, 1.2)) + ", " + number(r.uniform(0, 1)) + (r.chance(0.9) ? ", 0.5]" : "]");
-    case 5: return "set test.Clouds/shadows " + r.pick<std::string>({"true", "false", "1"});
-    case 6: return "set test.Clouds/label " + r.pick<std::string>({"cumulus", "\"alto stratus\"", "x"});
-    case 7: return "set test.Clouds/layers " + layers(r);
-    case 8: return "set test.Clouds/layers/" + std::to_string(r.below(5)) + "/coverage " + number(r.uniform(-0.1, 1.1));
-    case 9: return "set test.Fog/visibility_km " + number(r.uniform(-1, 1200));
-    case 10: return "set test.Weather/map_size_m " + number(r.uniform(10, 50000));
-    case 11: return "set test.Weather/map " + r.pick<std::string>({"\"\"", "\"${FUZZ}/scene.map.png\"", "\"${FUZZ}/missing.png\""});
-    default: return "set test.Clouds/density \"thick\"";
+    case 0:
+      return "set test.Clouds/density " + number(r.uniform(-10, 110));
+    case 1:
+      return "set test.Clouds/steps " +
+             (r.chance(0.1) ? std::string("2.5") : std::to_string(int(r.below(300)) - 5));
+    case 2:
+      return "set test.Clouds/altitude_m " + number(r.uniform(-100, 21000));
+    case 3:
+      return "set test.Clouds/mode " + r.pick<std::string>({"fast", "precise", "slow"});
+    case 4:
+      return "set test.Clouds/tint [" + number(r.uniform(-0.2, 1.2)) + ", " + number(r.uniform(0, 1)) +
+             (r.chance(0.9) ? ", 0.5]" : "]");
+    case 5:
+      return "set test.Clouds/shadows " + r.pick<std::string>({"true", "false", "1"});
+    case 6:
+      return "set test.Clouds/label " + r.pick<std::string>({"cumulus", "\"alto stratus\"", "x"});
+    case 7:
+      return "set test.Clouds/layers " + layers(r);
+    case 8:
+      return "set test.Clouds/layers/" + std::to_string(r.below(5)) + "/coverage " +
+             number(r.uniform(-0.1, 1.1));
+    case 9:
+      return "set test.Fog/visibility_km " + number(r.uniform(-1, 1200));
+    case 10:
+      return "set test.Weather/map_size_m " + number(r.uniform(10, 50000));
+    case 11:
+      return "set test.Weather/map " +
+             r.pick<std::string>({"\"\"", "\"${FUZZ}/scene.map.png\"", "\"${FUZZ}/missing.png\""});
+    default:
+      return "set test.Clouds/density \"thick\"";
   }
 }
 
@@ -373,11 +410,15 @@ const std::vector<std::string> kNames = {"deck", "weather", "fog", "extra", "spa
 const std::vector<std::string> kComponents = {"test.Clouds", "test.Fog", "test.Weather"};
 
 std::string answer_line(Rng& r, const Prompt& p) {
-  if (r.chance(0.08)) return "answer " + r.pick<std::string>({"save", "discard", "cancel", "overwrite", "recover"});
+  if (r.chance(0.08))
+    return "answer " + r.pick<std::string>({"save", "discard", "cancel", "overwrite", "recover"});
   switch (p.kind) {
-    case PromptKind::unsaved: return "answer " + r.pick<std::string>({"save", "discard", "cancel"});
-    case PromptKind::overwrite: return "answer " + r.pick<std::string>({"overwrite", "cancel"});
-    case PromptKind::recover: return "answer " + r.pick<std::string>({"recover", "recover", "discard"});
+    case PromptKind::unsaved:
+      return "answer " + r.pick<std::string>({"save", "discard", "cancel"});
+    case PromptKind::overwrite:
+      return "answer " + r.pick<std::string>({"overwrite", "cancel"});
+    case PromptKind::recover:
+      return "answer " + r.pick<std::string>({"recover", "recover", "discard"});
   }
   return "answer cancel";
 }
@@ -400,25 +441,54 @@ std::string random_line(Rng& r, Session& s) {
       {2, [&] { return "rename-entity " + r.pick(kNames); }},
       {4, [&] { return "add-component " + r.pick(kComponents); }},
       {3, [&] { return "remove-component " + r.pick(kComponents); }},
-      {4, [&] { return "apply-preset test " + r.pick<std::string>({"thin", "thick", "haze", "nosuch"}); }},
+      {4,
+       [&] {
+         return "apply-preset test " + r.pick<std::string>({"thin", "thick", "haze", "nosuch"});
+       }},
       {3, [&] { return "blend-presets test thin thick " + number(r.uniform(-0.1, 1.1)); }},
-      {2, [&] { return "revert-preset test " + r.pick<std::string>({"thin", "haze"}); }},
+      {2,
+       [&] {
+         return "revert-preset test " + r.pick<std::string>({"thin", "haze"});
+       }},
       {1, [&] { return std::string("save-preset test thick"); }},
       {1, [&] { return "save-preset-as test.Clouds \"${FUZZ}/presets/mine.json\""; }},
-      {2, [&] { return "new-map test.Weather/map " + r.pick<std::string>({"16", "32", "0"}); }},
-      {6, [&] {
-         return "paint test.Weather/map " + number(r.uniform(-12000, 12000)) + " " + number(r.uniform(-12000, 12000)) + " " +
-                number(r.uniform(200, 6000)) + " " + number(r.uniform(0, 1)) + " " + r.pick<std::string>({"add", "clear", "reset"});
+      {2,
+       [&] {
+         return "new-map test.Weather/map " + r.pick<std::string>({"16", "32", "0"});
+       }},
+      {6,
+       [&] {
+         return "paint test.Weather/map " + number(r.uniform(-12000, 12000)) + " " +
+                number(r.uniform(-12000, 12000)) + " " + number(r.uniform(200, 6000)) + " " +
+                number(r.uniform(0, 1)) + " " + r.pick<std::string>({"add", "clear", "reset"});
        }},
       {5, [&] { return "key test.Clouds/density " + time + " " + number(r.uniform(0, 100)); }},
-      {2, [&] { return "key test.Clouds/mode " + time + " " + r.pick<std::string>({"fast", "precise"}); }},
+      {2,
+       [&] {
+         return "key test.Clouds/mode " + time + " " + r.pick<std::string>({"fast", "precise"});
+       }},
       {2, [&] { return "key test.Fog/visibility_km " + time + " " + number(r.uniform(0.1, 900)); }},
       {3, [&] { return "unkey test.Clouds/density " + time; }},
-      {4, [&] { return "save-scene \"${FUZZ}/" + r.pick<std::string>({"scene.json", "scene.json", "other.json"}) + "\""; }},
-      {2, [&] { return "load-scene \"${FUZZ}/" + r.pick<std::string>({"scene.json", "other.json", "bad.json"}) + "\""; }},
+      {4,
+       [&] {
+         return "save-scene \"${FUZZ}/" + r.pick<std::string>({"scene.json", "scene.json", "other.json"}) +
+                "\"";
+       }},
+      {2,
+       [&] {
+         return "load-scene \"${FUZZ}/" + r.pick<std::string>({"scene.json", "other.json", "bad.json"}) +
+                "\"";
+       }},
       {1, [&] { return std::string("new-scene"); }},
-      {2, [&] { return "save-sequence \"${FUZZ}/" + r.pick<std::string>({"sequence.json", "second.json"}) + "\""; }},
-      {2, [&] { return "load-sequence \"${FUZZ}/" + r.pick<std::string>({"sequence.json", "second.json", "bad.json"}) + "\""; }},
+      {2,
+       [&] {
+         return "save-sequence \"${FUZZ}/" + r.pick<std::string>({"sequence.json", "second.json"}) + "\"";
+       }},
+      {2,
+       [&] {
+         return "load-sequence \"${FUZZ}/" +
+                r.pick<std::string>({"sequence.json", "second.json", "bad.json"}) + "\"";
+       }},
       {3, [&] { return std::string("autosave-now"); }},
       {2, [&] { return std::string("crash"); }},
   };
@@ -433,7 +503,9 @@ std::string random_line(Rng& r, Session& s) {
 }
 
 // The invariant a failure names (its first word), so shrinking keeps the same failure.
-std::string kind_of(const std::string& what) { return what.substr(0, what.find(':')); }
+std::string kind_of(const std::string& what) {
+  return what.substr(0, what.find(':'));
+}
 
 }  // namespace
 
@@ -451,12 +523,15 @@ void FuzzFolder::reset() const {
   write_text(root_ / "sequence.json", R"({"welkin_sequence": 1, "duration_s": 30, "tracks": [
     {"target": "test.Clouds/density", "entity": "deck", "keys": [{"t": 0, "value": 1}, {"t": 20, "value": 9}]}]})");
   write_text(root_ / "bad.json", "{\"welkin_scene\": 1, \"entities\": [");
-  write_text(root_ / "presets/thin.json", R"({"density": 0.5, "steps": 8, "mode": "fast", "layers": [{"coverage": 0.1, "octaves": 2}]})");
-  write_text(root_ / "presets/thick.json", R"({"density": 8, "steps": 64, "mode": "precise", "tint": [1, 0.5, 0],
+  write_text(root_ / "presets/thin.json",
+             R"({"density": 0.5, "steps": 8, "mode": "fast", "layers": [{"coverage": 0.1, "octaves": 2}]})");
+  write_text(root_ / "presets/thick.json",
+             R"({"density": 8, "steps": 64, "mode": "precise", "tint": [1, 0.5, 0],
                                               "layers": [{"coverage": 1, "octaves": 6}, {"coverage": 0.75, "octaves": 7}]})");
   write_text(root_ / "presets/haze.json", R"({"visibility_km": 2.5})");
-  write_text(root_ / "editor/panels.json",
-             R"({"panels": [{"title": "Weather map", "map": {"component": "test.Weather", "file_field": "map", "size_field": "map_size_m"}}]})");
+  write_text(
+      root_ / "editor/panels.json",
+      R"({"panels": [{"title": "Weather map", "map": {"component": "test.Weather", "file_field": "map", "size_field": "map_size_m"}}]})");
 }
 
 std::optional<Failure> run_session(const FuzzFolder& folder, const std::vector<std::string>& lines) {
@@ -467,7 +542,8 @@ std::optional<Failure> run_session(const FuzzFolder& folder, const std::vector<s
   return std::nullopt;
 }
 
-std::vector<std::string> random_session(const FuzzFolder& folder, uint64_t seed, size_t steps, std::optional<Failure>& failure) {
+std::vector<std::string> random_session(const FuzzFolder& folder, uint64_t seed, size_t steps,
+                                        std::optional<Failure>& failure) {
   folder.reset();
   Session session(folder);
   Rng rng(seed);
@@ -483,7 +559,8 @@ std::vector<std::string> random_session(const FuzzFolder& folder, uint64_t seed,
   return lines;
 }
 
-std::vector<std::string> shrink(const FuzzFolder& folder, std::vector<std::string> lines, const Failure& failure) {
+std::vector<std::string> shrink(const FuzzFolder& folder, std::vector<std::string> lines,
+                                const Failure& failure) {
   const std::string kind = kind_of(failure.what);
   auto still_fails = [&](const std::vector<std::string>& candidate) {
     std::optional<Failure> f = run_session(folder, candidate);

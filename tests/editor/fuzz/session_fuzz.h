@@ -32,8 +32,8 @@ class FuzzFolder {
 };
 
 struct Failure {
-  size_t line = 0;      // index of the line after which an invariant broke
-  std::string what;     // which invariant, and how
+  size_t line = 0;   // index of the line after which an invariant broke
+  std::string what;  // which invariant, and how
 };
 
 // Runs `lines` (script text, one verb per line, ${FUZZ} for the folder) from a fresh folder and
@@ -43,9 +43,11 @@ std::optional<Failure> run_session(const FuzzFolder& folder, const std::vector<s
 // A random session of `steps` lines from `seed`, generated against the live document so most lines
 // are meaningful (existing entity names, fields of present components), with invalid values mixed in.
 // When the session fails, `failure` is set and the lines stop at the failing one.
-std::vector<std::string> random_session(const FuzzFolder& folder, uint64_t seed, size_t steps, std::optional<Failure>& failure);
+std::vector<std::string> random_session(const FuzzFolder& folder, uint64_t seed, size_t steps,
+                                        std::optional<Failure>& failure);
 
 // The shortest session found that still fails with the same invariant (first word of `what`).
-std::vector<std::string> shrink(const FuzzFolder& folder, std::vector<std::string> lines, const Failure& failure);
+std::vector<std::string> shrink(const FuzzFolder& folder, std::vector<std::string> lines,
+                                const Failure& failure);
 
 }  // namespace welkin::editor::fuzz

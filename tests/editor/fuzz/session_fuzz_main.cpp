@@ -36,7 +36,8 @@ int replay(const FuzzFolder& folder, const std::vector<std::string>& files) {
   for (const std::string& f : files) {
     std::vector<std::string> lines = read_lines(f);
     if (std::optional<Failure> failure = run_session(folder, lines)) {
-      std::fprintf(stderr, "%s:%zu: %s\n  (line: %s)\n", f.c_str(), failure->line + 1, failure->what.c_str(), lines[failure->line].c_str());
+      std::fprintf(stderr, "%s:%zu: %s\n  (line: %s)\n", f.c_str(), failure->line + 1, failure->what.c_str(),
+                   lines[failure->line].c_str());
       ++failed;
     } else {
       std::printf("%s: %zu lines, every invariant held\n", f.c_str(), lines.size());
@@ -62,14 +63,23 @@ int main(int argc, char** argv) {
       }
       return std::string(argv[++i]);
     };
-    if (a == "--seed") seed = std::stoull(value());
-    else if (a == "--sessions") sessions = std::stoull(value());
-    else if (a == "--seconds") seconds = std::stod(value());
-    else if (a == "--steps") steps = std::stoull(value());
-    else if (a == "--out") out = value();
-    else if (a == "--replay") while (i + 1 < argc) replays.push_back(argv[++i]);
+    if (a == "--seed")
+      seed = std::stoull(value());
+    else if (a == "--sessions")
+      sessions = std::stoull(value());
+    else if (a == "--seconds")
+      seconds = std::stod(value());
+    else if (a == "--steps")
+      steps = std::stoull(value());
+    else if (a == "--out")
+      out = value();
+    else if (a == "--replay")
+      while (i + 1 < argc) replays.push_back(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: %s [--seed N] [--sessions N | --seconds S] [--steps N] [--out DIR] | --replay FILE...\n", argv[0]);
+      std::fprintf(
+          stderr,
+          "usage: %s [--seed N] [--sessions N | --seconds S] [--steps N] [--out DIR] | --replay FILE...\n",
+          argv[0]);
       return 2;
     }
   }
@@ -80,14 +90,17 @@ int main(int argc, char** argv) {
   } else {
     if (!sessions && !seconds) sessions = 100;
     const auto start = std::chrono::steady_clock::now();
-    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+    auto elapsed = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
     size_t run = 0, lines = 0;
     for (; sessions ? run < sessions : elapsed() < seconds; ++run) {
       std::optional<Failure> failure;
       std::vector<std::string> session = random_session(folder, seed + run, steps, failure);
       lines += session.size();
       if (!failure) continue;
-      std::fprintf(stderr, "seed %llu, line %zu: %s\n", (unsigned long long)(seed + run), failure->line + 1, failure->what.c_str());
+      std::fprintf(stderr, "seed %llu, line %zu: %s\n", (unsigned long long)(seed + run), failure->line + 1,
+                   failure->what.c_str());
       std::vector<std::string> shrunk = shrink(folder, session, *failure);
       const std::optional<Failure> again = run_session(folder, shrunk);
       const fs::path file = fs::path(out) / ("session-fuzz-seed-" + std::to_string(seed + run) + ".script");
@@ -101,8 +114,8 @@ int main(int argc, char** argv) {
       status = 1;
       break;
     }
-    std::printf("%zu sessions, %zu lines in %.1f s (seeds %llu to %llu): %s\n", run + (status ? 1 : 0), lines, elapsed(),
-                (unsigned long long)seed, (unsigned long long)(seed + run - (status ? 0 : 1)),
+    std::printf("%zu sessions, %zu lines in %.1f s (seeds %llu to %llu): %s\n", run + (status ? 1 : 0), lines,
+                elapsed(), (unsigned long long)seed, (unsigned long long)(seed + run - (status ? 0 : 1)),
                 status ? "a failure, see above" : "every invariant held");
   }
   fs::remove_all(folder.root());

@@ -8,8 +8,8 @@ namespace {
 
 using namespace welkin::editor;
 
-const std::vector<std::string> kAllPanels = {"Viewport", "Outliner", "Inspector", "Presets", "Timeline",
-                                             "Time of day", "Profiler", "History", "Weather map"};
+const std::vector<std::string> kAllPanels = {"Viewport",    "Outliner", "Inspector", "Presets",    "Timeline",
+                                             "Time of day", "Profiler", "History",   "Weather map"};
 
 void expect_tiled(const std::map<std::string, PanelRect>& layout, float w, float h, float top) {
   for (const auto& [title, r] : layout) {

@@ -76,7 +76,9 @@ TEST_F(ReaderGrowth, EditorConfigWithManyPanelsAndALongLayout) {
       panels["panel " + std::to_string(i)] = i % 2 == 0;
       layout += "[Window][W" + std::to_string(i) + "]\nPos=0,0\nSize=100,100\n\n";
     }
-    return json{{"welkin_editor_config", 1}, {"last_scene", std::string(n * 10, 's')}, {"panels", std::move(panels)},
+    return json{{"welkin_editor_config", 1},
+                {"last_scene", std::string(n * 10, 's')},
+                {"panels", std::move(panels)},
                 {"imgui_layout", std::move(layout)}}
         .dump();
   };
@@ -94,14 +96,16 @@ TEST_F(ReaderGrowth, EditorConfigWithManyPanelsAndALongLayout) {
   auto [big, warnings] = read(make(kMaxLayoutSections + 1));
   EXPECT_TRUE(big.imgui_layout.empty());
   ASSERT_EQ(warnings.size(), 1u);
-  EXPECT_NE(warnings[0].find("/imgui_layout (1025 sections, at most 1024)"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("/imgui_layout (1025 sections, at most 1024)"), std::string::npos)
+      << warnings[0];
 }
 
 TEST_F(ReaderGrowth, ModulePanelsWithManyPanelsAndComponents) {
   auto make = [&](size_t n) {
     json panels = json::array();
     for (size_t i = 0; i < n; ++i)
-      panels.push_back({{"title", "P" + std::to_string(i)}, {"components", {"test.Clouds", "test.Fog", "test.Weather"}}});
+      panels.push_back(
+          {{"title", "P" + std::to_string(i)}, {"components", {"test.Clouds", "test.Fog", "test.Weather"}}});
     panels.push_back({{"title", "last"}, {"components", {"test.Clouds", "other.Thing"}}});
     return json{{"panels", std::move(panels)}}.dump();
   };

@@ -14,7 +14,8 @@ using namespace welkin::assets;
 using welkin::testing::measure_growth;
 
 Model load_text(const std::string& text) {
-  return load_gltf_memory(std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()), "growth.gltf", "");
+  return load_gltf_memory(std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()),
+                          "growth.gltf", "");
 }
 
 welkin::ErrorInfo error_of_text(const std::string& text) {
@@ -55,7 +56,8 @@ TEST(GltfGrowth, ALongChainOfChildren) {
 TEST(GltfGrowth, ManyExtrasKeysAndLongNames) {
   auto make = [](size_t n) {
     std::string s = R"({"asset": {"version": "2.0", "extras": {)";
-    for (size_t i = 0; i < n; ++i) s += (i ? ", " : "") + ("\"k" + std::to_string(i) + "\": " + std::to_string(i));
+    for (size_t i = 0; i < n; ++i)
+      s += (i ? ", " : "") + ("\"k" + std::to_string(i) + "\": " + std::to_string(i));
     s += R"(}}, "nodes": [{"name": ")" + std::string(n * 20, 'n') + R"("}], "scenes": [{"nodes": [0, 0]}]})";
     return s;
   };

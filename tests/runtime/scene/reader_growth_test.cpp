@@ -39,8 +39,8 @@ welkin::ErrorInfo load_error(const std::string& text, const std::string& file) {
 }
 
 TEST(ReaderGrowth, SceneWithManyUnknownComponentsIsRefusedAtTheFirst) {
-  auto g = measure_growth(
-      500, scene_with_unknown_components, [](const std::string& text) { load_error(text, "many.json"); });
+  auto g = measure_growth(500, scene_with_unknown_components,
+                          [](const std::string& text) { load_error(text, "many.json"); });
   EXPECT_TRUE(g.linear()) << g.describe();
   welkin::ErrorInfo e = load_error(scene_with_unknown_components(2000), "many.json");
   EXPECT_EQ(e.file, "many.json");
@@ -53,11 +53,13 @@ TEST(ReaderGrowth, SceneComponentNamesOfManyEntitiesAndNames) {
   auto make = [](size_t n) {
     json ents = json::array();
     for (size_t i = 0; i < n; ++i)
-      ents.push_back({{"name", "e" + std::to_string(i)},
-                      {"components", {{"core.Camera", json::object()}, {"x.Own" + std::to_string(i), json::object()}}}});
+      ents.push_back(
+          {{"name", "e" + std::to_string(i)},
+           {"components", {{"core.Camera", json::object()}, {"x.Own" + std::to_string(i), json::object()}}}});
     return json{{"welkin_scene", 1}, {"entities", std::move(ents)}};
   };
-  auto g = measure_growth(300, make, [](const json& doc) { welkin::scene_component_names(doc, "names.json"); });
+  auto g =
+      measure_growth(300, make, [](const json& doc) { welkin::scene_component_names(doc, "names.json"); });
   EXPECT_TRUE(g.linear()) << g.describe();
   EXPECT_EQ(welkin::scene_component_names(make(3), "names.json"),
             (std::vector<std::string>{"core.Camera", "x.Own0", "x.Own1", "x.Own2"}));
@@ -69,7 +71,8 @@ TEST(ReaderGrowth, SceneWithManyEntitiesLoads) {
     for (size_t i = 0; i < n; ++i) s += i ? ", \"core\"" : "\"core\"";
     s += R"(], "entities": [)";
     for (size_t i = 0; i < n; ++i)
-      s += (i ? ", " : "") + (R"({"name": "entity )" + std::to_string(i) + R"(", "components": {"core.Camera": {"ev100": 12}}})");
+      s += (i ? ", " : "") + (R"({"name": "entity )" + std::to_string(i) +
+                              R"(", "components": {"core.Camera": {"ev100": 12}}})");
     return s + "]}";
   };
   auto load = [](const std::string& text) {
@@ -115,10 +118,12 @@ TEST(ReaderGrowth, JsonWithManyKeysAndADuplicateAtTheEnd) {
 
 // {"welkin_sequence": 1, "tracks": [n tracks of n/10 + 1 keys each, values as long arrays]}
 std::string sequence_text(size_t n, const std::string& last_key_extra = {}) {
-  std::string s = R"({"welkin_sequence": 1, "description": ")" + std::string(n * 10, 'd') + R"(", "tracks": [)";
+  std::string s =
+      R"({"welkin_sequence": 1, "description": ")" + std::string(n * 10, 'd') + R"(", "tracks": [)";
   for (size_t t = 0; t < n; ++t) {
     s += (t ? ", " : "") + std::string(R"({"target": "core.Camera/ev100", "entity": "cam", "keys": [)");
-    for (size_t k = 0; k < 4; ++k) s += (k ? ", " : "") + ("{\"t\": " + std::to_string(k) + ", \"value\": " + std::to_string(k) + "}");
+    for (size_t k = 0; k < 4; ++k)
+      s += (k ? ", " : "") + ("{\"t\": " + std::to_string(k) + ", \"value\": " + std::to_string(k) + "}");
     s += "]}";
   }
   return s + "]" + last_key_extra + "}";
@@ -134,8 +139,11 @@ welkin::ErrorInfo sequence_error(const std::string& text) {
 }
 
 TEST(ReaderGrowth, SequenceWithManyTracksAndKeys) {
-  auto parse = [](const std::string& text) { return welkin::parse_sequence(welkin::parse_json_text(text, "seq.json"), "seq.json"); };
-  auto g = measure_growth(100, [](size_t n) { return sequence_text(n); }, parse);
+  auto parse = [](const std::string& text) {
+    return welkin::parse_sequence(welkin::parse_json_text(text, "seq.json"), "seq.json");
+  };
+  auto g = measure_growth(
+      100, [](size_t n) { return sequence_text(n); }, parse);
   EXPECT_TRUE(g.linear()) << g.describe();
   EXPECT_EQ(parse(sequence_text(30)).tracks.size(), 30u);
 }
@@ -143,7 +151,8 @@ TEST(ReaderGrowth, SequenceWithManyTracksAndKeys) {
 TEST(ReaderGrowth, SequenceWithOneLongTrackAndManyUnknownKeys) {
   auto make = [](size_t n) {
     std::string s = R"({"welkin_sequence": 1, "tracks": [{"target": "core.Camera/ev100", "keys": [)";
-    for (size_t k = 0; k < n; ++k) s += (k ? ", " : "") + ("{\"t\": " + std::to_string(k) + ", \"value\": [1, 2, 3]}");
+    for (size_t k = 0; k < n; ++k)
+      s += (k ? ", " : "") + ("{\"t\": " + std::to_string(k) + ", \"value\": [1, 2, 3]}");
     s += "]}]";
     for (size_t k = 0; k < n; ++k) s += ", \"unknown" + std::to_string(k) + "\": 0";
     return s + "}";
@@ -158,7 +167,8 @@ TEST(ReaderGrowth, SequenceWithOneLongTrackAndManyUnknownKeys) {
 TEST(ReaderGrowth, ModuleManifestWithManyComponentsAndALongDescription) {
   auto make = [](size_t n) {
     std::string name = "mod";
-    std::string s = R"({"name": "mod", "version": "1", "description": ")" + std::string(n * 20, 'd') + R"(", "depends": [)";
+    std::string s = R"({"name": "mod", "version": "1", "description": ")" + std::string(n * 20, 'd') +
+                    R"(", "depends": [)";
     for (size_t i = 0; i < n; ++i) s += (i ? ", " : "") + ("\"dep" + std::to_string(i) + "\"");
     s += R"(], "components": [)";
     for (size_t i = 0; i < n; ++i) s += (i ? ", \"" : "\"") + name + ".C" + std::to_string(i) + "\"";
