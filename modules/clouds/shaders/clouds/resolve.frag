@@ -26,6 +26,33 @@ uniform int u_history_valid;
 uniform int u_full_frame;  // every pixel was marched this frame (no history yet): taken as it is
 uniform float u_inside_cloud_m;  // a first cloud sample closer than this: the camera is in the cloud
 
+// The history at uv through a Catmull-Rom filter: a moving view reads it between texels every frame,
+// and bilinear reads, repeated, blur the history (its silhouettes most) frame after frame.
+vec4 history_catmull_rom(vec2 uv) {
+  ivec2 size = textureSize(u_history, 0);
+  vec2 texel = uv * vec2(size) - 0.5;
+  vec2 base = floor(texel), f = texel - base;
+  vec2 w0 = f * (-0.5 + f * (1.0 - 0.5 * f)), w1 = 1.0 + f * f * (-2.5 + 1.5 * f);
+  vec2 w2 = f * (0.5 + f * (2.0 - 1.5 * f)), w3 = f * f * (-0.5 + 0.5 * f);
+  vec2 wx[4] = vec2[4](vec2(w0.x, w0.y), vec2(w1.x, w1.y), vec2(w2.x, w2.y), vec2(w3.x, w3.y));
+  vec4 sum = vec4(0.0);
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      ivec2 q = clamp(ivec2(base) + ivec2(i - 1, j - 1), ivec2(0), size - 1);
+      sum += wx[i].x * wx[j].y * texelFetch(u_history, q, 0);
+    }
+  return sum;
+}
+
+// Where the clouds seen through ndc at distance_m were last frame, in the history's uv (outside [0, 1]
+// where they were not in view).
+vec2 previous_uv(vec2 ndc, float distance_m) {
+  vec3 dir = view_ray_direction(u_inverse_view_projection, ndc);
+  vec4 clip = u_previous_view_projection * vec4(dir * distance_m + u_camera_moved_m, 1.0);
+  return clip.w <= 0.0 ? vec2(-1.0) : clip.xy / clip.w * 0.5 + 0.5;
+}
+bool in_view(vec2 uv) { return all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))); }
+
 vec4 resolved(ivec2 pixel) {
   ivec2 block = pixel / u_block;
   ivec2 current_size = textureSize(u_current, 0);
@@ -36,33 +63,44 @@ vec4 resolved(ivec2 pixel) {
   float distance_m = 0.0, front_m = 0.0;
   vec2 fresh_pos = vec2(pixel - u_offset) / float(u_block);  // in u_current's texels (centres at integers)
   float best = 1e30;
+  // How much the clouds changed since the history was written, seen at the fresh samples: each
+  // against the history where it was last frame.
+  vec4 change = vec4(0.0);
+  vec2 frame_size = vec2(textureSize(u_history, 0));
   for (int y = -1; y <= 1; ++y)
     for (int x = -1; x <= 1; ++x) {
       ivec2 q = clamp(block + ivec2(x, y), ivec2(0), current_size - 1);
       vec4 c = texelFetch(u_current, q, 0);
       lo = min(lo, c), hi = max(hi, c);
+      vec2 distances = texelFetch(u_current_distance, q, 0).rg;
+      vec2 q_ndc = (vec2(q * u_block + u_offset) + 0.5) / frame_size * 2.0 - 1.0;
+      vec2 q_uv = previous_uv(q_ndc, distances.x);
+      change = in_view(q_uv) ? max(change, abs(c - texture(u_history, q_uv))) : vec4(1e30);
       float d = dot(vec2(q) - fresh_pos, vec2(q) - fresh_pos);
-      if (d < best) {
-        vec2 distances = texelFetch(u_current_distance, q, 0).rg;
-        best = d, nearest = c, distance_m = distances.x, front_m = distances.y;
-      }
+      if (d < best) best = d, nearest = c, distance_m = distances.x, front_m = distances.y;
     }
   vec4 upsampled = texture(u_current, (fresh_pos + 0.5) / vec2(current_size));
   if (u_history_valid == 0 || front_m < u_inside_cloud_m) return upsampled;
   // Where this pixel's clouds were last frame, seen from last frame's camera.
-  vec3 dir = view_ray_direction(u_inverse_view_projection, v_ndc);
-  vec4 clip = u_previous_view_projection * vec4(dir * distance_m + u_camera_moved_m, 1.0);
-  vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
-  if (clip.w <= 0.0 || any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return upsampled;
+  vec2 uv = previous_uv(v_ndc, distance_m);
+  if (!in_view(uv)) return upsampled;
   // Where the camera did not move, the pixel lands on its own texel's centre up to rounding: that
   // texel is read as it is, or the history would be filtered again every frame and blur.
   vec2 texel = uv * vec2(textureSize(u_history, 0)) - 0.5;
   vec2 centre = round(texel);
   vec4 history = all(lessThan(abs(texel - centre), vec2(0.125)))
                      ? texelFetch(u_history, ivec2(centre), 0)
-                     : texture(u_history, uv);
+                     : history_catmull_rom(uv);
+  history = max(history, vec4(0.0));  // the filter's negative lobes, at an edge
+  history.a = min(history.a, 1.0);
 #if CLOUDS_CLIP
-  history = clamp(history, lo, hi);
+  // Where the neighbours' history still holds (what changed is small against the neighbourhood's
+  // range) this pixel's history is kept as it is: the range of the fresh samples around it would
+  // clip away its own detail between them (a silhouette's pixels between samples on either side).
+  // Where the clouds changed or moved in the image, the history is clipped to the range.
+  vec4 range = max(hi - lo, vec4(1e-6));
+  float changed = max(max(change.r / range.r, change.g / range.g), max(change.b / range.b, change.a / range.a));
+  history = mix(history, clamp(history, lo, hi), smoothstep(0.1, 0.4, changed));
 #endif
   return history;
 }
