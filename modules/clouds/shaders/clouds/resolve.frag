@@ -27,20 +27,21 @@ uniform int u_full_frame;  // every pixel was marched this frame (no history yet
 uniform float u_inside_cloud_m;  // a first cloud sample closer than this: the camera is in the cloud
 
 // The history at uv through a Catmull-Rom filter: a moving view reads it between texels every frame,
-// and bilinear reads, repeated, blur the history (its silhouettes most) frame after frame.
+// and bilinear reads, repeated, blur the history (its silhouettes most) frame after frame. Nine
+// bilinear reads: the two middle taps of each axis merged into one read between them (their weights
+// have the same sign).
 vec4 history_catmull_rom(vec2 uv) {
-  ivec2 size = textureSize(u_history, 0);
-  vec2 texel = uv * vec2(size) - 0.5;
+  vec2 size = vec2(textureSize(u_history, 0));
+  vec2 texel = uv * size - 0.5;
   vec2 base = floor(texel), f = texel - base;
   vec2 w0 = f * (-0.5 + f * (1.0 - 0.5 * f)), w1 = 1.0 + f * f * (-2.5 + 1.5 * f);
   vec2 w2 = f * (0.5 + f * (2.0 - 1.5 * f)), w3 = f * f * (-0.5 + 0.5 * f);
-  vec2 wx[4] = vec2[4](vec2(w0.x, w0.y), vec2(w1.x, w1.y), vec2(w2.x, w2.y), vec2(w3.x, w3.y));
+  vec2 w12 = w1 + w2;
+  vec2 p0 = (base - 0.5) / size, p12 = (base + 0.5 + w2 / w12) / size, p3 = (base + 2.5) / size;
+  vec2 px[3] = vec2[3](p0, p12, p3), wx[3] = vec2[3](w0, w12, w3);
   vec4 sum = vec4(0.0);
-  for (int j = 0; j < 4; ++j)
-    for (int i = 0; i < 4; ++i) {
-      ivec2 q = clamp(ivec2(base) + ivec2(i - 1, j - 1), ivec2(0), size - 1);
-      sum += wx[i].x * wx[j].y * texelFetch(u_history, q, 0);
-    }
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) sum += wx[i].x * wx[j].y * textureLod(u_history, vec2(px[i].x, px[j].y), 0.0);
   return sum;
 }
 
@@ -63,27 +64,36 @@ vec4 resolved(ivec2 pixel) {
   float distance_m = 0.0, front_m = 0.0;
   vec2 fresh_pos = vec2(pixel - u_offset) / float(u_block);  // in u_current's texels (centres at integers)
   float best = 1e30;
-  // How much the clouds changed since the history was written, seen at the fresh samples: each
-  // against the history where it was last frame.
-  vec4 change = vec4(0.0);
-  vec2 frame_size = vec2(textureSize(u_history, 0));
   for (int y = -1; y <= 1; ++y)
     for (int x = -1; x <= 1; ++x) {
       ivec2 q = clamp(block + ivec2(x, y), ivec2(0), current_size - 1);
       vec4 c = texelFetch(u_current, q, 0);
       lo = min(lo, c), hi = max(hi, c);
-      vec2 distances = texelFetch(u_current_distance, q, 0).rg;
-      vec2 q_ndc = (vec2(q * u_block + u_offset) + 0.5) / frame_size * 2.0 - 1.0;
-      vec2 q_uv = previous_uv(q_ndc, distances.x);
-      change = in_view(q_uv) ? max(change, abs(c - texture(u_history, q_uv))) : vec4(1e30);
       float d = dot(vec2(q) - fresh_pos, vec2(q) - fresh_pos);
-      if (d < best) best = d, nearest = c, distance_m = distances.x, front_m = distances.y;
+      if (d < best) {
+        vec2 distances = texelFetch(u_current_distance, q, 0).rg;
+        best = d, nearest = c, distance_m = distances.x, front_m = distances.y;
+      }
     }
   vec4 upsampled = texture(u_current, (fresh_pos + 0.5) / vec2(current_size));
   if (u_history_valid == 0 || front_m < u_inside_cloud_m) return upsampled;
   // Where this pixel's clouds were last frame, seen from last frame's camera.
   vec2 uv = previous_uv(v_ndc, distance_m);
   if (!in_view(uv)) return upsampled;
+#if CLOUDS_CLIP
+  // How much the clouds changed since the history was written, seen at the four fresh samples
+  // around the pixel (what a bilinear read between them weighs): each against the history where it
+  // was last frame, moved in the image as this pixel moved.
+  vec4 change = vec4(0.0);
+  vec2 frame_size = vec2(textureSize(u_history, 0)), motion = uv - (v_ndc * 0.5 + 0.5);
+  ivec2 corner = ivec2(floor(fresh_pos));
+  for (int y = 0; y <= 1; ++y)
+    for (int x = 0; x <= 1; ++x) {
+      ivec2 q = clamp(corner + ivec2(x, y), ivec2(0), current_size - 1);
+      vec2 q_uv = (vec2(q * u_block + u_offset) + 0.5) / frame_size + motion;
+      change = in_view(q_uv) ? max(change, abs(texelFetch(u_current, q, 0) - texture(u_history, q_uv))) : vec4(1e30);
+    }
+#endif
   // Where the camera did not move, the pixel lands on its own texel's centre up to rounding: that
   // texel is read as it is, or the history would be filtered again every frame and blur.
   vec2 texel = uv * vec2(textureSize(u_history, 0)) - 0.5;
