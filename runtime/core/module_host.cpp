@@ -1,6 +1,7 @@
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <unordered_set>
 #include <nlohmann/json.hpp>
 
 #include "welkin/core/error.h"
@@ -55,6 +56,7 @@ ModuleManifest parse_module_manifest(const std::string& text, const std::string&
   m.version = read_string(j, "version", origin, true);
   m.description = read_string(j, "description", origin, false);
   m.depends = read_strings(j, "depends", origin);
+  m.uses = read_strings(j, "uses", origin);
   m.components = read_strings(j, "components", origin);
   m.library = read_string(j, "library", origin, false);
   m.data_dir = read_string(j, "data_dir", origin, false);
@@ -65,6 +67,13 @@ ModuleManifest parse_module_manifest(const std::string& text, const std::string&
     throw Error(ErrorInfo{.file = origin, .path = "/library", .expected = "a file name beside the manifest (no folders)",
                           .found = "'" + lib + "'"});
   const std::string prefix = m.name + ".";  // once: a name and a list may both be long
+  // Each other module is named once, in one of the two lists; never the module itself.
+  std::unordered_set<std::string> named;
+  for (const auto* list : {&m.depends, &m.uses})
+    for (const auto& d : *list)
+      if (d == m.name || !named.insert(d).second)
+        throw Error(ErrorInfo{.file = origin, .path = list == &m.depends ? "/depends" : "/uses",
+                              .expected = "other modules, each named once", .found = "'" + d + "'"});
   for (const auto& c : m.components)
     if (!c.starts_with(prefix))
       throw Error(ErrorInfo{.file = origin, .path = "/components", .expected = "names starting with '" + m.name + ".'", .found = "'" + c + "'"});
@@ -162,7 +171,19 @@ void ModuleHost::load_with_stack(std::string_view module, std::vector<std::strin
                                                                    " unreadable manifest(s), the first: " + problems_.front())});
   }
   stack.emplace_back(module);
-  for (const auto& dep : m->depends) load_with_stack(dep, stack);
+  for (const auto& dep : m->depends) {
+    // A missing dependency says itself which module needs it; any other failure is wrapped here.
+    if (!manifest(dep) || is_loaded(dep) || std::find(stack.begin(), stack.end(), dep) != stack.end()) {
+      load_with_stack(dep, stack);
+      continue;
+    }
+    try {
+      load_with_stack(dep, stack);
+    } catch (const Error& e) {
+      throw Error(ErrorInfo{.message = "module '" + m->name + "' needs module '" + dep +
+                                       "', which cannot be loaded: " + e.what()});
+    }
+  }
   stack.pop_back();
 
   const ModuleDefinition* def = nullptr;
@@ -182,7 +203,8 @@ void ModuleHost::load_with_stack(std::string_view module, std::vector<std::strin
       throw Error(ErrorInfo{.file = m->library.string(), .expected = "module ABI " + std::to_string(kModuleAbiVersion),
                             .found = "ABI " + std::to_string(abi), .message = "incompatible module '" + m->name + "'"});
     ModuleManifest built = parse_module_manifest(def->manifest_json, m->library.string());
-    if (built.name != m->name || built.version != m->version || built.components != m->components)
+    if (built.name != m->name || built.version != m->version || built.components != m->components ||
+        built.depends != m->depends || built.uses != m->uses)
       throw Error(ErrorInfo{.file = m->origin, .expected = built.name + " " + built.version + " (as built)",
                             .found = m->name + " " + m->version,
                             .message = "incompatible module: the manifest does not match its library"});

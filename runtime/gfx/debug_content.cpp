@@ -10,6 +10,7 @@
 #include "welkin/core/world.h"
 #include "welkin/gfx/light_environment.h"
 #include "welkin/gfx/renderer.h"
+#include "welkin/scene/shared_state.h"
 
 namespace welkin {
 
@@ -177,6 +178,20 @@ DefaultLightsBlock default_lights_block(World& world) {
           glm::vec4(light.color * light.illuminance_lux, light.ambient_fraction)};
 }
 
+// Without an atmosphere the built-in light stands in for the sun: it follows the time of day's
+// ephemeris when the scene has one (dimmed by eclipses, off at night, ground illuminance).
+void directional_light_system(SystemContext& sc) {
+  const LightSource& sun = sc.world.resource<LightSources>().ephemeris.sun;
+  Registry& reg = sc.world.registry();
+  if (!sun.present) return;
+  DirectionalLight& light = *reg.get<DirectionalLight>(reg.first<DirectionalLight>());
+  light.azimuth_deg = float(sun.azimuth_deg);
+  light.elevation_deg = float(sun.elevation_deg);
+  const double illuminance = sun.illuminance_lux * sun.visible_fraction;
+  light.illuminance_lux =
+      float(sun.elevation_deg > 0 ? illuminance * std::sin(sun.elevation_deg * M_PI / 180.0) : 0.0);
+}
+
 void add_default_light_term(World& world) {
   auto buffer = std::make_shared<std::unique_ptr<Buffer>>();
   world.resource<LightEnvironment>().add(LightTerm{
@@ -197,6 +212,8 @@ void register_debug_content(ModuleContext& ctx) {
   ctx.component<Backdrop>();
   ctx.component<DirectionalLight>();
   ctx.component<DebugShape>();
+  ctx.system({.name = "core.directional_light", .phase = Phase::update, .order = kCompleteSharedState,
+              .writes = {type_id<DirectionalLight>()}, .run = directional_light_system});
   ctx.system({.name = "core.backdrop", .phase = Phase::render, .reads = {type_id<Backdrop>()}, .run = backdrop_system});
   ctx.system({.name = "core.debug_shapes", .phase = Phase::render, .reads = {type_id<DebugShape>()},
               .optional_reads = {type_id<DirectionalLight>()}, .run = debug_shape_system});

@@ -5,8 +5,9 @@
 
 #include "welkin/core/error.h"
 #include "welkin/core/type_id.h"
+#include "welkin/core/world.h"
 #include "welkin/gfx/debug_content.h"
-#include "welkin/scene/field_path.h"
+#include "welkin/scene/shared_state.h"
 
 namespace welkin {
 
@@ -221,11 +222,12 @@ void LightEnvironment::install(ShaderLibrary& shaders) const {
 }
 
 std::optional<glm::vec3> scene_sun_direction(World& world) {
-  auto az = scene_scalar(world, "atmosphere.Sun", "azimuth_deg");
-  auto el = scene_scalar(world, "atmosphere.Sun", "elevation_deg");
-  if (!az) az = scene_scalar(world, "core.DirectionalLight", "azimuth_deg"), el = scene_scalar(world, "core.DirectionalLight", "elevation_deg");
-  if (!az || !el) return std::nullopt;
-  return glm::vec3(direction_from_azimuth_elevation(*az, *el));
+  const LightSources* lights = world.find_resource<LightSources>();
+  if (lights && lights->scene.sun.present) return glm::vec3(lights->scene.sun.direction());
+  const Entity light = world.registry().first<DirectionalLight>();
+  if (light.is_null()) return std::nullopt;
+  const DirectionalLight& l = *world.registry().get<DirectionalLight>(light);
+  return glm::vec3(direction_from_azimuth_elevation(l.azimuth_deg, l.elevation_deg));
 }
 
 }  // namespace welkin

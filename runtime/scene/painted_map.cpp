@@ -4,8 +4,9 @@
 #include <cmath>
 
 #include "welkin/core/error.h"
+#include "welkin/core/world.h"
 #include "welkin/gfx/image.h"
-#include "welkin/scene/field_path.h"
+#include "welkin/scene/shared_state.h"
 
 namespace welkin {
 
@@ -33,12 +34,9 @@ glm::dvec3 MapFrame::ground_point(const glm::dvec2& uv) const {
 
 MapFrame scene_map_frame(World& world, double size_m) {
   MapFrame f{.size_m = size_m};
-  const std::string_view atmosphere = "atmosphere.Atmosphere";
-  if (auto r = scene_scalar(world, atmosphere, "bottom_radius_km")) {
-    f.planet_radius_m = *r * 1000.0;
-    f.planet_center_m = {0.0, 0.0, -f.planet_radius_m};
-    if (auto below = scene_scalar(world, atmosphere, "planet_center_below_origin"); below && *below < 0.5)
-      for (int i = 0; i < 3; ++i) f.planet_center_m[i] = scene_scalar(world, atmosphere, "planet_center_m/" + std::to_string(i)).value_or(0.0);
+  if (const PlanetFrame* planet = world.find_resource<PlanetFrame>(); planet && planet->from_scene) {
+    f.planet_center_m = planet->center_m;
+    f.planet_radius_m = planet->radius_m;
   }
   return f;
 }

@@ -90,7 +90,7 @@ Sequence parse_sequence(const json& doc, const std::string& file) {
     std::string t = target->get<std::string>();
     auto slash = t.find('/');
     if (slash == std::string::npos || slash == 0 || slash + 1 == t.size())
-      fail(file, tp + "/target", "\"component/field/path\", e.g. \"timeofday.TimeOfDay/local_time_h\"", *target);
+      fail(file, tp + "/target", "\"component/field/path\", e.g. \"core.Camera/vertical_fov_deg\"", *target);
     tr.component = t.substr(0, slash);
     tr.field = t.substr(slash + 1);
     if (auto e = tj.find("entity"); e != tj.end()) {

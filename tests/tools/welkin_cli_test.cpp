@@ -11,6 +11,7 @@
 #include <set>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "welkin/core/files.h"
@@ -91,6 +92,22 @@ TEST(WelkinCli, InfoListsModulesAndWhatASceneLoads) {
   bool has_core = false;
   for (const auto& m : j["available_modules"]) has_core = has_core || m["name"] == "core";
   EXPECT_TRUE(has_core);
+}
+
+TEST(WelkinCli, InfoShowsWhatEachModuleDependsOnAndUses) {
+  CliRun r = run("info --modules --json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const nlohmann::json info = nlohmann::json::parse(r.out);
+  std::map<std::string, nlohmann::json> modules;
+  for (const auto& m : info["available_modules"]) modules[m["name"].get<std::string>()] = m;
+  ASSERT_TRUE(modules.count("godrays") && modules.count("clouds")) << r.out;
+  EXPECT_EQ(modules["godrays"]["depends"], nlohmann::json::array({"atmosphere"}));
+  EXPECT_EQ(modules["clouds"]["depends"], nlohmann::json::array());
+  EXPECT_EQ(modules["clouds"]["uses"], nlohmann::json::array({"atmosphere", "timeofday"}));
+  EXPECT_EQ(modules["timeofday"]["uses"], nlohmann::json::array());
+  r = run("info --modules");
+  EXPECT_NE(r.out.find("depends on: atmosphere\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("uses: atmosphere, timeofday\n"), std::string::npos) << r.out;
 }
 
 TEST(WelkinCli, SunJsonHasTheDocumentedKeysAndTheSpaValues) {

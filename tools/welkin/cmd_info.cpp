@@ -31,8 +31,8 @@ int run_info(const InfoOptions& o) {
     nlohmann::json mods = nlohmann::json::array();
     for (const auto& m : world->modules().available())
       mods.push_back({{"name", m.name}, {"version", m.version}, {"description", m.description},
-                      {"depends", m.depends}, {"components", m.components}, {"origin", m.origin},
-                      {"data_dir", m.data_dir.string()}});
+                      {"depends", m.depends}, {"uses", m.uses}, {"components", m.components},
+                      {"origin", m.origin}, {"data_dir", m.data_dir.string()}});
     j["available_modules"] = mods;
     j["skipped_manifests"] = world->modules().manifest_problems();
     j["module_dirs"] = module_search_dirs();
@@ -63,7 +63,13 @@ int run_info(const InfoOptions& o) {
       std::string comps;
       for (const auto& c : m["components"]) comps += (comps.empty() ? "" : ", ") + c.get<std::string>();
       std::printf("  %-12s components: %s\n", "", comps.c_str());
-      if (!m["depends"].empty()) std::printf("  %-12s depends on: %s\n", "", m["depends"].dump().c_str());
+      // Needed (loaded first), and read from when the scene has it (the shared state).
+      for (const char* key : {"depends", "uses"}) {
+        std::string names;
+        for (const auto& d : m[key]) names += (names.empty() ? "" : ", ") + d.get<std::string>();
+        const char* label = key == std::string_view("depends") ? "depends on" : "uses";
+        if (!names.empty()) std::printf("  %-12s %s: %s\n", "", label, names.c_str());
+      }
     }
   }
   if (j.contains("skipped_manifests") && !j["skipped_manifests"].empty()) {

@@ -1,8 +1,11 @@
-// Entry point of the atmosphere module: its components and its one render system.
+// Entry point of the atmosphere module: its components, its part of the shared state and its render
+// systems.
+#include "shared_state.h"
 #include "welkin/atmosphere/components.h"
 #include "welkin/atmosphere/gpu.h"
 #include "welkin/core/module.h"
 #include "welkin/core/world.h"
+#include "welkin/scene/shared_state.h"
 
 namespace welkin::modules {
 
@@ -13,6 +16,12 @@ void register_atmosphere(ModuleContext& ctx) {
   ctx.component<Moon>();
   ctx.component<Stars>();
   add_light_term(ctx.world());
+  // After the time of day has written the ephemeris and the clock, before anything renders.
+  ctx.system({.name = "atmosphere.shared_state",
+              .phase = Phase::update,
+              .order = kCompleteSharedState,
+              .optional_reads = {type_id<Atmosphere>(), type_id<Sun>(), type_id<Moon>(), type_id<Stars>()},
+              .run = shared_state_system});
   // LUTs and the sky first, so every material drawn this frame reads this frame's tables and covers
   // the sky; the aerial perspective over the depth buffer last, once the geometry is in.
   ctx.system({.name = "atmosphere.luts",

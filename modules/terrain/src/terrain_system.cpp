@@ -13,7 +13,7 @@
 #include "welkin/gfx/debug_content.h"
 #include "welkin/gfx/light_environment.h"
 #include "welkin/gfx/renderer.h"
-#include "welkin/scene/field_path.h"
+#include "welkin/scene/shared_state.h"
 
 namespace welkin::terrain {
 
@@ -176,14 +176,15 @@ glm::dvec3 anchor_position(World& world, const Terrain& t) {
     case Anchor::scene_origin: return {0.0, 0.0, t.height_m};
     case Anchor::offset: return t.offset_m + glm::dvec3(0.0, 0.0, t.height_m);
     case Anchor::geodetic: {
-      auto lat0 = scene_scalar(world, "timeofday.TimeOfDay", "latitude_deg");
-      auto lon0 = scene_scalar(world, "timeofday.TimeOfDay", "longitude_deg");
-      if (!lat0 || !lon0)
-        throw Error(ErrorInfo{.path = "terrain.Terrain/anchor", .expected = "a timeofday.TimeOfDay giving the scene origin's latitude and longitude",
+      const PlanetFrame* planet = world.find_resource<PlanetFrame>();
+      if (!planet || !planet->origin)
+        throw Error(ErrorInfo{.path = "terrain.Terrain/anchor",
+                              .expected = "a scene whose origin has a latitude and longitude (a time of day)",
                               .found = "none", .message = "a geodetic anchor needs the scene's geodetic origin"});
-      double dlon = std::remainder(t.longitude_deg - *lon0, 360.0);
-      return {glm::radians(dlon) * std::cos(glm::radians(*lat0)) * kEarthRadiusM,
-              glm::radians(t.latitude_deg - *lat0) * kEarthRadiusM, t.height_m};
+      const double lat0 = planet->origin->latitude_deg, lon0 = planet->origin->longitude_deg;
+      double dlon = std::remainder(t.longitude_deg - lon0, 360.0);
+      return {glm::radians(dlon) * std::cos(glm::radians(lat0)) * kEarthRadiusM,
+              glm::radians(t.latitude_deg - lat0) * kEarthRadiusM, t.height_m};
     }
   }
   return {};
@@ -218,8 +219,10 @@ void terrain_system(SystemContext& sc) {
   // The frame's depth holds no other geometry yet: a kept terrain's depth can replace it whole.
   const bool depth_empty = sc.targets->geometry.empty();
   const double pixels_per_radian = view.height / view.vertical_fov_rad;
-  double planet_radius_km = 0.0;
-  if (auto r = scene_scalar(world, "atmosphere.Atmosphere", "bottom_radius_km")) planet_radius_km = *r;
+  // The scene's planet when a module set it (the atmosphere's), else each terrain's own.
+  const PlanetFrame* planet = world.find_resource<PlanetFrame>();
+  const std::optional<double> planet_radius_m =
+      planet && planet->from_scene ? std::optional<double>(planet->radius_m) : std::nullopt;
 
   auto placed = std::make_shared<std::vector<Placed>>();
   PixelRect covered;  // every pixel the drawn chunks may cover
@@ -230,7 +233,7 @@ void terrain_system(SystemContext& sc) {
     float h = glm::radians(t.heading_deg);
     // Heading turns the model clockwise seen from above (x east, y north).
     p.rotation = glm::mat3(glm::vec3(std::cos(h), -std::sin(h), 0), glm::vec3(std::sin(h), std::cos(h), 0), glm::vec3(0, 0, 1));
-    double radius_m = (planet_radius_km > 0 ? planet_radius_km : t.planet_radius_km) * 1000.0;
+    double radius_m = planet_radius_m ? *planet_radius_m : t.planet_radius_km * 1000.0;
     p.inverse_two_radius = t.follow_curvature ? float(0.5 / radius_m) : 0.0f;
     p.lod_pixel_error = t.lod_pixel_error;
     const glm::vec3 rel = glm::vec3(p.anchor_m - view.camera_position_m);

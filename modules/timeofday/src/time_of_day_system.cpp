@@ -1,11 +1,12 @@
-// The time-of-day system: advances the clock and writes the sun, the moon and the stars into the scene.
+// The time-of-day system: advances the clock and writes the sun, the moon, the clock and the origin's
+// place into the world's shared state (welkin/scene/shared_state.h).
 #include <cmath>
 #include <stdexcept>
 
 #include "time_of_day_system.h"
 #include "welkin/core/error.h"
 #include "welkin/core/world.h"
-#include "welkin/scene/field_path.h"
+#include "welkin/scene/shared_state.h"
 #include "welkin/timeofday/earth_orientation.h"
 #include "welkin/timeofday/sky.h"
 
@@ -13,15 +14,31 @@ namespace welkin::timeofday {
 
 namespace {
 
-// Sets a field of the first entity with `component`, if the scene has one. Lights belong to other
-// modules (or the core), so they are reached by name through reflection, not by type.
-void set_if_present(World& world, std::string_view component, std::string_view field, double value) {
-  const ComponentInfo* info = world.modules().component(component);
-  if (!info) return;
-  const ComponentPool* pool = world.registry().pool(info->type->id);
-  if (!pool || pool->empty()) return;
-  void* object = world.registry().get(pool->entities()[0], info->type->id);
-  resolve_field(*info->type, object, field).set_scalar(value);
+// Publishes where the sun and the moon stand, the clock and the origin's place into the world's
+// shared state; the modules that draw lights (or the runtime's default light) follow from there.
+void publish(World& world, const TimeOfDay& tod, const SkyState& sky) {
+  LightSources& lights = world.resource<LightSources>();
+  lights.ephemeris.sun = {.present = true,
+                          .azimuth_deg = sky.sun.azimuth_deg,
+                          .elevation_deg = sky.sun.elevation_deg,
+                          .illuminance_lux = sky.sun.unobscured_illuminance_lux,
+                          .angular_radius_deg = sky.sun.angular_radius_deg,
+                          .visible_fraction = sky.sun_visible_flux_fraction};
+  lights.ephemeris.moon = {.present = true,
+                           .azimuth_deg = sky.moon.azimuth_deg,
+                           .elevation_deg = sky.moon.elevation_deg,
+                           .illuminance_lux = sky.moon.illuminance_lux,
+                           .angular_radius_deg = sky.moon.angular_radius_deg,
+                           .illuminated_fraction = sky.moon.illuminated_fraction};
+  SceneTime& time = world.resource<SceneTime>();
+  time.present = true;
+  time.local_time_h = tod.local_time_h;
+  time.julian_day = sky.julian_day;
+  // The stars turn with the local (mean) sidereal time.
+  time.local_sidereal_time_deg =
+      std::fmod(mean_sidereal_time_deg(sky.julian_day) + tod.longitude_deg + 720.0, 360.0);
+  world.resource<PlanetFrame>().origin = GeodeticPlace{
+      .latitude_deg = tod.latitude_deg, .longitude_deg = tod.longitude_deg, .elevation_m = tod.elevation_m};
 }
 
 }  // namespace
@@ -66,27 +83,7 @@ void time_of_day_system(SystemContext& sc) {
     // A sequence owns time when present (scrubbing must equal playing), so the clock only runs alone.
     if (!sequenced && tod.time_scale != 0.0f && sc.frame.dt_s > 0.0)
       set_local_time(tod, utc_of(tod).plus_seconds(sc.frame.dt_s * tod.time_scale));
-    SkyState sky = sky_of(tod);
-    World& w = sc.world;
-    set_if_present(w, "atmosphere.Sun", "azimuth_deg", sky.sun.azimuth_deg);
-    set_if_present(w, "atmosphere.Sun", "elevation_deg", sky.sun.elevation_deg);
-    set_if_present(w, "atmosphere.Sun", "illuminance_lux", sky.sun.unobscured_illuminance_lux);
-    set_if_present(w, "atmosphere.Sun", "angular_radius_deg", sky.sun.angular_radius_deg);
-    set_if_present(w, "atmosphere.Sun", "visible_fraction", sky.sun_visible_flux_fraction);
-    set_if_present(w, "atmosphere.Moon", "azimuth_deg", sky.moon.azimuth_deg);
-    set_if_present(w, "atmosphere.Moon", "elevation_deg", sky.moon.elevation_deg);
-    set_if_present(w, "atmosphere.Moon", "illuminance_lux", sky.moon.illuminance_lux);
-    set_if_present(w, "atmosphere.Moon", "angular_radius_deg", sky.moon.angular_radius_deg);
-    set_if_present(w, "atmosphere.Moon", "illuminated_fraction", sky.moon.illuminated_fraction);
-    // The stars turn with the local (mean) sidereal time.
-    const double lst = std::fmod(mean_sidereal_time_deg(sky.julian_day) + tod.longitude_deg + 720.0, 360.0);
-    set_if_present(w, "atmosphere.Stars", "local_sidereal_time_deg", lst);
-    set_if_present(w, "atmosphere.Stars", "latitude_deg", tod.latitude_deg);
-    // Without an atmosphere, the built-in light follows the sun (dimmed by eclipses, off at night).
-    set_if_present(w, "core.DirectionalLight", "azimuth_deg", sky.sun.azimuth_deg);
-    set_if_present(w, "core.DirectionalLight", "elevation_deg", sky.sun.elevation_deg);
-    set_if_present(w, "core.DirectionalLight", "illuminance_lux",
-                   sky.sun.elevation_deg > 0 ? sky.sun.illuminance_lux * std::sin(sky.sun.elevation_deg * M_PI / 180.0) : 0.0);
+    publish(sc.world, tod, sky_of(tod));
   });
 }
 

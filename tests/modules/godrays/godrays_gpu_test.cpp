@@ -224,6 +224,7 @@ namespace {
 TEST(GodRaysPresets, EveryPresetFileLoads) {
   gl_context().make_current();
   World world;
+  world.modules().add_static(modules::atmosphere_module());  // what god rays depend on
   world.modules().add_static(modules::godrays_module());
   world.modules().require_component("godrays.GodRays");
   int presets = 0;

@@ -116,4 +116,40 @@ TEST(Plugins, AManifestsLibraryIsAFileNameBesideIt) {
   }
 }
 
+TEST(Plugins, ADependencyThatCannotBeLoadedIsOneErrorNamingBoth) {
+  // testsky depends on testbase, whose library here is not a library.
+  fs::path dir = fs::temp_directory_path() / ("welkin-plugin-dep-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  for (const char* f : {"libwelkin_testsky.so", "testsky.module.json", "testbase.module.json"})
+    fs::copy_file(kModules / f, dir / f);
+  std::ofstream(dir / "libwelkin_testbase.so") << "not an ELF file";
+  welkin::World w;
+  w.modules().add_search_dir(dir);
+  std::string e =
+      error_of([&] { welkin::load_scene(w, scene_with({{"testsky.Glow", json::object()}}), "sky.json"); });
+  EXPECT_NE(e.find("module 'testsky' needs module 'testbase', which cannot be loaded"), std::string::npos)
+      << e;
+  EXPECT_NE(e.find("cannot load module library"), std::string::npos) << e;
+  EXPECT_NE(e.find("sky.json"), std::string::npos) << e;
+  EXPECT_FALSE(w.modules().is_loaded("testsky"));
+  EXPECT_FALSE(w.modules().is_loaded("testbase"));
+  fs::remove_all(dir);
+}
+
+TEST(Plugins, AManifestNamesEachOtherModuleOnceAndNeverItself) {
+  const std::string base = R"({"name": "a", "version": "1", "components": [], )";
+  EXPECT_NO_THROW(welkin::parse_module_manifest(base + R"("depends": ["b"], "uses": ["c", "d"]})", "a.json"));
+  EXPECT_EQ(welkin::parse_module_manifest(base + R"("uses": ["c", "d"]})", "a.json").uses,
+            (std::vector<std::string>{"c", "d"}));
+  for (const char* lists : {R"("depends": ["a"]})", R"("uses": ["a"]})",
+                            R"("depends": ["b"], "uses": ["b"]})", R"("depends": ["b", "b"]})"}) {
+    std::string e = error_of([&] { welkin::parse_module_manifest(base + lists, "a.json"); });
+    EXPECT_NE(e.find("a.json: at /"), std::string::npos) << lists << ": " << e;
+    EXPECT_NE(e.find("expected other modules, each named once"), std::string::npos) << lists << ": " << e;
+  }
+  std::string e = error_of([&] { welkin::parse_module_manifest(base + R"("uses": "b"})", "a.json"); });
+  EXPECT_NE(e.find("a.json: at /uses: expected array of strings, found string"), std::string::npos) << e;
+}
+
 }  // namespace

@@ -22,7 +22,11 @@ struct ModuleManifest {
   std::string name;
   std::string version;
   std::string description;
+  // Modules this one cannot work without: loaded before it; a missing or unloadable one is an error.
   std::vector<std::string> depends;
+  // Modules whose part of the shared state (welkin/scene/shared_state.h) this one reads when the
+  // scene has them; not loaded for it.
+  std::vector<std::string> uses;
   std::vector<std::string> components;  // full names, "module.Type"
   std::filesystem::path library;        // empty for static modules
   std::filesystem::path data_dir;       // shaders/, presets/ live here

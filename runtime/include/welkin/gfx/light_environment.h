@@ -119,8 +119,8 @@ class LightEnvironment {
 };
 
 class World;
-// Direction toward the scene's sun (atmosphere.Sun, else core.DirectionalLight, read through
-// reflection), also below the horizon; nullopt when the scene has neither.
+// Direction toward the scene's sun (the shared LightSources' scene sun, else the first
+// core.DirectionalLight), also below the horizon; nullopt when the scene has neither.
 std::optional<glm::vec3> scene_sun_direction(World& world);
 
 }  // namespace welkin

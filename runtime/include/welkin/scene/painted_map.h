@@ -45,8 +45,8 @@ struct MapFrame {
 };
 
 class World;
-// A scene's map frame: the planet of its atmosphere.Atmosphere when it has one (read through
-// reflection), else Earth's 6360 km below the origin.
+// A scene's map frame: the planet of the shared PlanetFrame (the atmosphere's when the scene has
+// one), else Earth's 6360 km below the origin.
 MapFrame scene_map_frame(World& world, double size_m);
 
 // The maps of one world, keyed by the file name the scene gives.

@@ -1,8 +1,9 @@
 #pragma once
 // Time-of-day components. TimeOfDay places the scene origin on Earth at a date and local time; its
-// system computes the sun and moon and writes them into whichever lights the scene has
-// (atmosphere.Sun / atmosphere.Moon, or the built-in core.DirectionalLight), through reflection,
-// so this module needs no other module. SequencePlayer plays a keyframed sequence file.
+// system computes the sun and moon and writes them, the clock and the origin's place into the
+// world's shared state (welkin/scene/shared_state.h), which the lights of the scene follow (the
+// atmosphere's, or the built-in core.DirectionalLight), so this module needs no other module.
+// SequencePlayer plays a keyframed sequence file.
 #include <string>
 #include <string_view>
 
