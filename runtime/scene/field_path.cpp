@@ -165,12 +165,4 @@ json FieldRef::get_json() const {
   return component >= 0 ? j[component] : j;
 }
 
-std::optional<double> scene_scalar(World& world, std::string_view component, std::string_view path) {
-  const ComponentInfo* info = world.modules().component(component);
-  if (!info) return std::nullopt;
-  const ComponentPool* pool = world.registry().pool(info->type->id);
-  if (!pool || pool->empty()) return std::nullopt;
-  return resolve_field(*info->type, world.registry().get(pool->entities()[0], info->type->id), path).get_scalar();
-}
-
 }  // namespace welkin

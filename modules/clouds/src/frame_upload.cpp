@@ -11,28 +11,27 @@
 #include "welkin/core/world.h"
 #include "welkin/gfx/light_environment.h"
 #include "welkin/gfx/renderer.h"
-#include "welkin/scene/field_path.h"
 #include "welkin/scene/painted_map.h"
+#include "welkin/scene/shared_state.h"
 
 namespace welkin::clouds {
 
 namespace {
 
-// The planet, the time and the sun, from whichever modules the scene has (through reflection).
+// The planet, the time and the sun, from the world's shared state (welkin/scene/shared_state.h).
 CloudsContext read_context(World& world, const FrameInfo& frame) {
   CloudsContext c;
   const MapFrame planet = scene_map_frame(world, 1.0);
   c.planet_radius_m = planet.planet_radius_m;
   c.planet_center_m = planet.planet_center_m;
   // Wind follows the time of day when there is one, so scrubbing a sequence equals playing it.
-  if (auto h = scene_scalar(world, "timeofday.TimeOfDay", "local_time_h"))
-    c.time_s = *h * 3600.0;
-  else
-    c.time_s = frame.time_s;
+  const SceneTime* clock = world.find_resource<SceneTime>();
+  c.time_s = clock && clock->present ? clock->local_time_h * 3600.0 : frame.time_s;
   if (auto sun = scene_sun_direction(world)) c.sun_direction = *sun;
   // Cloud tops at 10 km still see a sun 3 degrees below the horizon; below ~10 degrees the moon
   // (when the scene has one) is the light worth marching toward.
-  const bool has_moon = scene_scalar(world, "atmosphere.Moon", "illuminance_lux").has_value();
+  const LightSources* lights = world.find_resource<LightSources>();
+  const bool has_moon = lights && lights->scene.moon.present;
   c.sun_up_for_clouds = !has_moon || c.sun_direction.z > -0.17f;
   return c;
 }
@@ -46,8 +45,8 @@ const VolumetricClouds* first_clouds(World& world) {
 }
 
 bool camera_in_space(World& world, const FrameBlock& f) {
-  auto top = scene_scalar(world, "atmosphere.Atmosphere", "top_radius_km");
-  return top && double(f.camera_radius_m) > *top * 1000.0;
+  const PlanetFrame* planet = world.find_resource<PlanetFrame>();
+  return planet && planet->atmosphere_top_m && double(f.camera_radius_m) > *planet->atmosphere_top_m;
 }
 
 // Uploads this frame's block and layers; false when no layer can hold cloud (nothing to draw).

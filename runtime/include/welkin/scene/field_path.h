@@ -30,9 +30,4 @@ struct FieldRef {
 // Resolves `path` inside `object` of `type`; throws Error naming the first bad segment.
 FieldRef resolve_field(const TypeDesc& type, void* object, std::string_view path);
 
-class World;
-// A scalar field of the first entity with the named component, when the scene has one: how a
-// module reads another's components (the sun, the planet, the time of day) without depending on it.
-std::optional<double> scene_scalar(World& world, std::string_view component, std::string_view path);
-
 }  // namespace welkin
