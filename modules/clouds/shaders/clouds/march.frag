@@ -166,9 +166,12 @@ void main() {
   vec2 segments[2 * CLOUDS_MAX_BANDS];
   int count = 0;
   float first = 3.4e38;
+  // Indexed by a loop counter: copied out of the block first, so that a compiler that cannot keep a
+  // dynamically indexed member in registers moves only these two vectors to memory, not the whole block.
+  const vec4 band_low = cl.band_low, band_high = cl.band_high;
   for (int i = 0; i < CLOUDS_MAX_BANDS; ++i) {
     if (i >= int(cl.band_count)) break;
-    vec2 outer = clouds_sphere(dir, cl.band_high[i]), inner = clouds_sphere(dir, cl.band_low[i]);
+    vec2 outer = clouds_sphere(dir, band_high[i]), inner = clouds_sphere(dir, band_low[i]);
     if (outer.x > outer.y || outer.y <= 0.0) continue;
     vec2 a = vec2(max(outer.x, 0.0), outer.y), b = vec2(1.0, -1.0);
     if (inner.x <= inner.y && inner.y > 0.0) {

@@ -36,7 +36,7 @@ TEST(CloudsCli, AccuracyWritesTablesPlotAndGhosting) {
   const fs::path out = scratch_path("clouds-cli", "accuracy");
   auto r = run_welkin("accuracy clouds --quick --qualities low --size 64x36 --frames 1 --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.out;
-  for (const char* f : {"accuracy-clouds.csv", "accuracy-clouds-rays.csv", "accuracy-clouds.png"})
+  for (const char* f : {"accuracy-clouds.csv", "accuracy-clouds-rays.csv", "accuracy-clouds-terms.csv", "accuracy-clouds.png"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
   std::ifstream csv(out / "accuracy-clouds.csv");
   std::string header, diffusion, octaves;
@@ -44,6 +44,45 @@ TEST(CloudsCli, AccuracyWritesTablesPlotAndGhosting) {
   EXPECT_EQ(diffusion.rfind("diffusion/low,", 0), 0u) << diffusion;
   EXPECT_EQ(octaves.rfind("octaves/low,", 0), 0u) << octaves;
   EXPECT_NE(r.out.find("clipped history"), std::string::npos) << r.out;
+}
+
+// --rays: a value out of range is one error naming the file and the path inside it.
+TEST(CloudsCli, BadRayIsOneErrorNamingTheFileAndPath) {
+  const fs::path rays = scratch_path("clouds-cli", "bad-rays.json");
+  std::ofstream(rays) << R"({"rays": [{"position_m": [0, 0, 100], "heading_deg": 0, "pitch_deg": 30},
+                                     {"position_m": [0, 0, 100], "heading_deg": 0, "pitch_deg": 120}]})";
+  auto r = run_welkin("accuracy clouds --rays " + rays.string() + " --qualities low --out " + scratch_path("clouds-cli", "bad-rays").string());
+  EXPECT_EQ(r.code, 3) << r.out;
+  EXPECT_NE(r.out.find(rays.string()), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("/rays/1/pitch_deg"), std::string::npos) << r.out;
+  EXPECT_FALSE(r.signaled);
+}
+
+// --scene and --rays measure a case nobody tuned for: one row per ray and quality in the CSV.
+TEST(CloudsCli, SceneAndRaysMeasureEveryRay) {
+  const fs::path out = scratch_path("clouds-cli", "scene-rays");
+  const fs::path rays = scratch_path("clouds-cli", "two-rays.json");
+  std::ofstream(rays) << R"({"rays": [{"position_m": [0, 0, 300], "heading_deg": 110, "pitch_deg": 55},
+                                     {"position_m": [500, -300, 3000], "heading_deg": 290, "pitch_deg": -35}]})";
+  auto r = run_welkin("accuracy clouds --quick --scene modules/clouds/validation/holdout/stratocumulus-low-sun.json --rays " +
+                      rays.string() + " --qualities low --size 32x18 --frames 1 --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  std::ifstream csv(out / "accuracy-clouds-rays.csv");
+  std::string line;
+  int rows = 0;
+  for (std::getline(csv, line); std::getline(csv, line);) ++rows;
+  EXPECT_EQ(rows, 4);  // two rays, two models
+}
+
+// --image: the march beside the path tracer's image of the same rays, with the image-wide error.
+TEST(CloudsCli, ImageWritesThePanelsAndTheError) {
+  const fs::path out = scratch_path("clouds-cli", "image");
+  auto r = run_welkin("accuracy clouds --image modules/clouds/validation/holdout/stratocumulus-low-sun.json --size 12x8 "
+                      "--paths-per-pixel 8 --qualities low --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(fs::exists(out / "clouds-image-stratocumulus-low-sun-low.png"));
+  EXPECT_NE(r.out.find("relative RMSE"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find(" over 0 cloud pixels"), std::string::npos) << r.out;  // the deck covers part of the view
 }
 
 }  // namespace
