@@ -126,15 +126,18 @@ EdgeError measure(bool flying, int frames, const std::string& name) {
 // Measured before the resolve kept the history where its neighbours' history held and read it through
 // a Catmull-Rom filter (bilinear, clipped to the 3 x 3 fresh samples' range always): still 5.15% at
 // silhouettes and 1.91% over the frame, flying 12.81% and 5.85%; the march's own jitter from frame to
-// frame is 0.51% and 0.31%.
+// frame is 0.51% and 0.31%. Those figures and the ones below were taken with the hand-set light model;
+// with the fitted one (light_model_fit.glsl) the same resolve measures still 0.92% and 0.45%, flying
+// 12.95% and 5.51% (the clouds' contrast is higher), jitter 0.67% and 0.39%. Flying, the error is the
+// 4-frame renewal's lag, which this resolve does not change: its bounds guard against a regression.
 TEST(CloudsSilhouettes, UpscaledFramesFollowTheFullMarchAtSilhouettes) {
   const EdgeError still = measure(false, 3, "still"), flying = measure(true, 6, "flying");
   EXPECT_GT(still.silhouette_pixels, 500u);
   EXPECT_GT(flying.silhouette_pixels, 500u);
   EXPECT_LT(still.silhouette, 0.015);   // measured 0.75%
   EXPECT_LT(still.frame, 0.008);        // 0.37%
-  EXPECT_LT(flying.silhouette, 0.122);  // 11.60%
-  EXPECT_LT(flying.frame, 0.055);       // 5.19%
+  EXPECT_LT(flying.silhouette, 0.14);   // 11.60% (hand-set light), 12.95% (fitted)
+  EXPECT_LT(flying.frame, 0.06);        // 5.19%, 5.51%
 }
 
 // The history kept where it holds must still give way where the clouds change: a settled still view,
