@@ -42,7 +42,6 @@ extern "C" __attribute__((visibility("default"))) const welkin::ModuleDefinition
   target_include_directories(welkin_${M_NAME}_static PUBLIC
     $<BUILD_INTERFACE:${dir}/include> $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   target_link_libraries(welkin_${M_NAME}_static PUBLIC welkin_runtime ${M_LIBS} PRIVATE welkin_warnings)
-  target_compile_definitions(welkin_${M_NAME}_static PRIVATE WELKIN_MODULE_DIR="${dir}")
 
   add_library(welkin_${M_NAME} MODULE ${gen}/plugin_entry.cpp)
   target_link_libraries(welkin_${M_NAME} PRIVATE welkin_${M_NAME}_static)

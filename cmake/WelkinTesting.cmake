@@ -4,8 +4,18 @@ function(welkin_add_test)
   cmake_parse_arguments(T "" "NAME" "SOURCES;LIBS;LABELS" ${ARGN})
   add_executable(${T_NAME} ${T_SOURCES})
   target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main welkin_warnings)
-  target_compile_definitions(${T_NAME} PRIVATE
-    WELKIN_SOURCE_DIR="${PROJECT_SOURCE_DIR}" WELKIN_BINARY_DIR="${PROJECT_BINARY_DIR}")
+  # The checkout's absolute paths go only to the sources that name them: the others compile the
+  # same in every checkout, so ccache (base_dir) shares them between worktrees.
+  foreach(src IN LISTS T_SOURCES)
+    get_filename_component(src_path "${src}" ABSOLUTE)
+    if(EXISTS "${src_path}")
+      file(STRINGS "${src_path}" uses_paths REGEX "WELKIN_(SOURCE|BINARY)_DIR" LIMIT_COUNT 1)
+      if(uses_paths)
+        set_property(SOURCE "${src}" APPEND PROPERTY COMPILE_DEFINITIONS
+          "WELKIN_SOURCE_DIR=\"${PROJECT_SOURCE_DIR}\"" "WELKIN_BINARY_DIR=\"${PROJECT_BINARY_DIR}\"")
+      endif()
+    endif()
+  endforeach()
   # In the fuzz build (clang, instrumented libraries) the tests run under ASan and UBSan too:
   # tests/runtime/assets/run_fuzz.sh builds and runs the runtime's and the assets' there.
   if(WELKIN_FUZZ)
