@@ -613,7 +613,7 @@ int EditorApp::run() {
     if (!tl.preview || doc_->sequence().tracks.empty()) {
       tl.problems.clear();
       tl.previewed_at_s = -1;
-    } else if (tl.playhead_s != tl.previewed_at_s || !(doc_->sequence() == tl.previewed)) {
+    } else if (!doc_->previewing() || tl.playhead_s != tl.previewed_at_s || !(doc_->sequence() == tl.previewed)) {
       tl.problems = doc_->preview_sequence(tl.playhead_s);
       tl.previewed_at_s = tl.playhead_s;
       tl.previewed = doc_->sequence();

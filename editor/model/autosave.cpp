@@ -33,7 +33,8 @@ bool Autosave::behind(const EditorDocument& doc) const {
   return !written_ || *written_ != state_of(doc);
 }
 
-void Autosave::write(const EditorDocument& doc) {
+void Autosave::write(EditorDocument& doc) {
+  doc.end_preview();
   if (!enabled()) return;
   if (!doc.dirty()) {
     remove();

@@ -31,7 +31,7 @@ class Autosave {
   bool behind(const EditorDocument& doc) const;
   // Writes the document's unsaved parts through the atomic writer, the meta file last so it never
   // names a file not yet written; removes the autosave when nothing is unsaved. Throws Error.
-  void write(const EditorDocument& doc);
+  void write(EditorDocument& doc);  // ends the timeline's preview first: it writes the document
   // The autosave left on disk, if any. A meta file that does not read is reported as an Error.
   std::optional<AutosaveContents> find() const;
   // Puts the autosaved parts into the document, named by their original files and dirty.

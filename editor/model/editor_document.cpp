@@ -47,6 +47,8 @@ void EditorDocument::replace_world(std::unique_ptr<World> world, const std::stri
   ids_.clear();
   ids_.sync(world_->registry());
   history_.clear();
+  preview_originals_.clear();  // they belonged to the old world
+  previewing_ = false;
   selected_ = kNoEntity;
   scene_path_ = path;
   mark_saved(DocumentPart::scene);  // a new scene has nothing to lose; a loaded one matches its file
@@ -62,6 +64,7 @@ void EditorDocument::load_scene(const std::string& path) {
 }
 
 void EditorDocument::save_scene(const std::string& path) {
+  end_preview();
   history_.seal();  // a drag still merging would change the scene after it was marked saved
   // The maps first: a scene is never saved naming a painted map that was not written.
   if (PaintedMaps* maps = world_->find_resource<PaintedMaps>()) maps->save_unsaved();
@@ -194,6 +197,7 @@ json EditorDocument::entity_snapshot(EntityId id) const {
 // --- Edits -------------------------------------------------------------------------------------
 
 EntityId EditorDocument::add_entity(const std::string& name, const json& components) {
+  end_preview();
   // The id is fixed now, so redo re-creates the entity under the id later edits refer to.
   EntityId id = ids_.reserve();
   Edit edit{.target = EditTarget::entity, .entity = id, .before = nullptr,
@@ -204,6 +208,7 @@ EntityId EditorDocument::add_entity(const std::string& name, const json& compone
 }
 
 void EditorDocument::remove_entity(EntityId id) {
+  end_preview();
   Edit edit{.target = EditTarget::entity, .entity = id, .before = entity_snapshot(id), .after = nullptr};
   execute(std::move(edit), step_label("Remove entity", "'" + display_name(id) + "'"), false);
 }
@@ -217,6 +222,7 @@ void EditorDocument::rename_entity(EntityId id, const std::string& name) {
 }
 
 void EditorDocument::add_component(EntityId id, const std::string& component) {
+  end_preview();
   const TypeDesc& type = require_component(component);
   if (!get_component(id, component).is_null())
     throw Error(ErrorInfo{.path = component, .message = "entity '" + display_name(id) + "' already has " + component});
@@ -226,6 +232,7 @@ void EditorDocument::add_component(EntityId id, const std::string& component) {
 }
 
 void EditorDocument::remove_component(EntityId id, const std::string& component) {
+  end_preview();
   json before = get_component(id, component);
   if (before.is_null())
     throw Error(ErrorInfo{.path = component, .message = "entity '" + display_name(id) + "' has no " + component + " component"});
@@ -235,6 +242,7 @@ void EditorDocument::remove_component(EntityId id, const std::string& component)
 
 void EditorDocument::set_field(EntityId id, const std::string& component, const std::string& path, const json& value,
                                bool continuous) {
+  end_preview();
   Edit edit{.target = EditTarget::field, .entity = id, .component = component, .path = path,
             .before = get_field(id, component, path), .after = value};
   execute(std::move(edit), step_label("Set", component + "/" + path + " on '" + display_name(id) + "'"), continuous);
@@ -242,6 +250,7 @@ void EditorDocument::set_field(EntityId id, const std::string& component, const 
 
 void EditorDocument::set_component(EntityId id, const std::string& component, const json& value, const std::string& label,
                                    bool continuous) {
+  end_preview();
   require_entity(id);
   const TypeDesc& type = require_component(component);
   Edit edit{.target = EditTarget::component, .entity = id, .component = component,
@@ -250,6 +259,7 @@ void EditorDocument::set_component(EntityId id, const std::string& component, co
 }
 
 void EditorDocument::set_sequence(Sequence sequence, const std::string& label, bool continuous) {
+  end_preview();
   Edit edit{.target = EditTarget::sequence, .before = sequence_to_json(sequence_), .after = sequence_to_json(sequence)};
   execute(std::move(edit), label, continuous);
 }
@@ -267,6 +277,7 @@ void EditorDocument::execute(Edit edit, const std::string& label, bool continuou
 }
 
 bool EditorDocument::undo() {
+  end_preview();
   history_.seal();
   const HistoryStep* step = history_.next_undo();
   if (!step) return false;
@@ -276,6 +287,7 @@ bool EditorDocument::undo() {
 }
 
 bool EditorDocument::redo() {
+  end_preview();
   history_.seal();
   const HistoryStep* step = history_.next_redo();
   if (!step) return false;
@@ -412,7 +424,9 @@ void EditorDocument::save_sequence(const std::string& path) {
 // that cannot be applied is reported and the others still are.
 std::vector<std::string> EditorDocument::preview_sequence(double time_s) {
   std::vector<std::string> problems;
+  previewing_ = true;
   for (const SequenceTrack& track : sequence_.tracks) {
+    keep_preview_originals(split_track_target(track.target).component);
     try {
       apply_sequence(welkin::Sequence{.tracks = {to_runtime_track(track)}}, *world_, time_s);
     } catch (const Error& err) {
@@ -421,6 +435,31 @@ std::vector<std::string> EditorDocument::preview_sequence(double time_s) {
     }
   }
   return problems;
+}
+
+// Every entity's copy of a tracked component is kept (the track's own entity rule stays in
+// apply_sequence alone): components are small, and the first preview of each is all that is kept.
+void EditorDocument::keep_preview_originals(const std::string& component) {
+  const ComponentInfo* info = world_->modules().component(component);
+  if (!info) return;  // apply_sequence reports it
+  const ComponentPool* pool = world_->registry().pool(info->type->id);
+  if (!pool) return;
+  for (Entity e : pool->entities()) {
+    const EntityId id = ids_.id_of(e);
+    const bool kept = std::any_of(preview_originals_.begin(), preview_originals_.end(),
+                                  [&](const PreviewOriginal& o) { return o.entity == id && o.component == component; });
+    if (!kept) preview_originals_.push_back({id, component, get_component(id, component)});
+  }
+}
+
+void EditorDocument::end_preview() {
+  for (const PreviewOriginal& o : preview_originals_) {
+    const Entity e = ids_.entity_of(o.entity);
+    if (e.is_null() || !world_->registry().valid(e)) continue;  // a system removed it: nothing to put back
+    apply(Edit{.target = EditTarget::component, .entity = o.entity, .component = o.component}, o.value);
+  }
+  preview_originals_.clear();
+  previewing_ = false;
 }
 
 }  // namespace welkin::editor

@@ -108,10 +108,21 @@ class EditorDocument {
   void load_sequence(const std::string& path);  // undoable, like any other change of the sequence
   void save_sequence(const std::string& path);
   // Writes every track's value at `time_s` into the world (welkin::apply_sequence). A preview, not an edit: nothing is
-  // recorded. Returns one message per track that could not be applied.
+  // recorded, and the components it writes over are kept as they were. Returns one message per track that could not be
+  // applied.
   std::vector<std::string> preview_sequence(double time_s);
+  // Puts back what the preview wrote over. Every edit, undo, redo, save and autosave does this first, so the history
+  // and the files never hold previewed values and the dirty flags do not move; the view previews again next frame.
+  void end_preview();
+  bool previewing() const { return previewing_; }
 
  private:
+  struct PreviewOriginal {
+    EntityId entity;
+    std::string component;
+    nlohmann::json value;  // the component as the document holds it
+  };
+  void keep_preview_originals(const std::string& component);
   void execute(Edit edit, const std::string& label, bool continuous);
   // Replaces the world and forgets the history; a clean sequence stays clean.
   void replace_world(std::unique_ptr<World> world, const std::string& path);
@@ -130,6 +141,8 @@ class EditorDocument {
   EntityId selected_ = kNoEntity;
   CommandHistory history_;
   Sequence sequence_;
+  std::vector<PreviewOriginal> preview_originals_;
+  bool previewing_ = false;
   std::string sequence_path_;
   std::array<PartVersion, kDocumentParts> saved_{};  // each part's version when last loaded or saved
 };

@@ -99,6 +99,7 @@ std::string map_text(const PaintedMap& m) {
 }
 
 State state_of(EditorDocument& doc) {
+  doc.end_preview();  // the document as it would be saved: a preview is not part of it
   State s;
   s.scene = save_scene(doc.world()).dump();
   for (const std::string& file : map_files(doc)) {
@@ -469,6 +470,7 @@ std::string random_line(Rng& r, Session& s) {
        }},
       {2, [&] { return "key test.Fog/visibility_km " + time + " " + number(r.uniform(0.1, 900)); }},
       {3, [&] { return "unkey test.Clouds/density " + time; }},
+      {4, [&] { return "time " + number(r.uniform(-5, 70)); }},
       {4,
        [&] {
          return "save-scene \"${FUZZ}/" + r.pick<std::string>({"scene.json", "scene.json", "other.json"}) +

@@ -163,6 +163,42 @@ TEST_F(Timeline, PreviewInterpolatesNumbersAndHoldsEnds) {
   EXPECT_FALSE(doc.history().steps().size() > 1);  // previews are not edits
 }
 
+// The preview writes over the scene for the view only: a save writes the scene's own values, an
+// edit's undo step holds them, and the scene is not dirtied (editor/README.md, "Timeline").
+TEST_F(Timeline, PreviewNeverReachesTheDocument) {
+  ScratchDir dir("timeline-preview");
+  EntityId sun = doc.find_by_name("sun");
+  const json own = doc.get_field(sun, "core.DirectionalLight", "elevation_deg");
+  doc.set_sequence(with_key(with_key({}, "sun", kElevation, 0, -5), "sun", kElevation, 40, 35), "keys");
+  const auto path = (dir.path() / "scene.json").string();
+  doc.save_scene(path);
+  ASSERT_FALSE(doc.scene_dirty());
+
+  doc.preview_sequence(40);
+  EXPECT_EQ(doc.get_field(sun, "core.DirectionalLight", "elevation_deg"), json(35));
+  EXPECT_TRUE(doc.previewing());
+  EXPECT_FALSE(doc.scene_dirty());
+
+  doc.save_scene(path);  // writes the scene's own elevation, not the playhead's
+  EXPECT_FALSE(doc.previewing());
+  EXPECT_EQ(doc.get_field(sun, "core.DirectionalLight", "elevation_deg"), own);
+  EntityId reloaded = kNoEntity;
+  {
+    EditorDocument other(editor_test::make_test_world);
+    other.load_scene(path);
+    reloaded = other.find_by_name("sun");
+    EXPECT_EQ(other.get_field(reloaded, "core.DirectionalLight", "elevation_deg"), own);
+  }
+
+  // An edit during a preview: its undo goes back to the scene's own value, not the previewed one.
+  doc.preview_sequence(40);
+  doc.set_field(sun, "core.DirectionalLight", "azimuth_deg", json(12.0));
+  doc.preview_sequence(40);
+  ASSERT_TRUE(doc.undo());
+  EXPECT_EQ(doc.get_field(sun, "core.DirectionalLight", "elevation_deg"), own);
+  EXPECT_FALSE(doc.scene_dirty());
+}
+
 TEST_F(Timeline, PreviewReportsTracksItCannotApply) {
   Sequence s = with_key({}, "nobody", kElevation, 0, 1);
   s = with_key(s, "sun", kElevation, 0, 500);  // out of range
