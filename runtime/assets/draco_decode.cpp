@@ -139,12 +139,13 @@ DracoAttribute read_attribute(const draco::Mesh& m, const DracoRequest& r, const
 }
 
 // Draco's decode and everything read from its mesh (runs in the child process).
-DracoMesh decode_in_this_process(draco::DecoderBuffer buffer, const DracoExpected& expected, const Source& src,
-                                 const std::string& path) {
+DracoMesh decode_in_this_process(draco::DecoderBuffer buffer, const DracoExpected& expected,
+                                 const Source& src, const std::string& path) {
   draco::Decoder decoder;
   auto result = decoder.DecodeMeshFromBuffer(&buffer);
   if (!result.ok())
-    fail(src, path, "a valid Draco mesh stream", std::string("a decoding error (") + result.status().error_msg() + ")");
+    fail(src, path, "a valid Draco mesh stream",
+         std::string("a decoding error (") + result.status().error_msg() + ")");
   const draco::Mesh& m = *result.value();
   const auto& lim = src.options.limits;
   if (m.num_points() > lim.max_vertices_per_primitive)
@@ -175,7 +176,9 @@ enum : uint8_t { kMesh = 0, kError = 1 };
 
 struct Writer {
   std::vector<uint8_t> bytes;
-  void raw(const void* p, size_t n) { bytes.insert(bytes.end(), static_cast<const uint8_t*>(p), static_cast<const uint8_t*>(p) + n); }
+  void raw(const void* p, size_t n) {
+    bytes.insert(bytes.end(), static_cast<const uint8_t*>(p), static_cast<const uint8_t*>(p) + n);
+  }
   void u64(uint64_t v) { raw(&v, sizeof v); }
   void text(const std::string& s) { u64(s.size()), raw(s.data(), s.size()); }
 };
@@ -245,7 +248,8 @@ DracoMesh decode_draco(std::span<const uint8_t> stream, const DracoExpected& exp
   limits.memory_bytes = lim.draco_memory_bytes + lim.draco_memory_bytes_per_element * elements;
   uint64_t floats = 0;
   for (const DracoRequest& r : expected.attributes) floats += expected.points * uint64_t(r.components);
-  limits.max_result_bytes = (1u << 16) + uint64_t(counts.faces) * 3 * sizeof(uint32_t) + floats * sizeof(float);
+  limits.max_result_bytes =
+      (1u << 16) + uint64_t(counts.faces) * 3 * sizeof(uint32_t) + floats * sizeof(float);
   const ChildResult child = run_in_child(
       [&] {
         try {

@@ -157,7 +157,8 @@ class Converter {
         encoded = gi.image;
       } else {
         where = path + "/uri";
-        external = read_file_limited(src_, resolve_external(src_, gi.uri, where), src_.options.limits.max_file_bytes, where);
+        external = read_file_limited(src_, resolve_external(src_, gi.uri, where),
+                                     src_.options.limits.max_file_bytes, where);
         encoded = external;
       }
       if (src_.options.decode_images) img = decode_image(encoded, src_, where, total);
@@ -262,7 +263,8 @@ class Converter {
     if (jp.contains("extensions") && jp["extensions"].contains("KHR_draco_mesh_compression"))
       draco = &jp["extensions"]["KHR_draco_mesh_compression"];
     // The attributes a primitive is built from, and their component counts.
-    static constexpr std::pair<const char*, int> kAttributes[] = {{"POSITION", 3}, {"NORMAL", 3}, {"TANGENT", 4}, {"TEXCOORD_0", 2}};
+    static constexpr std::pair<const char*, int> kAttributes[] = {
+        {"POSITION", 3}, {"NORMAL", 3}, {"TANGENT", 4}, {"TEXCOORD_0", 2}};
     DracoMesh decoded;
     const std::string dp = pp + "/extensions/KHR_draco_mesh_compression";
     if (draco) {
@@ -282,7 +284,8 @@ class Converter {
                                        .normalized = a.normalized,
                                        .path = dp + "/attributes/" + name});
       }
-      decoded = decode_draco(view_bytes((*draco)["bufferView"].get<int>(), dp + "/bufferView"), expected, src_, dp);
+      decoded =
+          decode_draco(view_bytes((*draco)["bufferView"].get<int>(), dp + "/bufferView"), expected, src_, dp);
       // Every attribute, used here or not, must have exactly the accessor's count of decoded points.
       for (const auto& [name, accessor] : gp.attributes) {
         const auto& a = gm_.accessors.at(size_t(accessor));
@@ -296,7 +299,8 @@ class Converter {
     auto attribute = [&](const char* name, int comps) -> std::vector<float> {
       auto it = gp.attributes.find(name);
       if (it == gp.attributes.end()) return {};
-      if (auto d = decoded.attributes.find(name); d != decoded.attributes.end()) return std::move(d->second.values);
+      if (auto d = decoded.attributes.find(name); d != decoded.attributes.end())
+        return std::move(d->second.values);
       return read_floats(it->second, comps, pp + "/attributes/" + name);
     };
     const std::vector<float> pos = attribute("POSITION", 3);

@@ -290,13 +290,15 @@ void hash_content(const Source& src, std::span<const uint8_t> bytes) {
   // The size first: bytes moved from one file to the next change the hash.
   const uint64_t size = bytes.size();
   src.content_hash = DiskCache::hash({reinterpret_cast<const char*>(&size), sizeof size}, src.content_hash);
-  src.content_hash = DiskCache::hash({reinterpret_cast<const char*>(bytes.data()), bytes.size()}, src.content_hash);
+  src.content_hash =
+      DiskCache::hash({reinterpret_cast<const char*>(bytes.data()), bytes.size()}, src.content_hash);
 }
 
 std::vector<uint8_t> read_file_limited(const Source& src, const fs::path& file, uint64_t max_bytes,
                                        const std::string& path) {
   try {
-    std::vector<uint8_t> bytes = read_file_bytes(file.string(), max_bytes);  // regular files only, never past max_bytes
+    // regular files only, never past max_bytes
+    std::vector<uint8_t> bytes = read_file_bytes(file.string(), max_bytes);
     hash_content(src, bytes);
     return bytes;
   } catch (const Error& e) {

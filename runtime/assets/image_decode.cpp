@@ -80,7 +80,8 @@ void check_png_inflated_size(std::span<const uint8_t> png, const Source& src, co
       // stb_image copies an empty IDAT chunk that comes before any image data through a null buffer
       // (undefined behaviour, found by the fuzzer under UBSan): such a file is refused here.
       if (length == 0 && !idat_data_seen)
-        fail(src, path, "PNG image data starting in its first IDAT chunk", "an empty IDAT chunk before the image data");
+        fail(src, path, "PNG image data starting in its first IDAT chunk",
+             "an empty IDAT chunk before the image data");
       idat_data_seen = true;
       size_t skip = std::min<size_t>(zlib_header_left, length);
       zlib_header_left -= skip;

@@ -29,8 +29,10 @@ MipEdge mip_edge_of_gl_wrap(int gl_wrap) {
 
 void for_each_mip_level(const Image& image, bool srgb, MipEdge edge_s, MipEdge edge_t,
                         const std::function<void(int, int, int, const uint8_t*)>& level) {
-  if (image.width <= 0 || image.height <= 0 || image.rgba.size() != size_t(image.width) * size_t(image.height) * 4)
-    throw Error(ErrorInfo{.file = image.name, .expected = "decoded pixels", .found = "an image without them"});
+  if (image.width <= 0 || image.height <= 0 ||
+      image.rgba.size() != size_t(image.width) * size_t(image.height) * 4)
+    throw Error(
+        ErrorInfo{.file = image.name, .expected = "decoded pixels", .found = "an image without them"});
   std::vector<uint8_t> current, next;
   const uint8_t* pixels = image.rgba.data();
   int w = image.width, h = image.height;
@@ -39,9 +41,9 @@ void for_each_mip_level(const Image& image, bool srgb, MipEdge edge_s, MipEdge e
     const int nw = std::max(1, w / 2), nh = std::max(1, h / 2);
     next.resize(size_t(nw) * size_t(nh) * 4);
     // STBIR_FLAG_ALPHA_PREMULTIPLIED: the colours are filtered as they are, not weighted by alpha.
-    stbir_resize(pixels, w, h, 0, next.data(), nw, nh, 0, STBIR_TYPE_UINT8, 4, 3, STBIR_FLAG_ALPHA_PREMULTIPLIED,
-                 stb_edge(edge_s), stb_edge(edge_t), STBIR_FILTER_BOX, STBIR_FILTER_BOX,
-                 srgb ? STBIR_COLORSPACE_SRGB : STBIR_COLORSPACE_LINEAR, nullptr);
+    stbir_resize(pixels, w, h, 0, next.data(), nw, nh, 0, STBIR_TYPE_UINT8, 4, 3,
+                 STBIR_FLAG_ALPHA_PREMULTIPLIED, stb_edge(edge_s), stb_edge(edge_t), STBIR_FILTER_BOX,
+                 STBIR_FILTER_BOX, srgb ? STBIR_COLORSPACE_SRGB : STBIR_COLORSPACE_LINEAR, nullptr);
     current.swap(next);
     pixels = current.data();
     w = nw, h = nh;

@@ -52,9 +52,12 @@ uint64_t address_space_bytes() {
 }
 
 // RLIMIT_CPU counts whole seconds.
-long long cpu_seconds(const ChildLimits& limits) { return std::max(1LL, (long long)std::ceil(limits.seconds)); }
+long long cpu_seconds(const ChildLimits& limits) {
+  return std::max(1LL, (long long)std::ceil(limits.seconds));
+}
 
-[[noreturn]] void child_main(int fd, const std::function<std::vector<uint8_t>()>& work, const ChildLimits& limits) {
+[[noreturn]] void child_main(int fd, const std::function<std::vector<uint8_t>()>& work,
+                             const ChildLimits& limits) {
   // The caller's handlers (the editor saves its work on a crash) are not the child's to run.
   for (int s : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGTERM, SIGINT, SIGHUP, SIGXCPU, SIGPIPE})
     signal(s, SIG_DFL);
@@ -81,7 +84,8 @@ long long cpu_seconds(const ChildLimits& limits) { return std::max(1LL, (long lo
     how = kThrew, bytes.clear();
   }
   const uint64_t size = bytes.size();
-  const bool ok = write_all(fd, &how, 1) && write_all(fd, &size, sizeof size) && write_all(fd, bytes.data(), bytes.size());
+  const bool ok = write_all(fd, &how, 1) && write_all(fd, &size, sizeof size) &&
+                  write_all(fd, bytes.data(), bytes.size());
   _exit(ok ? 0 : 4);
 }
 
@@ -91,12 +95,14 @@ ChildResult run_in_child(const std::function<std::vector<uint8_t>()>& work, cons
   ChildResult result;
   int fds[2];
   if (pipe2(fds, O_CLOEXEC) != 0) {
-    result.status = ChildResult::Status::unavailable, result.detail = std::string("pipe: ") + std::strerror(errno);
+    result.status = ChildResult::Status::unavailable,
+    result.detail = std::string("pipe: ") + std::strerror(errno);
     return result;
   }
   const pid_t pid = fork();
   if (pid < 0) {
-    result.status = ChildResult::Status::unavailable, result.detail = std::string("fork: ") + std::strerror(errno);
+    result.status = ChildResult::Status::unavailable,
+    result.detail = std::string("fork: ") + std::strerror(errno);
     close(fds[0]), close(fds[1]);
     return result;
   }
@@ -145,7 +151,8 @@ ChildResult run_in_child(const std::function<std::vector<uint8_t>()>& work, cons
   }
   if (WIFSIGNALED(wait_status)) {
     const int s = WTERMSIG(wait_status);
-    result.status = s == SIGXCPU || s == SIGKILL ? ChildResult::Status::over_time : ChildResult::Status::failed;
+    result.status =
+        s == SIGXCPU || s == SIGKILL ? ChildResult::Status::over_time : ChildResult::Status::failed;
     result.detail = "signal " + std::to_string(s) + " (" + strsignal(s) + ")";
     return result;
   }

@@ -110,7 +110,8 @@ bool DiskCache::write(std::string_view key, std::string_view bytes) const {
   try {
     std::error_code ec;
     std::filesystem::create_directories(folder_, ec);
-    if (ec) throw Error(ErrorInfo{.file = folder_, .expected = "a folder for the cache", .found = ec.message()});
+    if (ec)
+      throw Error(ErrorInfo{.file = folder_, .expected = "a folder for the cache", .found = ec.message()});
     write_file_atomically(path_of(key), file);
     return true;
   } catch (const Error& e) {

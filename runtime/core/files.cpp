@@ -38,7 +38,9 @@ struct Fd {
 
 template <class Bytes>
 Bytes read_whole(const std::string& path, uint64_t max_bytes) {
-  auto fail = [&](const std::string& message) -> Error { return Error(ErrorInfo{.file = path, .message = message}); };
+  auto fail = [&](const std::string& message) -> Error {
+    return Error(ErrorInfo{.file = path, .message = message});
+  };
   // O_NONBLOCK: opening a FIFO for reading would otherwise wait for a writer forever.
   Fd f{::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY)};
   if (f.fd < 0) throw fail(std::string("cannot open file: ") + std::strerror(errno));
@@ -121,7 +123,8 @@ void write_file_atomically(const std::string& path, std::string_view bytes) {
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   auto fail = [&](const std::string& what, int err, bool existed) -> Error {
     return Error(ErrorInfo{.file = path,
-                           .message = "cannot write: " + what + (err ? std::string(": ") + std::strerror(err) : "") +
+                           .message = "cannot write: " + what +
+                                      (err ? std::string(": ") + std::strerror(err) : "") +
                                       (existed ? " (the existing file was kept)" : "")});
   };
 
@@ -135,7 +138,8 @@ void write_file_atomically(const std::string& path, std::string_view bytes) {
   for (int attempt = 0; attempt < 100 && f.fd < 0; ++attempt) {
     tmp = dir / temp_name(target);
     f.fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0666);
-    if (f.fd < 0 && errno != EEXIST) throw fail("cannot create a temporary file in " + dir.string(), errno, existed);
+    if (f.fd < 0 && errno != EEXIST)
+      throw fail("cannot create a temporary file in " + dir.string(), errno, existed);
   }
   if (f.fd < 0) throw fail("cannot create a temporary file in " + dir.string(), EEXIST, existed);
 

@@ -23,10 +23,12 @@ std::string read_string(const json& j, const char* key, const std::string& origi
   auto it = j.find(key);
   if (it == j.end()) {
     if (!required) return {};
-    throw Error(ErrorInfo{.file = origin, .path = std::string("/") + key, .expected = "string", .found = "nothing"});
+    throw Error(
+        ErrorInfo{.file = origin, .path = std::string("/") + key, .expected = "string", .found = "nothing"});
   }
   if (!it->is_string())
-    throw Error(ErrorInfo{.file = origin, .path = std::string("/") + key, .expected = "string", .found = json_type(*it)});
+    throw Error(ErrorInfo{
+        .file = origin, .path = std::string("/") + key, .expected = "string", .found = json_type(*it)});
   return it->get<std::string>();
 }
 
@@ -35,7 +37,10 @@ std::vector<std::string> read_strings(const json& j, const char* key, const std:
   auto it = j.find(key);
   if (it == j.end()) return out;
   if (!it->is_array())
-    throw Error(ErrorInfo{.file = origin, .path = std::string("/") + key, .expected = "array of strings", .found = json_type(*it)});
+    throw Error(ErrorInfo{.file = origin,
+                          .path = std::string("/") + key,
+                          .expected = "array of strings",
+                          .found = json_type(*it)});
   for (size_t i = 0; i < it->size(); ++i) {
     if (!(*it)[i].is_string())
       throw Error(ErrorInfo{.file = origin, .path = std::string("/") + key + "/" + std::to_string(i),
@@ -49,7 +54,8 @@ std::vector<std::string> read_strings(const json& j, const char* key, const std:
 
 ModuleManifest parse_module_manifest(const std::string& text, const std::string& origin) {
   const json j = parse_json_text(text, origin);  // bounded in size and depth, duplicate keys refused
-  if (!j.is_object()) throw Error(ErrorInfo{.file = origin, .path = "/", .expected = "object", .found = json_type(j)});
+  if (!j.is_object())
+    throw Error(ErrorInfo{.file = origin, .path = "/", .expected = "object", .found = json_type(j)});
   ModuleManifest m;
   m.origin = origin;
   m.name = read_string(j, "name", origin, true);
@@ -64,7 +70,9 @@ ModuleManifest parse_module_manifest(const std::string& text, const std::string&
   // library on the machine (or, with no slash, whatever the loader's search finds).
   const std::string lib = m.library.string();
   if (!m.library.empty() && (lib.find_first_of("/\\") != std::string::npos || lib == "." || lib == ".."))
-    throw Error(ErrorInfo{.file = origin, .path = "/library", .expected = "a file name beside the manifest (no folders)",
+    throw Error(ErrorInfo{.file = origin,
+                          .path = "/library",
+                          .expected = "a file name beside the manifest (no folders)",
                           .found = "'" + lib + "'"});
   const std::string prefix = m.name + ".";  // once: a name and a list may both be long
   // Each other module is named once, in one of the two lists; never the module itself.
@@ -76,12 +84,16 @@ ModuleManifest parse_module_manifest(const std::string& text, const std::string&
                               .expected = "other modules, each named once", .found = "'" + d + "'"});
   for (const auto& c : m.components)
     if (!c.starts_with(prefix))
-      throw Error(ErrorInfo{.file = origin, .path = "/components", .expected = "names starting with '" + m.name + ".'", .found = "'" + c + "'"});
+      throw Error(ErrorInfo{.file = origin,
+                            .path = "/components",
+                            .expected = "names starting with '" + m.name + ".'",
+                            .found = "'" + c + "'"});
   return m;
 }
 
 void ModuleContext::add_component(const TypeDesc& type) {
-  if (std::find(manifest_.components.begin(), manifest_.components.end(), type.name) == manifest_.components.end())
+  if (std::find(manifest_.components.begin(), manifest_.components.end(), type.name) ==
+      manifest_.components.end())
     throw Error(ErrorInfo{.file = manifest_.origin, .path = "/components",
                           .message = "module '" + manifest_.name + "' registers component '" + type.name +
                                      "' that its manifest does not declare"});
@@ -167,8 +179,10 @@ void ModuleHost::load_with_stack(std::string_view module, std::vector<std::strin
     throw Error(ErrorInfo{.message = "module '" + std::string(module) + "' is not installed" +
                                      (stack.empty() ? "" : " (needed by '" + stack.back() + "')") +
                                      "; searched: " + (where.empty() ? "no module folders" : where) +
-                                     (problems_.empty() ? "" : "; skipped " + std::to_string(problems_.size()) +
-                                                                   " unreadable manifest(s), the first: " + problems_.front())});
+                                     (problems_.empty()
+                                          ? ""
+                                          : "; skipped " + std::to_string(problems_.size()) +
+                                                " unreadable manifest(s), the first: " + problems_.front())});
   }
   stack.emplace_back(module);
   for (const auto& dep : m->depends) {
@@ -192,16 +206,20 @@ void ModuleHost::load_with_stack(std::string_view module, std::vector<std::strin
   } else {
     void* handle = dlopen(m->library.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!handle)
-      throw Error(ErrorInfo{.file = m->origin, .message = "cannot load module library: " + std::string(dlerror())});
+      throw Error(
+          ErrorInfo{.file = m->origin, .message = "cannot load module library: " + std::string(dlerror())});
     using EntryFn = const ModuleDefinition* (*)(unsigned*);
     auto entry = reinterpret_cast<EntryFn>(dlsym(handle, WELKIN_MODULE_ENTRY_NAME));
     if (!entry)
-      throw Error(ErrorInfo{.file = m->library.string(), .message = "not a Welkin module: no entry point " WELKIN_MODULE_ENTRY_NAME});
+      throw Error(ErrorInfo{.file = m->library.string(),
+                            .message = "not a Welkin module: no entry point " WELKIN_MODULE_ENTRY_NAME});
     unsigned abi = 0;
     def = entry(&abi);
     if (abi != kModuleAbiVersion)
-      throw Error(ErrorInfo{.file = m->library.string(), .expected = "module ABI " + std::to_string(kModuleAbiVersion),
-                            .found = "ABI " + std::to_string(abi), .message = "incompatible module '" + m->name + "'"});
+      throw Error(ErrorInfo{.file = m->library.string(),
+                            .expected = "module ABI " + std::to_string(kModuleAbiVersion),
+                            .found = "ABI " + std::to_string(abi),
+                            .message = "incompatible module '" + m->name + "'"});
     ModuleManifest built = parse_module_manifest(def->manifest_json, m->library.string());
     if (built.name != m->name || built.version != m->version || built.components != m->components ||
         built.depends != m->depends || built.uses != m->uses)
@@ -213,8 +231,10 @@ void ModuleHost::load_with_stack(std::string_view module, std::vector<std::strin
   def->register_fn(ctx);
   for (const auto& c : m->components)
     if (!component(c))
-      throw Error(ErrorInfo{.file = m->origin, .path = "/components",
-                            .message = "module '" + m->name + "' declares component '" + c + "' but does not register it"});
+      throw Error(ErrorInfo{
+          .file = m->origin,
+          .path = "/components",
+          .message = "module '" + m->name + "' declares component '" + c + "' but does not register it"});
   load_order_.emplace_back(module);
   log::info("loaded module " + m->name + " " + m->version);
 }
@@ -224,15 +244,19 @@ const ComponentInfo& ModuleHost::require_component(std::string_view name) {
   const ModuleManifest* m = provider_of(name);
   if (!m) {
     std::string mod(name.substr(0, name.find('.')));
-    throw Error(ErrorInfo{.expected = "a known component", .found = "'" + std::string(name) + "'",
-                          .message = manifest(mod) ? "module '" + mod + "' has no such component"
-                                                   : "unknown component (no installed module '" + mod + "' provides it)"});
+    throw Error(ErrorInfo{
+        .expected = "a known component",
+        .found = "'" + std::string(name) + "'",
+        .message = manifest(mod) ? "module '" + mod + "' has no such component"
+                                 : "unknown component (no installed module '" + mod + "' provides it)"});
   }
   load(m->name);
   return *component(name);
 }
 
-const ComponentInfo* ModuleHost::component(std::string_view name) const { return component(type_id_of_name(name)); }
+const ComponentInfo* ModuleHost::component(std::string_view name) const {
+  return component(type_id_of_name(name));
+}
 const ComponentInfo* ModuleHost::component(TypeId id) const {
   auto it = components_.find(id);
   return it == components_.end() ? nullptr : &it->second;

@@ -5,7 +5,8 @@
 
 namespace welkin {
 
-std::vector<std::string> module_search_dirs(const std::string& relative_to_executable, const std::string& build_tree_dir,
+std::vector<std::string> module_search_dirs(const std::string& relative_to_executable,
+                                            const std::string& build_tree_dir,
                                             const std::string& build_bin_dir) {
   std::vector<std::string> dirs;
   if (const char* env = std::getenv("WELKIN_MODULE_PATH")) {
@@ -21,8 +22,10 @@ std::vector<std::string> module_search_dirs(const std::string& relative_to_execu
   auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
   if (ec) return dirs;
   dirs.push_back((exe.parent_path() / relative_to_executable).lexically_normal().string());
-  const bool in_build_tree = !build_bin_dir.empty() && std::filesystem::equivalent(exe.parent_path(), build_bin_dir, ec);
-  if (in_build_tree && !build_tree_dir.empty() && !std::filesystem::equivalent(dirs.back(), build_tree_dir, ec))
+  const bool in_build_tree =
+      !build_bin_dir.empty() && std::filesystem::equivalent(exe.parent_path(), build_bin_dir, ec);
+  if (in_build_tree && !build_tree_dir.empty() &&
+      !std::filesystem::equivalent(dirs.back(), build_tree_dir, ec))
     dirs.push_back(build_tree_dir);
   return dirs;
 }

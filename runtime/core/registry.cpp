@@ -104,7 +104,8 @@ void* Registry::emplace(Entity e, const TypeDesc& type) {
     p = std::make_unique<ComponentPool>(type);
     pool_order_.push_back(type.id);
   } else if (p->type().size != type.size || p->type().name != type.name) {
-    throw Error(ErrorInfo{.message = "component '" + type.name + "' registered twice with different layouts"});
+    throw Error(
+        ErrorInfo{.message = "component '" + type.name + "' registered twice with different layouts"});
   }
   return p->emplace(e);
 }

@@ -16,8 +16,10 @@ void register_core(ModuleContext& ctx) {
 
 const ModuleDefinition& builtin_module_definition() {
   static const ModuleDefinition def{
-      R"({"name": "core", "version": "0.1.0", "description": "Built-in components: names, camera, debug content",
-          "components": ["core.Name", "core.Camera", "core.Backdrop", "core.DirectionalLight", "core.DebugShape"]})",
+      R"({"name": "core", "version": "0.1.0",
+          "description": "Built-in components: names, camera, debug content",
+          "components": ["core.Name", "core.Camera", "core.Backdrop", "core.DirectionalLight",
+                         "core.DebugShape"]})",
       nullptr, register_core};
   return def;
 }

@@ -8,18 +8,38 @@ namespace welkin {
 
 void describe(TypeBuilder<Camera>& t) {
   t.tooltip("Perspective camera; position in the scene's east-north-up frame");
-  t.field("position_m", &Camera::position_m).unit("m").range(-1e9, 1e9).tooltip("Position (east, north, up) from the scene origin");
-  t.field("heading_deg", &Camera::heading_deg).unit("deg").range(-720, 720).tooltip("Heading, clockwise from north");
+  t.field("position_m", &Camera::position_m)
+      .unit("m")
+      .range(-1e9, 1e9)
+      .tooltip("Position (east, north, up) from the scene origin");
+  t.field("heading_deg", &Camera::heading_deg)
+      .unit("deg")
+      .range(-720, 720)
+      .tooltip("Heading, clockwise from north");
   t.field("pitch_deg", &Camera::pitch_deg).unit("deg").range(-90, 90).tooltip("Pitch above the horizontal");
   t.field("roll_deg", &Camera::roll_deg).unit("deg").range(-180, 180);
-  t.field("vertical_fov_deg", &Camera::vertical_fov_deg).unit("deg").range(1, 170).tooltip("Vertical field of view");
-  t.field("near_m", &Camera::near_m).unit("m").range(1e-3, 1e5).tooltip("Near plane; the far plane is at infinity (reversed Z)");
+  t.field("vertical_fov_deg", &Camera::vertical_fov_deg)
+      .unit("deg")
+      .range(1, 170)
+      .tooltip("Vertical field of view");
+  t.field("near_m", &Camera::near_m)
+      .unit("m")
+      .range(1e-3, 1e5)
+      .tooltip("Near plane; the far plane is at infinity (reversed Z)");
   t.field("exposure_mode", &Camera::exposure_mode).values({{"ev100", 0}, {"manual", 1}});
-  t.field("ev100", &Camera::ev100).unit("EV").range(-12, 24).tooltip("Exposure value at ISO 100 (daylight ~15, sunset ~12, moonlight ~-2)");
+  t.field("ev100", &Camera::ev100)
+      .unit("EV")
+      .range(-12, 24)
+      .tooltip("Exposure value at ISO 100 (daylight ~15, sunset ~12, moonlight ~-2)");
   t.field("exposure", &Camera::exposure).range(0, 1e6).tooltip("Linear exposure multiplier (manual mode)");
-  t.field("tonemapper", &Camera::tonemapper).values({{"aces", 0}, {"agx", 1}, {"linear", 2}}).tooltip("Tone-mapping curve");
-  t.field("moving_render_scale", &Camera::moving_render_scale).range(0.25, 1)
-      .tooltip("While the view moves: fraction of the width and height rendered (upscaled); still views render whole");
+  t.field("tonemapper", &Camera::tonemapper)
+      .values({{"aces", 0}, {"agx", 1}, {"linear", 2}})
+      .tooltip("Tone-mapping curve");
+  t.field("moving_render_scale", &Camera::moving_render_scale)
+      .range(0.25, 1)
+      .tooltip(
+          "While the view moves: fraction of the width and height rendered (upscaled); still views render "
+          "whole");
 }
 
 float exposure_from_ev100(float ev100) { return 1.0f / (1.2f * std::exp2(ev100)); }
@@ -67,7 +87,8 @@ glm::vec3 pixel_direction(const FrameView& v, double x, double y) {
   double ndc_y = 1.0 - (y / v.height) * 2.0;
   double t = std::tan(v.vertical_fov_rad * 0.5);
   double aspect = double(v.width) / v.height;
-  glm::dvec3 d = glm::dvec3(v.forward) + ndc_x * t * aspect * glm::dvec3(v.right) + ndc_y * t * glm::dvec3(v.up);
+  glm::dvec3 d =
+      glm::dvec3(v.forward) + ndc_x * t * aspect * glm::dvec3(v.right) + ndc_y * t * glm::dvec3(v.up);
   return glm::vec3(glm::normalize(d));
 }
 
@@ -84,7 +105,8 @@ PixelRect screen_rect(const FrameView& view, const glm::vec3& lo, const glm::vec
   const PixelRect whole{0, 0, view.width, view.height};
   glm::vec4 c[8];
   for (int i = 0; i < 8; ++i)
-    c[i] = view.view_projection * glm::vec4(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z, 1.0f);
+    c[i] =
+        view.view_projection * glm::vec4(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z, 1.0f);
   // The box's part in front of the near plane (clip w >= near in the reversed-Z infinite projection)
   // is the hull of the corners there and of the edges' crossings of the plane.
   const float near = view.near_m;

@@ -24,7 +24,10 @@ void describe(TypeBuilder<Backdrop>& t) {
 }
 
 void describe(TypeBuilder<DirectionalLight>& t) {
-  t.field("azimuth_deg", &DirectionalLight::azimuth_deg).unit("deg").range(-360, 360).tooltip("Clockwise from north");
+  t.field("azimuth_deg", &DirectionalLight::azimuth_deg)
+      .unit("deg")
+      .range(-360, 360)
+      .tooltip("Clockwise from north");
   t.field("elevation_deg", &DirectionalLight::elevation_deg).unit("deg").range(-90, 90);
   t.field("color", &DirectionalLight::color).color().range(0, 1);
   t.field("illuminance_lux", &DirectionalLight::illuminance_lux).unit("lx").range(0, 2e5);
@@ -34,7 +37,10 @@ void describe(TypeBuilder<DirectionalLight>& t) {
 void describe(TypeBuilder<DebugShape>& t) {
   t.field("shape", &DebugShape::shape).values({{"sphere", 0}, {"box", 1}});
   t.field("position_m", &DebugShape::position_m).unit("m").range(-1e9, 1e9);
-  t.field("size_m", &DebugShape::size_m).unit("m").range(1e-3, 1e7).tooltip("Sphere: radius in x; box: half extents");
+  t.field("size_m", &DebugShape::size_m)
+      .unit("m")
+      .range(1e-3, 1e7)
+      .tooltip("Sphere: radius in x; box: half extents");
   t.field("albedo", &DebugShape::albedo).color().range(0, 1);
 }
 
@@ -51,24 +57,30 @@ void backdrop_system(SystemContext& sc) {
   Backdrop b = *reg.get<Backdrop>(e);
   auto& rc = sc.world.resource<RenderContext>();
   const FrameTargets t = *sc.targets;
-  sc.graph->add_pass("backdrop", [&](PassBuilder& pb) { pb.read(t.color); pb.write(t.color); pb.read(t.depth); },
-                     [&rc, b, t](PassContext& pc) {
-    Framebuffer fb(&pc.texture(t.color), &pc.texture(t.depth));
-    fb.bind();
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_GEQUAL);  // only where nothing nearer was drawn (depth still 0 = infinity)
-    glDepthMask(GL_FALSE);
-    const Program& p = rc.shaders.graphics("fullscreen.vert", "backdrop.frag");
-    p.use();
-    p.set("u_inverse_view_projection", rc.view.inverse_view_projection);
-    p.set("u_zenith", b.zenith_color * b.luminance);
-    p.set("u_horizon", b.horizon_color * b.luminance);
-    p.set("u_ground", b.ground_color * b.luminance);
-    p.set("u_grid", b.grid ? 1 : 0);
-    rc.draw_fullscreen_triangle();
-    glDepthFunc(GL_GREATER);
-    glDepthMask(GL_TRUE);
-  });
+  sc.graph->add_pass(
+      "backdrop",
+      [&](PassBuilder& pb) {
+        pb.read(t.color);
+        pb.write(t.color);
+        pb.read(t.depth);
+      },
+      [&rc, b, t](PassContext& pc) {
+        Framebuffer fb(&pc.texture(t.color), &pc.texture(t.depth));
+        fb.bind();
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_GEQUAL);  // only where nothing nearer was drawn (depth still 0 = infinity)
+        glDepthMask(GL_FALSE);
+        const Program& p = rc.shaders.graphics("fullscreen.vert", "backdrop.frag");
+        p.use();
+        p.set("u_inverse_view_projection", rc.view.inverse_view_projection);
+        p.set("u_zenith", b.zenith_color * b.luminance);
+        p.set("u_horizon", b.horizon_color * b.luminance);
+        p.set("u_ground", b.ground_color * b.luminance);
+        p.set("u_grid", b.grid ? 1 : 0);
+        rc.draw_fullscreen_triangle();
+        glDepthFunc(GL_GREATER);
+        glDepthMask(GL_TRUE);
+      });
 }
 
 // Slices of a sphere's latitude-longitude grid (stacks: half as many), from 8 to 64, enough that a
@@ -77,7 +89,8 @@ void backdrop_system(SystemContext& sc) {
 int sphere_slices(const FrameView& view, const glm::vec3& centre, float radius) {
   if (glm::dot(centre, view.forward) < -radius) return -1;
   const float distance = std::max(glm::length(centre) - radius, view.near_m);
-  const float radius_px = radius / distance * (0.5f * float(view.height)) / std::tan(0.5f * view.vertical_fov_rad);
+  const float radius_px =
+      radius / distance * (0.5f * float(view.height)) / std::tan(0.5f * view.vertical_fov_rad);
   if (!(radius_px > 0.25f)) return 8;
   // The sagitta of a facet, r (1 - cos(pi / slices)), at most a quarter of a pixel.
   const float slices = 3.14159265f / std::acos(std::max(1.0f - 0.25f / radius_px, -1.0f));
@@ -102,10 +115,12 @@ const Buffer& sphere_indices(DebugShapeMeshes& meshes, int slices) {
   indices.reserve(size_t(slices) * size_t(stacks) * 6);
   for (int j = 0; j < stacks; ++j)
     for (int i = 0; i < slices; ++i) {
-      const uint16_t v00 = uint16_t(j * row + i), v10 = uint16_t(v00 + 1), v01 = uint16_t(v00 + row), v11 = uint16_t(v01 + 1);
+      const uint16_t v00 = uint16_t(j * row + i), v10 = uint16_t(v00 + 1), v01 = uint16_t(v00 + row),
+                     v11 = uint16_t(v01 + 1);
       indices.insert(indices.end(), {v00, v10, v11, v00, v11, v01});
     }
-  return meshes.sphere_indices.emplace(slices, Buffer(indices.size() * sizeof(uint16_t), indices.data())).first->second;
+  return meshes.sphere_indices.emplace(slices, Buffer(indices.size() * sizeof(uint16_t), indices.data()))
+      .first->second;
 }
 
 void debug_shape_system(SystemContext& sc) {
@@ -120,47 +135,55 @@ void debug_shape_system(SystemContext& sc) {
                              fnv1a_64_of(s.size_m, fnv1a_64_of(s.position_m, fnv1a_64_of(int(s.shape)))));
   }
   const FrameTargets t = *sc.targets;
-  sc.graph->add_pass("debug_shapes", [&](PassBuilder& pb) { pb.read(t.color); pb.write(t.color); pb.read(t.depth); pb.write(t.depth); },
-                     [&rc, &world = sc.world, shapes, t](PassContext& pc) {
-    Framebuffer fb(&pc.texture(t.color), &pc.texture(t.depth));
-    fb.bind();
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_GREATER);
-    glEnable(GL_CULL_FACE);
-    const Program& p = rc.shaders.graphics("debug_shape.vert", "debug_shape.frag");
-    p.use();
-    p.set("u_view_projection", rc.view.view_projection);
-    world.resource<LightEnvironment>().bind();
-    auto& meshes = world.resource<DebugShapeMeshes>();
-    if (!meshes.vao) {
-      GLuint vao = 0;
-      glCreateVertexArrays(1, &vao);
-      meshes.vao = GlVertexArrayName(vao);
-    }
-    for (const DebugShape& s : shapes) {
-      // Camera-relative in double, then to float: precision independent of distance from the origin.
-      glm::vec3 rel = glm::vec3(s.position_m - rc.view.camera_position_m);
-      const int slices = s.shape == ShapeKind::sphere ? sphere_slices(rc.view, rel, s.size_m.x) : 0;
-      if (slices < 0) continue;  // wholly behind the camera
-      p.set("u_center", rel);
-      p.set("u_size", s.size_m);
-      p.set("u_albedo", s.albedo);
-      p.set("u_shape", int(s.shape));
-      p.set("u_slices", slices);
-      // Spheres: the grid's vertices, indexed; boxes: 36 vertices. Both generated in the shader.
-      if (s.shape == ShapeKind::sphere) {
-        const Buffer& indices = sphere_indices(meshes, slices);
-        glVertexArrayElementBuffer(meshes.vao.id(), indices.id());
-        glBindVertexArray(meshes.vao.id());
-        glDrawElements(GL_TRIANGLES, GLsizei(indices.size() / sizeof(uint16_t)), GL_UNSIGNED_SHORT, nullptr);
-      } else {
+  sc.graph->add_pass(
+      "debug_shapes",
+      [&](PassBuilder& pb) {
+        pb.read(t.color);
+        pb.write(t.color);
+        pb.read(t.depth);
+        pb.write(t.depth);
+      },
+      [&rc, &world = sc.world, shapes, t](PassContext& pc) {
+        Framebuffer fb(&pc.texture(t.color), &pc.texture(t.depth));
+        fb.bind();
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_GREATER);
+        glEnable(GL_CULL_FACE);
+        const Program& p = rc.shaders.graphics("debug_shape.vert", "debug_shape.frag");
+        p.use();
+        p.set("u_view_projection", rc.view.view_projection);
+        world.resource<LightEnvironment>().bind();
+        auto& meshes = world.resource<DebugShapeMeshes>();
+        if (!meshes.vao) {
+          GLuint vao = 0;
+          glCreateVertexArrays(1, &vao);
+          meshes.vao = GlVertexArrayName(vao);
+        }
+        for (const DebugShape& s : shapes) {
+          // Camera-relative in double, then to float: precision independent of distance from the origin.
+          glm::vec3 rel = glm::vec3(s.position_m - rc.view.camera_position_m);
+          const int slices = s.shape == ShapeKind::sphere ? sphere_slices(rc.view, rel, s.size_m.x) : 0;
+          if (slices < 0) continue;  // wholly behind the camera
+          p.set("u_center", rel);
+          p.set("u_size", s.size_m);
+          p.set("u_albedo", s.albedo);
+          p.set("u_shape", int(s.shape));
+          p.set("u_slices", slices);
+          // Spheres: the grid's vertices, indexed; boxes: 36 vertices. Both generated in the shader.
+          if (s.shape == ShapeKind::sphere) {
+            const Buffer& indices = sphere_indices(meshes, slices);
+            glVertexArrayElementBuffer(meshes.vao.id(), indices.id());
+            glBindVertexArray(meshes.vao.id());
+            glDrawElements(GL_TRIANGLES, GLsizei(indices.size() / sizeof(uint16_t)), GL_UNSIGNED_SHORT,
+                           nullptr);
+          } else {
+            glBindVertexArray(rc.empty_vao.id());
+            glDrawArrays(GL_TRIANGLES, 0, 36);
+          }
+        }
         glBindVertexArray(rc.empty_vao.id());
-        glDrawArrays(GL_TRIANGLES, 0, 36);
-      }
-    }
-    glBindVertexArray(rc.empty_vao.id());
-    glDisable(GL_CULL_FACE);
-  });
+        glDisable(GL_CULL_FACE);
+      });
 }
 
 }  // namespace
@@ -174,8 +197,9 @@ DefaultLightsBlock default_lights_block(World& world) {
   const Registry& reg = world.registry();
   if (const ComponentPool* pool = reg.pool(type_id<DirectionalLight>()); pool && !pool->empty())
     light = *reg.get<DirectionalLight>(pool->entities()[0]);
-  return {glm::vec4(glm::vec3(direction_from_azimuth_elevation(light.azimuth_deg, light.elevation_deg)), 0.0f),
-          glm::vec4(light.color * light.illuminance_lux, light.ambient_fraction)};
+  return {
+      glm::vec4(glm::vec3(direction_from_azimuth_elevation(light.azimuth_deg, light.elevation_deg)), 0.0f),
+      glm::vec4(light.color * light.illuminance_lux, light.ambient_fraction)};
 }
 
 // Without an atmosphere the built-in light stands in for the sun: it follows the time of day's
@@ -214,7 +238,10 @@ void register_debug_content(ModuleContext& ctx) {
   ctx.component<DebugShape>();
   ctx.system({.name = "core.directional_light", .phase = Phase::update, .order = kCompleteSharedState,
               .writes = {type_id<DirectionalLight>()}, .run = directional_light_system});
-  ctx.system({.name = "core.backdrop", .phase = Phase::render, .reads = {type_id<Backdrop>()}, .run = backdrop_system});
+  ctx.system({.name = "core.backdrop",
+              .phase = Phase::render,
+              .reads = {type_id<Backdrop>()},
+              .run = backdrop_system});
   ctx.system({.name = "core.debug_shapes", .phase = Phase::render, .reads = {type_id<DebugShape>()},
               .optional_reads = {type_id<DirectionalLight>()}, .run = debug_shape_system});
 }

@@ -27,18 +27,25 @@ class HeadlessContext : public GlContext {
  public:
   HeadlessContext() {
     if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_MESA_platform_surfaceless"))
-      throw Error("headless GL: EGL_MESA_platform_surfaceless is not available (install Mesa's EGL: libegl-mesa0)");
+      throw Error(
+          "headless GL: EGL_MESA_platform_surfaceless is not available (install Mesa's EGL: libegl-mesa0)");
     display_ = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, nullptr, nullptr))
       throw Error("headless GL: cannot initialise the EGL surfaceless display");
     if (!eglBindAPI(EGL_OPENGL_API)) throw Error("headless GL: EGL cannot bind the OpenGL API");
-    const EGLint config_attribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    const EGLint config_attribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
+                                     EGL_NONE};
     EGLConfig config = nullptr;
     EGLint count = 0;
     if (!eglChooseConfig(display_, config_attribs, &config, 1, &count) || count == 0)
       throw Error("headless GL: no EGL config supports desktop OpenGL");
-    const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                                  EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                  4,
+                                  EGL_CONTEXT_MINOR_VERSION,
+                                  5,
+                                  EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                  EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                  EGL_NONE};
     context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, ctx_attribs);
     if (context_ == EGL_NO_CONTEXT) throw Error("headless GL: cannot create an OpenGL 4.5 core context");
     make_current();

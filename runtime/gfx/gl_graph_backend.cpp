@@ -31,7 +31,8 @@ void GlGraphBackend::begin_frame() {
     // submission and credit one pass with another's work. There, each pass is finished on its own.
     const char* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     const char* env = std::getenv("WELKIN_SERIAL_TIMINGS");
-    serial_ = (env && std::strcmp(env, "1") == 0) || (r && (std::strstr(r, "llvmpipe") || std::strstr(r, "softpipe")));
+    serial_ = (env && std::strcmp(env, "1") == 0) ||
+              (r && (std::strstr(r, "llvmpipe") || std::strstr(r, "softpipe")));
     mode_decided_ = true;
   }
 }
@@ -62,7 +63,8 @@ void GlGraphBackend::begin_pass(const std::string& name) {
 void GlGraphBackend::end_pass() {
   if (serial_) {
     glFinish();
-    serial_ms_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pass_start_).count());
+    serial_ms_.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pass_start_).count());
     waited_ms_ += serial_ms_.back();
   } else {
     record_timestamp();
@@ -80,7 +82,8 @@ std::vector<double> GlGraphBackend::resolve_gpu_times() {
     glGetQueryObjectui64v(queries_[i + 1].id(), GL_QUERY_RESULT, &t1);
     ms.push_back(t1 > t0 ? double(t1 - t0) * 1e-6 : 0.0);
   }
-  waited_ms_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - waiting_since).count();
+  waited_ms_ +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - waiting_since).count();
   return ms;
 }
 

@@ -46,7 +46,8 @@ Texture::Texture(const TextureDesc& desc) : desc_(desc) {
   else
     glTextureStorage2D(id, levels, gl_internal_format(desc.format), desc.width, desc.height);
   GLint filter = desc.linear_filter ? GL_LINEAR : GL_NEAREST;
-  glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, desc.mipmaps && desc.linear_filter ? GL_LINEAR_MIPMAP_LINEAR : filter);
+  glTextureParameteri(id, GL_TEXTURE_MIN_FILTER,
+                      desc.mipmaps && desc.linear_filter ? GL_LINEAR_MIPMAP_LINEAR : filter);
   glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, filter);
   GLint wrap = desc.clamp ? GL_CLAMP_TO_EDGE : GL_REPEAT;
   glTextureParameteri(id, GL_TEXTURE_WRAP_S, wrap);
@@ -56,8 +57,8 @@ Texture::Texture(const TextureDesc& desc) : desc_(desc) {
 }
 
 void copy_texture(const Texture& from, const Texture& to) {
-  glCopyImageSubData(from.id(), GL_TEXTURE_2D, 0, 0, 0, 0, to.id(), GL_TEXTURE_2D, 0, 0, 0, 0, to.desc().width,
-                     to.desc().height, 1);
+  glCopyImageSubData(from.id(), GL_TEXTURE_2D, 0, 0, 0, 0, to.id(), GL_TEXTURE_2D, 0, 0, 0, 0,
+                     to.desc().width, to.desc().height, 1);
 }
 
 Framebuffer::Framebuffer(const Texture* color, const Texture* depth) {
@@ -92,7 +93,8 @@ void Framebuffer::attach(const Texture* const* colors, int color_count, const Te
     height_ = depth->desc().height;
   }
   GLenum status = glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER);
-  if (status != GL_FRAMEBUFFER_COMPLETE) throw Error("framebuffer incomplete (status " + std::to_string(status) + ")");
+  if (status != GL_FRAMEBUFFER_COMPLETE)
+    throw Error("framebuffer incomplete (status " + std::to_string(status) + ")");
 }
 
 void Framebuffer::bind() const {

@@ -50,7 +50,8 @@ ImageF read_texture_float(const Texture& t, int layer) {
     glGetTextureImage(t.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(raw.size() * sizeof(float)), raw.data());
   check_gl("texture readback");
   img.rgba.resize(raw.size());
-  for (int y = 0; y < d.height; ++y) std::copy_n(&raw[size_t(d.height - 1 - y) * row], row, &img.rgba[size_t(y) * row]);
+  for (int y = 0; y < d.height; ++y)
+    std::copy_n(&raw[size_t(d.height - 1 - y) * row], row, &img.rgba[size_t(y) * row]);
   return img;
 }
 
@@ -92,8 +93,8 @@ void write_exr(const std::string& path, const ImageF& img, ExrPrecision precisio
       halves.resize(img.rgba.size());
       for (size_t i = 0; i < halves.size(); ++i) halves[i] = half(img.rgba[i]);
       for (int c = 0; c < 4; ++c)
-        fb.insert(names[c], Imf::Slice(Imf::HALF, reinterpret_cast<char*>(halves.data() + c), sizeof(half) * 4,
-                                       sizeof(half) * 4 * img.width));
+        fb.insert(names[c], Imf::Slice(Imf::HALF, reinterpret_cast<char*>(halves.data() + c),
+                                       sizeof(half) * 4, sizeof(half) * 4 * img.width));
     } else {
       for (int c = 0; c < 4; ++c)
         fb.insert(names[c], Imf::Slice(Imf::FLOAT, (char*)(img.rgba.data() + c), sizeof(float) * 4,
@@ -109,10 +110,12 @@ void write_exr(const std::string& path, const ImageF& img, ExrPrecision precisio
 
 namespace {
 void check_image_size(const std::string& path, int64_t width, int64_t height, int max_side = kMaxImageSide) {
-  if (width <= 0 || height <= 0 || width > max_side || height > max_side || width * height > int64_t(kMaxImagePixels))
+  if (width <= 0 || height <= 0 || width > max_side || height > max_side ||
+      width * height > int64_t(kMaxImagePixels))
     throw Error(ErrorInfo{.file = path,
-                          .expected = "an image of 1 to " + std::to_string(max_side) + " pixels a side and at most " +
-                                      std::to_string(kMaxImagePixels) + " pixels",
+                          .expected = "an image of 1 to " + std::to_string(max_side) +
+                                      " pixels a side and at most " + std::to_string(kMaxImagePixels) +
+                                      " pixels",
                           .found = std::to_string(width) + "x" + std::to_string(height)});
 }
 }  // namespace
@@ -133,11 +136,13 @@ ImageF read_exr(const std::string& path) {
     const char* names[] = {"R", "G", "B", "A"};
     // The slice base is the address of pixel (0, 0), which lies outside the buffer for a data window
     // not at the origin; compute it in integers so no out-of-range pointer arithmetic happens.
-    const intptr_t origin = intptr_t(img.rgba.data()) -
-                            (intptr_t(dw.min.x) + intptr_t(dw.min.y) * img.width) * intptr_t(sizeof(float) * 4);
+    const intptr_t origin =
+        intptr_t(img.rgba.data()) -
+        (intptr_t(dw.min.x) + intptr_t(dw.min.y) * img.width) * intptr_t(sizeof(float) * 4);
     for (int c = 0; c < 4; ++c)
-      fb.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(origin + c * intptr_t(sizeof(float))),
-                                     sizeof(float) * 4, sizeof(float) * 4 * img.width, 1, 1, c == 3 ? 1.0 : 0.0));
+      fb.insert(names[c],
+                Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(origin + c * intptr_t(sizeof(float))),
+                           sizeof(float) * 4, sizeof(float) * 4 * img.width, 1, 1, c == 3 ? 1.0 : 0.0));
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
     return img;
@@ -157,7 +162,8 @@ ImageU8 read_png(const std::string& path, int max_side) {
     throw Error(ErrorInfo{.file = path, .message = std::string("cannot read PNG: ") + stbi_failure_reason()});
   check_image_size(path, w, h, std::min(max_side, kMaxImageSide));
   stbi_uc* data = stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &n, 4);
-  if (!data) throw Error(ErrorInfo{.file = path, .message = std::string("cannot read PNG: ") + stbi_failure_reason()});
+  if (!data)
+    throw Error(ErrorInfo{.file = path, .message = std::string("cannot read PNG: ") + stbi_failure_reason()});
   ImageU8 img{w, h, std::vector<uint8_t>(data, data + size_t(w) * h * 4)};
   stbi_image_free(data);
   return img;

@@ -19,7 +19,9 @@ constexpr const char* kComposedFile = "welkin/lighting.glsl";
 
 std::string LightEnvironment::macro_name(std::string_view prefix, std::string_view name) {
   std::string m(prefix);
-  for (char c : name) m += std::isalnum(static_cast<unsigned char>(c)) ? char(std::toupper(static_cast<unsigned char>(c))) : '_';
+  for (char c : name)
+    m +=
+        std::isalnum(static_cast<unsigned char>(c)) ? char(std::toupper(static_cast<unsigned char>(c))) : '_';
   return m;
 }
 
@@ -36,19 +38,24 @@ void LightEnvironment::add(LightTerm term) {
             own = own || std::find(t.textures.begin(), t.textures.end(), n) != t.textures.end() ||
                   std::find(t.blocks.begin(), t.blocks.end(), n) != t.blocks.end();
         if (!own)
-          throw Error(ErrorInfo{.path = term.name, .expected = std::string("a ") + what + " name no other light term uses",
+          throw Error(ErrorInfo{.path = term.name,
+                                .expected = std::string("a ") + what + " name no other light term uses",
                                 .found = "'" + n + "'"});
         continue;
       }
       if (next >= limit)
-        throw Error(ErrorInfo{.path = term.name, .expected = std::string("at most ") + std::to_string(limit) + " " + what + "s in all",
-                              .found = "more", .message = "the light environment ran out of bindings"});
+        throw Error(
+            ErrorInfo{.path = term.name,
+                      .expected = std::string("at most ") + std::to_string(limit) + " " + what + "s in all",
+                      .found = "more",
+                      .message = "the light environment ran out of bindings"});
       table.emplace(n, next++);
     }
   };
   assign(term.textures, units_, next_unit_, kUnitLimit, "texture");
   assign(term.blocks, blocks_, next_block_, kBlockLimit, "uniform block");
-  auto it = std::find_if(terms_.begin(), terms_.end(), [&](const LightTerm& t) { return t.name == term.name; });
+  auto it =
+      std::find_if(terms_.begin(), terms_.end(), [&](const LightTerm& t) { return t.name == term.name; });
   if (it != terms_.end()) *it = std::move(term);
   else terms_.push_back(std::move(term));
   ++version_;
@@ -82,14 +89,16 @@ std::vector<std::string> LightEnvironment::term_names() const {
 GLuint LightEnvironment::unit(std::string_view texture) const {
   auto it = units_.find(texture);
   if (it == units_.end())
-    throw Error(ErrorInfo{.expected = "a texture declared by a light term", .found = "'" + std::string(texture) + "'"});
+    throw Error(ErrorInfo{.expected = "a texture declared by a light term",
+                          .found = "'" + std::string(texture) + "'"});
   return it->second;
 }
 
 GLuint LightEnvironment::block(std::string_view block_name) const {
   auto it = blocks_.find(block_name);
   if (it == blocks_.end())
-    throw Error(ErrorInfo{.expected = "a uniform block declared by a light term", .found = "'" + std::string(block_name) + "'"});
+    throw Error(ErrorInfo{.expected = "a uniform block declared by a light term",
+                          .found = "'" + std::string(block_name) + "'"});
   return it->second;
 }
 
@@ -101,7 +110,9 @@ ShaderDefines LightEnvironment::binding_defines() const {
 }
 
 std::string LightEnvironment::composed_source() const {
-  std::string s = "#pragma once\n// Composed by the runtime's light environment (welkin/gfx/light_environment.h) from the terms:";
+  std::string s =
+      "#pragma once\n// Composed by the runtime's light environment (welkin/gfx/light_environment.h) from "
+      "the terms:";
   for (const LightTerm& t : terms_) s += " " + t.name;
   s += "\n";
   s += std::string("#define WELKIN_MOON_LIGHT ") + (moon_lights_surfaces_ ? "1" : "0") + "\n";
@@ -116,14 +127,16 @@ std::string LightEnvironment::composed_source() const {
   // The light functions are declared first, so that terms may use them.
   s += "vec3 welkin_sun_direction();\nvec3 welkin_sun_irradiance(vec3 p);\nvec3 welkin_moon_direction();\n"
        "vec3 welkin_moon_irradiance(vec3 p);\nvec3 welkin_sky_irradiance(vec3 n);\n";
-  s += "// What reaches a surface point (welkin_surface_light): the sun's irradiance there, the fraction of each\n"
+  s += "// What reaches a surface point (welkin_surface_light): the sun's irradiance there, the fraction of "
+       "each\n"
        "// light and of the sky's light reaching it, and the irradiance the terms redirect onto it.\n"
-       "struct WelkinSurfaceLight {\n  vec3 sun_irradiance;\n  float sun_visibility, moon_visibility, sky_visibility;\n"
+       "struct WelkinSurfaceLight {\n  vec3 sun_irradiance;\n  float sun_visibility, moon_visibility, "
+       "sky_visibility;\n"
        "  vec3 added_irradiance;\n};\n";
   // Only the terms whose functions are called are included: an unused provider compiles nothing.
   for (const LightTerm& t : terms_) {
-    bool used = &t == lights || &t == aerial || &t == medium || !t.light_visibility.empty() || !t.sky_visibility.empty() ||
-                !t.added_irradiance.empty() || !t.surface_light.empty();
+    bool used = &t == lights || &t == aerial || &t == medium || !t.light_visibility.empty() ||
+                !t.sky_visibility.empty() || !t.added_irradiance.empty() || !t.surface_light.empty();
     if (used && !t.include.empty()) s += "#include \"" + t.include + "\"\n";
   }
   if (lights) {
@@ -155,8 +168,9 @@ std::string LightEnvironment::composed_source() const {
        &LightTerm::light_visibility);
   fold("Fraction of the sky's light reaching the point.", "float welkin_sky_visibility(vec3 p, vec3 n)",
        "float v = 1.0", "v", "*=", "p, n", &LightTerm::sky_visibility);
-  fold("Diffuse irradiance the terms redirect onto the point.", "vec3 welkin_added_irradiance(vec3 p, vec3 n)",
-       "vec3 e = vec3(0.0)", "e", "+=", "p, n", &LightTerm::added_irradiance);
+  fold("Diffuse irradiance the terms redirect onto the point.",
+       "vec3 welkin_added_irradiance(vec3 p, vec3 n)", "vec3 e = vec3(0.0)", "e", "+=", "p, n",
+       &LightTerm::added_irradiance);
   // Everything at once for a surface point: each term's shared work done once.
   s += "WelkinSurfaceLight welkin_surface_light(vec3 p, vec3 n) {\n"
        "  WelkinSurfaceLight l = WelkinSurfaceLight(welkin_sun_irradiance(p), 1.0, 1.0, 1.0, vec3(0.0));\n";
@@ -166,30 +180,34 @@ std::string LightEnvironment::composed_source() const {
       continue;
     }
     if (!t.light_visibility.empty())
-      s += "  l.sun_visibility *= " + t.light_visibility + "(p, n, 0);\n#if WELKIN_MOON_LIGHT\n  l.moon_visibility *= " +
-           t.light_visibility + "(p, n, 1);\n#endif\n";
+      s += "  l.sun_visibility *= " + t.light_visibility +
+           "(p, n, 0);\n#if WELKIN_MOON_LIGHT\n  l.moon_visibility *= " + t.light_visibility +
+           "(p, n, 1);\n#endif\n";
     if (!t.sky_visibility.empty()) s += "  l.sky_visibility *= " + t.sky_visibility + "(p, n);\n";
     if (!t.added_irradiance.empty()) s += "  l.added_irradiance += " + t.added_irradiance + "(p, n);\n";
   }
   s += "  return l;\n}\n";
   s += "// Light added between a camera-relative point and the camera, and that path's transmittance.\n";
   if (aerial)
-    s += "vec3 welkin_aerial_perspective(vec3 p, out vec3 transmittance) { return " + aerial->aerial_perspective +
-         "(p, transmittance); }\n";
+    s += "vec3 welkin_aerial_perspective(vec3 p, out vec3 transmittance) { return " +
+         aerial->aerial_perspective + "(p, transmittance); }\n";
   else
-    s += "vec3 welkin_aerial_perspective(vec3 p, out vec3 transmittance) { transmittance = vec3(1.0); return vec3(0.0); }\n";
-  s += "// Light of unit irradiance the medium at p scatters back along view_dir (1/(m sr)), and its extinction (1/m).\n";
+    s += "vec3 welkin_aerial_perspective(vec3 p, out vec3 transmittance) { transmittance = vec3(1.0); return "
+         "vec3(0.0); }\n";
+  s += "// Light of unit irradiance the medium at p scatters back along view_dir (1/(m sr)), and its "
+       "extinction (1/m).\n";
   if (medium)
     s += "vec3 welkin_medium_scattering(vec3 p, vec3 view_dir, int light, out vec3 extinction) { return " +
          medium->medium + "(p, view_dir, light, extinction); }\n";
   else
-    s += "vec3 welkin_medium_scattering(vec3 p, vec3 view_dir, int light, out vec3 extinction) { extinction = vec3(0.0); "
+    s += "vec3 welkin_medium_scattering(vec3 p, vec3 view_dir, int light, out vec3 extinction) { extinction "
+         "= vec3(0.0); "
          "return vec3(0.0); }\n";
   return s;
 }
 
-void LightEnvironment::bind_block(std::string_view block_name, std::unique_ptr<Buffer>& buffer, const void* data,
-                                  size_t bytes) const {
+void LightEnvironment::bind_block(std::string_view block_name, std::unique_ptr<Buffer>& buffer,
+                                  const void* data, size_t bytes) const {
   if (!buffer || buffer->size() != bytes) buffer = std::make_unique<Buffer>(bytes);
   buffer->upload(data, bytes);
   glBindBufferBase(GL_UNIFORM_BUFFER, block(block_name), buffer->id());
@@ -197,7 +215,8 @@ void LightEnvironment::bind_block(std::string_view block_name, std::unique_ptr<B
 
 bool LightEnvironment::shades_surfaces() const {
   for (const LightTerm& t : terms_)
-    if (!t.light_visibility.empty() || !t.sky_visibility.empty() || !t.added_irradiance.empty() || !t.surface_light.empty())
+    if (!t.light_visibility.empty() || !t.sky_visibility.empty() || !t.added_irradiance.empty() ||
+        !t.surface_light.empty())
       return true;
   return false;
 }

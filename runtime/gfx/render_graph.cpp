@@ -32,7 +32,8 @@ void PassBuilder::side_effect() { graph_.passes_[pass_].side_effect = true; }
 
 Texture& PassContext::texture(ResourceHandle h) const {
   auto& r = graph_.resources_.at(h.index);
-  if (!r.texture) throw Error("render graph: pass '" + name_ + "' uses '" + r.name + "' which it did not declare");
+  if (!r.texture)
+    throw Error("render graph: pass '" + name_ + "' uses '" + r.name + "' which it did not declare");
   return *r.texture;
 }
 

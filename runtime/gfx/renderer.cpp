@@ -22,7 +22,8 @@ std::string runtime_shader_dir() {
   // Installed layout: <prefix>/lib/libwelkin_runtime.so and <prefix>/share/welkin/shaders.
   Dl_info info{};
   if (dladdr(reinterpret_cast<void*>(&runtime_shader_dir), &info) && info.dli_fname) {
-    auto installed = std::filesystem::path(info.dli_fname).parent_path().parent_path() / "share/welkin/shaders";
+    auto installed =
+        std::filesystem::path(info.dli_fname).parent_path().parent_path() / "share/welkin/shaders";
     std::error_code ec;
     if (std::filesystem::is_directory(installed, ec)) return installed.string();
   }
@@ -67,25 +68,33 @@ FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height
   Registry& reg = world_.registry();
   Entity cam = reg.first<Camera>();
   if (cam.is_null() && !view_camera)
-    throw Error(ErrorInfo{.expected = "an entity with a core.Camera component", .found = "none", .message = "the scene has no camera"});
+    throw Error(ErrorInfo{.expected = "an entity with a core.Camera component",
+                          .found = "none",
+                          .message = "the scene has no camera"});
   const Camera& camera = view_camera ? *view_camera : *reg.get<Camera>(cam);
   // A moving view is rendered at the camera's moving_render_scale and upscaled; a still one whole, and
   // the systems then keep what they drew. Frames rendered alone are always whole.
   const FrameView whole = make_frame_view(camera, width, height);
   const bool moved = last_view_ && last_view_->width == width && last_view_->height == height &&
-                     (last_view_->view_projection != whole.view_projection || last_view_->camera_position_m != whole.camera_position_m);
+                     (last_view_->view_projection != whole.view_projection ||
+                      last_view_->camera_position_m != whole.camera_position_m);
   last_view_ = whole;
   const float scale = moved && !frame.alone ? camera.moving_render_scale : 1.0f;
   const int rendered_width = std::clamp(int(std::lround(width * double(scale))), 1, width);
   const int rendered_height = std::clamp(int(std::lround(height * double(scale))), 1, height);
-  ctx_.view = rendered_width == width && rendered_height == height ? whole : make_frame_view(camera, rendered_width, rendered_height);
+  ctx_.view = rendered_width == width && rendered_height == height
+                  ? whole
+                  : make_frame_view(camera, rendered_width, rendered_height);
   result.rendered_width = rendered_width, result.rendered_height = rendered_height;
 
   const TextureFormat hdr_format = ctx_.radiance_format();
-  if (!hdr_ || hdr_->desc().width != rendered_width || hdr_->desc().height != rendered_height || hdr_->desc().format != hdr_format)
-    hdr_ = std::make_unique<Texture>(TextureDesc{.width = rendered_width, .height = rendered_height, .format = hdr_format});
+  if (!hdr_ || hdr_->desc().width != rendered_width || hdr_->desc().height != rendered_height ||
+      hdr_->desc().format != hdr_format)
+    hdr_ = std::make_unique<Texture>(
+        TextureDesc{.width = rendered_width, .height = rendered_height, .format = hdr_format});
   if (!ldr_ || ldr_->desc().width != width || ldr_->desc().height != height)
-    ldr_ = std::make_unique<Texture>(TextureDesc{.width = width, .height = height, .format = TextureFormat::rgba8, .linear_filter = false});
+    ldr_ = std::make_unique<Texture>(TextureDesc{
+        .width = width, .height = height, .format = TextureFormat::rgba8, .linear_filter = false});
 
   RenderGraph graph;
   FrameTargets targets;
@@ -93,8 +102,10 @@ FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height
   ResourceHandle output = graph.import("output", *ldr_);
   graph.add_pass("clear", [&](PassBuilder& b) {
     b.write(targets.color);
-    targets.depth = b.create("scene_depth", TextureDesc{.width = rendered_width, .height = rendered_height,
-                                                         .format = TextureFormat::depth32f, .linear_filter = false});
+    targets.depth = b.create("scene_depth", TextureDesc{.width = rendered_width,
+                                                        .height = rendered_height,
+                                                        .format = TextureFormat::depth32f,
+                                                        .linear_filter = false});
   }, [&, targets_copy = &targets](PassContext& pc) {
     Framebuffer fb(&pc.texture(targets_copy->color), &pc.texture(targets_copy->depth));
     fb.bind();
@@ -116,12 +127,16 @@ FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height
   const FrameView& view = ctx_.view;
   const ToneMap tone_map{.tonemapper = int(view.tonemapper), .exposure = view.exposure};
   const PassForm tonemap_form = ctx_.forms.of("tonemap");
-  graph.add_pass("tonemap", [&](PassBuilder& b) {
-    b.read(targets.color);
-    b.write(output);
-  }, [&, this](PassContext& pc) {
-    run_tonemap(ctx_.shaders, ctx_.empty_vao.id(), pc.texture(targets.color), pc.texture(output), tone_map, tonemap_form);
-  });
+  graph.add_pass(
+      "tonemap",
+      [&](PassBuilder& b) {
+        b.read(targets.color);
+        b.write(output);
+      },
+      [&, this](PassContext& pc) {
+        run_tonemap(ctx_.shaders, ctx_.empty_vao.id(), pc.texture(targets.color), pc.texture(output),
+                    tone_map, tonemap_form);
+      });
   graph.present(output);
   graph.compile();
   graph.execute(ctx_.backend);
@@ -130,8 +145,9 @@ FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height
   result.timings = graph.timings();
   ctx_.last_timings = result.timings;
   result.culled_passes = graph.culled_passes();
-  result.cpu_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count() -
-                  ctx_.backend.waited_ms();
+  result.cpu_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count() -
+      ctx_.backend.waited_ms();
   return result;
 }
 

@@ -18,13 +18,27 @@ GLint Program::location(const std::string& u) const {
 }
 void Program::set(const std::string& u, float v) const { glProgramUniform1f(id(), location(u), v); }
 void Program::set(const std::string& u, int v) const { glProgramUniform1i(id(), location(u), v); }
-void Program::set(const std::string& u, const glm::vec2& v) const { glProgramUniform2fv(id(), location(u), 1, glm::value_ptr(v)); }
-void Program::set(const std::string& u, const glm::vec3& v) const { glProgramUniform3fv(id(), location(u), 1, glm::value_ptr(v)); }
-void Program::set(const std::string& u, const glm::vec4& v) const { glProgramUniform4fv(id(), location(u), 1, glm::value_ptr(v)); }
-void Program::set(const std::string& u, const glm::ivec2& v) const { glProgramUniform2iv(id(), location(u), 1, glm::value_ptr(v)); }
-void Program::set(const std::string& u, const glm::ivec3& v) const { glProgramUniform3iv(id(), location(u), 1, glm::value_ptr(v)); }
-void Program::set(const std::string& u, const glm::mat3& v) const { glProgramUniformMatrix3fv(id(), location(u), 1, GL_FALSE, glm::value_ptr(v)); }
-void Program::set(const std::string& u, const glm::mat4& v) const { glProgramUniformMatrix4fv(id(), location(u), 1, GL_FALSE, glm::value_ptr(v)); }
+void Program::set(const std::string& u, const glm::vec2& v) const {
+  glProgramUniform2fv(id(), location(u), 1, glm::value_ptr(v));
+}
+void Program::set(const std::string& u, const glm::vec3& v) const {
+  glProgramUniform3fv(id(), location(u), 1, glm::value_ptr(v));
+}
+void Program::set(const std::string& u, const glm::vec4& v) const {
+  glProgramUniform4fv(id(), location(u), 1, glm::value_ptr(v));
+}
+void Program::set(const std::string& u, const glm::ivec2& v) const {
+  glProgramUniform2iv(id(), location(u), 1, glm::value_ptr(v));
+}
+void Program::set(const std::string& u, const glm::ivec3& v) const {
+  glProgramUniform3iv(id(), location(u), 1, glm::value_ptr(v));
+}
+void Program::set(const std::string& u, const glm::mat3& v) const {
+  glProgramUniformMatrix3fv(id(), location(u), 1, GL_FALSE, glm::value_ptr(v));
+}
+void Program::set(const std::string& u, const glm::mat4& v) const {
+  glProgramUniformMatrix4fv(id(), location(u), 1, GL_FALSE, glm::value_ptr(v));
+}
 
 void ShaderLibrary::add_search_dir(const std::filesystem::path& dir, bool front) {
   for (const auto& d : dirs_)
@@ -40,8 +54,8 @@ constexpr std::string_view kGeneratedPrefix = "<generated>/";
 constexpr uint64_t kMaxShaderFileBytes = 4u << 20;  // one shader source file
 }  // namespace
 
-void ShaderLibrary::set_environment(std::map<std::string, std::string> generated_files, ShaderDefines global_defines,
-                                    uint64_t version) {
+void ShaderLibrary::set_environment(std::map<std::string, std::string> generated_files,
+                                    ShaderDefines global_defines, uint64_t version) {
   environment_version_ = version;
   if (generated_files == generated_ && global_defines == global_defines_) return;
   generated_ = std::move(generated_files);
@@ -49,7 +63,8 @@ void ShaderLibrary::set_environment(std::map<std::string, std::string> generated
   cache_.clear();
 }
 
-std::filesystem::path ShaderLibrary::find(const std::string& file, const std::filesystem::path& beside) const {
+std::filesystem::path ShaderLibrary::find(const std::string& file,
+                                          const std::filesystem::path& beside) const {
   if (generated_.count(file)) return std::string(kGeneratedPrefix) + file;
   std::error_code ec;
   for (const auto& d : dirs_)
@@ -58,8 +73,8 @@ std::filesystem::path ShaderLibrary::find(const std::string& file, const std::fi
   return {};
 }
 
-void ShaderLibrary::expand(const std::filesystem::path& path, ShaderSource& out, std::vector<std::string>& stack,
-                           std::vector<std::string>& once) const {
+void ShaderLibrary::expand(const std::filesystem::path& path, ShaderSource& out,
+                           std::vector<std::string>& stack, std::vector<std::string>& once) const {
   const std::string name = path.string();
   const bool is_generated = name.rfind(kGeneratedPrefix, 0) == 0;
   std::istringstream in(is_generated ? generated_.at(name.substr(kGeneratedPrefix.size()))
@@ -83,10 +98,12 @@ void ShaderLibrary::expand(const std::filesystem::path& path, ShaderSource& out,
       const bool inc_generated = inc.string().rfind(kGeneratedPrefix, 0) == 0;
       std::string key = inc_generated ? inc.string() : std::filesystem::weakly_canonical(inc).string();
       if (std::find(stack.begin(), stack.end(), inc.string()) != stack.end())
-        throw Error(ErrorInfo{.file = path.string() + ":" + std::to_string(line_no), .message = "recursive #include"});
+        throw Error(ErrorInfo{.file = path.string() + ":" + std::to_string(line_no),
+                              .message = "recursive #include"});
       bool seen = false;
       for (const auto& o : once)
-        seen = seen || (o.rfind(kGeneratedPrefix, 0) == 0 ? o : std::filesystem::weakly_canonical(o).string()) == key;
+        seen = seen ||
+               (o.rfind(kGeneratedPrefix, 0) == 0 ? o : std::filesystem::weakly_canonical(o).string()) == key;
       if (!seen) expand(inc, out, stack, once);  // every include behaves as #pragma once
       out.text += "#line " + std::to_string(line_no + 1) + " " + std::to_string(index) + "\n";
     } else if (line.find("#pragma once") != std::string::npos) {
@@ -155,7 +172,8 @@ Program link_program(const std::vector<std::pair<GLenum, ShaderSource>>& stages)
       glDeleteShader(sh);
       for (GLuint s : shaders) glDeleteShader(s);
       std::string mapped = map_log(log.c_str(), src.files);
-      throw Error(ErrorInfo{.file = src.files.empty() ? "" : src.files.back(), .message = "shader compile failed:\n" + mapped});
+      throw Error(ErrorInfo{.file = src.files.empty() ? "" : src.files.back(),
+                            .message = "shader compile failed:\n" + mapped});
     }
     glAttachShader(prog, sh);
     shaders.push_back(sh);
@@ -169,7 +187,8 @@ Program link_program(const std::vector<std::pair<GLenum, ShaderSource>>& stages)
     glGetProgramiv(prog, GL_INFO_LOG_LENGTH, &len);
     std::string log(size_t(std::max(len, 1)), '\0');
     glGetProgramInfoLog(prog, len, nullptr, log.data());
-    throw Error(ErrorInfo{.file = stages.empty() ? "" : stages.front().second.files.front(), .message = "shader link failed:\n" + std::string(log.c_str())});
+    throw Error(ErrorInfo{.file = stages.empty() ? "" : stages.front().second.files.front(),
+                          .message = "shader link failed:\n" + std::string(log.c_str())});
   }
   return program;
 }
@@ -189,14 +208,15 @@ const Program& ShaderLibrary::compute(const std::string& file, const ShaderDefin
   return *slot;
 }
 
-const Program& ShaderLibrary::graphics(const std::string& vs, const std::string& fs, const ShaderDefines& defines) {
+const Program& ShaderLibrary::graphics(const std::string& vs, const std::string& fs,
+                                       const ShaderDefines& defines) {
   auto& slot = cache_[cache_key({vs, fs}, defines)];
   if (!slot) {
     ShaderDefines vdefs = defines, fdefs = defines;
     vdefs["WELKIN_VERTEX_SHADER"] = "1";
     fdefs["WELKIN_FRAGMENT_SHADER"] = "1";
-    slot = std::make_unique<Program>(
-        link_program({{GL_VERTEX_SHADER, preprocess(vs, vdefs)}, {GL_FRAGMENT_SHADER, preprocess(fs, fdefs)}}));
+    slot = std::make_unique<Program>(link_program(
+        {{GL_VERTEX_SHADER, preprocess(vs, vdefs)}, {GL_FRAGMENT_SHADER, preprocess(fs, fdefs)}}));
   }
   return *slot;
 }

@@ -20,7 +20,8 @@ bool parse_index(std::string_view s, size_t& out) {
   return r.ec == std::errc() && r.ptr == s.data() + s.size();
 }
 
-[[noreturn]] void bad_path(const std::string& resolved, std::string_view segment, const std::string& expected) {
+[[noreturn]] void bad_path(const std::string& resolved, std::string_view segment,
+                           const std::string& expected) {
   throw Error(ErrorInfo{.path = resolved + "/" + std::string(segment), .expected = expected,
                         .found = "'" + std::string(segment) + "'", .message = "no such field"});
 }
@@ -58,7 +59,10 @@ FieldRef resolve_field(const TypeDesc& type, void* object, std::string_view path
       const TypeDesc* et = ref.field->element;
       void* eobj = ref.field->array.at(ref.value, i);
       resolved += "/" + std::string(seg);
-      if (path.empty()) throw Error(ErrorInfo{.path = resolved, .message = "path ends at an array element; name one of its fields (" + field_names(*et) + ")"});
+      if (path.empty())
+        throw Error(ErrorInfo{
+            .path = resolved,
+            .message = "path ends at an array element; name one of its fields (" + field_names(*et) + ")"});
       size_t s2 = path.find('/');
       std::string_view fseg = path.substr(0, s2);
       path = s2 == std::string_view::npos ? std::string_view{} : path.substr(s2 + 1);
@@ -70,7 +74,8 @@ FieldRef resolve_field(const TypeDesc& type, void* object, std::string_view path
     } else if (field_kind_arity(ref.field->kind) > 1 && ref.component < 0) {
       size_t i = 0;
       if (!parse_index(seg, i) || i >= size_t(field_kind_arity(ref.field->kind)))
-        bad_path(resolved, seg, "a component index below " + std::to_string(field_kind_arity(ref.field->kind)));
+        bad_path(resolved, seg,
+                 "a component index below " + std::to_string(field_kind_arity(ref.field->kind)));
       ref.component = int(i);
     } else {
       bad_path(resolved, seg, "end of path (" + ref.field->name + " has no parts)");
@@ -101,7 +106,9 @@ bool FieldRef::is_scalar() const {
 }
 
 double FieldRef::get_scalar() const {
-  if (!is_scalar()) throw Error(ErrorInfo{.path = path, .expected = "a numeric field", .found = field_kind_name(field->kind)});
+  if (!is_scalar())
+    throw Error(
+        ErrorInfo{.path = path, .expected = "a numeric field", .found = field_kind_name(field->kind)});
   switch (field->kind) {
     case FieldKind::boolean: return *static_cast<bool*>(value) ? 1.0 : 0.0;
     case FieldKind::integer:
@@ -114,15 +121,20 @@ double FieldRef::get_scalar() const {
 }
 
 void FieldRef::set_scalar(double v) const {
-  if (!is_scalar()) throw Error(ErrorInfo{.path = path, .expected = "a numeric field", .found = field_kind_name(field->kind)});
+  if (!is_scalar())
+    throw Error(
+        ErrorInfo{.path = path, .expected = "a numeric field", .found = field_kind_name(field->kind)});
   if (field->kind == FieldKind::enumeration) {
-    if (!field->enum_by_value(int(v))) throw Error(ErrorInfo{.path = path, .expected = "a valid enumeration value", .found = std::to_string(v)});
+    if (!field->enum_by_value(int(v)))
+      throw Error(
+          ErrorInfo{.path = path, .expected = "a valid enumeration value", .found = std::to_string(v)});
     *static_cast<int*>(value) = int(v);
     return;
   }
   json j = v;
   if (field->kind == FieldKind::integer) {
-    if (v != std::floor(v)) throw Error(ErrorInfo{.path = path, .expected = "integer", .found = std::to_string(v)});
+    if (v != std::floor(v))
+      throw Error(ErrorInfo{.path = path, .expected = "integer", .found = std::to_string(v)});
     j = int64_t(v);
   }
   if (field->kind == FieldKind::boolean) j = v != 0.0;

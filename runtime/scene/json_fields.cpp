@@ -48,7 +48,8 @@ double read_number(const json& j, const FieldDesc& f, const std::string& path) {
 template <class V> void read_vector(const json& j, const FieldDesc& f, V& out, const std::string& path) {
   int n = field_kind_arity(f.kind);
   if (!j.is_array() || int(j.size()) != n) fail(path, field_kind_name(f.kind), describe_json(j));
-  for (int i = 0; i < n; ++i) out[i] = typename V::value_type(read_number(j[i], f, path + "/" + std::to_string(i)));
+  for (int i = 0; i < n; ++i)
+    out[i] = typename V::value_type(read_number(j[i], f, path + "/" + std::to_string(i)));
 }
 
 void read_field(const FieldDesc& f, void* p, const json& j, const std::string& path) {
@@ -91,7 +92,8 @@ void read_field(const FieldDesc& f, void* p, const json& j, const std::string& p
     case FieldKind::array: {
       if (!j.is_array()) fail(path, "array of " + f.element->name + " objects", describe_json(j));
       if (j.size() > f.max_count)
-        fail(path, "at most " + std::to_string(f.max_count) + " elements", std::to_string(j.size()) + " elements");
+        fail(path, "at most " + std::to_string(f.max_count) + " elements",
+             std::to_string(j.size()) + " elements");
       f.array.resize(p, j.size());
       for (size_t i = 0; i < j.size(); ++i) {
         std::string ep = path + "/" + std::to_string(i);
@@ -127,7 +129,9 @@ void check_fields(const TypeDesc& type, const void* object, const std::string& p
     auto check = [&](double v, const std::string& at) {
       if (!std::isfinite(v)) fail(at, "finite number", number_text(v));
       if ((f.min && v < *f.min) || (f.max && v > *f.max))
-        fail(at, "number in [" + number_text(f.min.value_or(-INFINITY)) + ", " + number_text(f.max.value_or(INFINITY)) + "]",
+        fail(at,
+             "number in [" + number_text(f.min.value_or(-INFINITY)) + ", " +
+                 number_text(f.max.value_or(INFINITY)) + "]",
              number_text(v), "value out of range");
     };
     int n = field_kind_arity(f.kind);
@@ -145,12 +149,15 @@ void check_fields(const TypeDesc& type, const void* object, const std::string& p
         for (int i = 0; i < 3; ++i) check(static_cast<const double*>(p)[i], fp + "/" + std::to_string(i));
         break;
       case FieldKind::enumeration:
-        if (!f.enum_by_value(*static_cast<const int*>(p))) fail(fp, "a declared enumeration value", std::to_string(*static_cast<const int*>(p)));
+        if (!f.enum_by_value(*static_cast<const int*>(p)))
+          fail(fp, "a declared enumeration value", std::to_string(*static_cast<const int*>(p)));
         break;
       case FieldKind::array: {
         size_t count = f.array.size(p);
-        if (count > f.max_count) fail(fp, "at most " + std::to_string(f.max_count) + " elements", std::to_string(count));
-        for (size_t i = 0; i < count; ++i) check_fields(*f.element, f.array.at(const_cast<void*>(p), i), fp + "/" + std::to_string(i));
+        if (count > f.max_count)
+          fail(fp, "at most " + std::to_string(f.max_count) + " elements", std::to_string(count));
+        for (size_t i = 0; i < count; ++i)
+          check_fields(*f.element, f.array.at(const_cast<void*>(p), i), fp + "/" + std::to_string(i));
         break;
       }
       case FieldKind::object: check_fields(*f.element, p, fp); break;
@@ -193,7 +200,8 @@ json field_to_json(const FieldDesc& f, const void* p) {
     case FieldKind::color:
     case FieldKind::vec4: {
       json a = json::array();
-      for (int i = 0; i < field_kind_arity(f.kind); ++i) a.push_back(float_json(static_cast<const float*>(p)[i]));
+      for (int i = 0; i < field_kind_arity(f.kind); ++i)
+        a.push_back(float_json(static_cast<const float*>(p)[i]));
       return a;
     }
     case FieldKind::dvec3: {
@@ -208,7 +216,8 @@ json field_to_json(const FieldDesc& f, const void* p) {
     case FieldKind::array: {
       json a = json::array();
       void* vec = const_cast<void*>(p);
-      for (size_t i = 0; i < f.array.size(p); ++i) a.push_back(object_to_json(*f.element, f.array.at(vec, i)));
+      for (size_t i = 0; i < f.array.size(p); ++i)
+        a.push_back(object_to_json(*f.element, f.array.at(vec, i)));
       return a;
     }
     case FieldKind::object: return object_to_json(*f.element, p);
@@ -231,7 +240,8 @@ void object_from_json(const TypeDesc& type, void* object, const json& j) {
     if (!f) {
       std::string names;
       for (const auto& fd : type.fields) names += (names.empty() ? "" : ", ") + fd.name;
-      fail("/" + it.key(), "a field of " + type.name + " (" + names + ")", "'" + it.key() + "'", "unknown field");
+      fail("/" + it.key(), "a field of " + type.name + " (" + names + ")", "'" + it.key() + "'",
+           "unknown field");
     }
     read_field(*f, f->ptr(object), it.value(), "/" + it.key());
   }
@@ -353,7 +363,8 @@ json parse_json_unique_keys(std::string_view text) {
 
 json parse_json_text(const std::string& text, const std::string& file) {
   if (text.size() > kMaxJsonBytes)
-    throw Error(ErrorInfo{.file = file, .expected = "JSON of at most " + std::to_string(kMaxJsonBytes) + " bytes",
+    throw Error(ErrorInfo{.file = file,
+                          .expected = "JSON of at most " + std::to_string(kMaxJsonBytes) + " bytes",
                           .found = std::to_string(text.size()) + " bytes"});
   if (size_t at = too_deep_at(text, kMaxJsonDepth); at != std::string::npos)
     throw Error(ErrorInfo{.file = file + ":" + line_column(text, at),
@@ -362,14 +373,18 @@ json parse_json_text(const std::string& text, const std::string& file) {
   try {
     return parse_json_unique_keys(text);
   } catch (const DuplicateJsonKey& d) {
-    throw Error(ErrorInfo{.file = file, .path = d.path, .expected = "each key once per object", .found = "a duplicate key",
+    throw Error(ErrorInfo{.file = file,
+                          .path = d.path,
+                          .expected = "each key once per object",
+                          .found = "a duplicate key",
                           .message = "duplicate key"});
   } catch (const json::parse_error& e) {
     std::string what = e.what();
     if (auto pos = what.find("syntax error"); pos != std::string::npos) what = what.substr(pos);
     bool truncated = e.byte >= text.size();
-    throw Error(ErrorInfo{.file = file + ":" + line_column(text, e.byte ? e.byte - 1 : 0),
-                          .message = std::string(truncated ? "truncated or malformed JSON: " : "malformed JSON: ") + what});
+    throw Error(ErrorInfo{
+        .file = file + ":" + line_column(text, e.byte ? e.byte - 1 : 0),
+        .message = std::string(truncated ? "truncated or malformed JSON: " : "malformed JSON: ") + what});
   } catch (const json::exception& e) {
     // e.g. a number too large for a double ("1e999"): nlohmann reports no position for these.
     std::string what = e.what();

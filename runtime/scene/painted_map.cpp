@@ -10,7 +10,9 @@
 
 namespace welkin {
 
-uint8_t PaintedMap::maximum() const { return texels.empty() ? 0 : *std::max_element(texels.begin(), texels.end()); }
+uint8_t PaintedMap::maximum() const {
+  return texels.empty() ? 0 : *std::max_element(texels.begin(), texels.end());
+}
 
 glm::dmat3 MapFrame::axes() const {
   const glm::dvec3 up = glm::normalize(-planet_center_m);
@@ -45,8 +47,10 @@ const PaintedMap& PaintedMaps::get(const std::string& file) {
   if (auto it = maps_.find(file); it != maps_.end()) return it->second;
   const ImageU8 image = read_png(file, kMaxPaintedMapSide);  // the side checked before decoding
   if (image.width != image.height || image.width > kMaxPaintedMapSide)
-    throw Error(ErrorInfo{.file = file, .expected = "a square map of at most " + std::to_string(kMaxPaintedMapSide) + " texels a side",
-                          .found = std::to_string(image.width) + " x " + std::to_string(image.height)});
+    throw Error(ErrorInfo{
+        .file = file,
+        .expected = "a square map of at most " + std::to_string(kMaxPaintedMapSide) + " texels a side",
+        .found = std::to_string(image.width) + " x " + std::to_string(image.height)});
   PaintedMap map;
   map.side = image.width;
   map.texels.resize(size_t(map.side) * size_t(map.side));
@@ -62,10 +66,13 @@ PaintedMap& PaintedMaps::edit(const std::string& file) {
 
 PaintedMap& PaintedMaps::create(const std::string& file, int side) {
   if (side < 1 || side > kMaxPaintedMapSide)
-    throw Error(ErrorInfo{.file = file, .expected = "1 to " + std::to_string(kMaxPaintedMapSide) + " texels a side", .found = std::to_string(side)});
+    throw Error(ErrorInfo{.file = file,
+                          .expected = "1 to " + std::to_string(kMaxPaintedMapSide) + " texels a side",
+                          .found = std::to_string(side)});
   PaintedMap& map = maps_[file];
   const uint64_t revision = map.revision;
-  map = PaintedMap{.side = side, .texels = std::vector<uint8_t>(size_t(side) * size_t(side), kPaintedMapNeutral)};
+  map = PaintedMap{.side = side,
+                   .texels = std::vector<uint8_t>(size_t(side) * size_t(side), kPaintedMapNeutral)};
   map.revision = revision + 1;
   map.unsaved = true;
   return map;
@@ -103,8 +110,8 @@ MapRegion copy_region(const PaintedMap& map, int x, int y, int width, int height
 namespace {
 // Copies r into the texels of a rectangle at (x0, y0) of width x height.
 void paste_into(std::vector<uint8_t>& texels, int x0, int y0, int width, int height, const MapRegion& r) {
-  if (r.x < x0 || r.y < y0 || r.width < 0 || r.height < 0 || r.x + r.width > x0 + width || r.y + r.height > y0 + height ||
-      r.texels.size() != size_t(r.width) * size_t(r.height))
+  if (r.x < x0 || r.y < y0 || r.width < 0 || r.height < 0 || r.x + r.width > x0 + width ||
+      r.y + r.height > y0 + height || r.texels.size() != size_t(r.width) * size_t(r.height))
     throw Error(ErrorInfo{.message = "a map region that does not fit where it is pasted"});
   for (int j = 0; j < r.height; ++j)
     std::copy_n(&r.texels[size_t(j) * size_t(r.width)], r.width,
@@ -112,12 +119,18 @@ void paste_into(std::vector<uint8_t>& texels, int x0, int y0, int width, int hei
 }
 }  // namespace
 
-void paste_region(PaintedMap& map, const MapRegion& r) { paste_into(map.texels, 0, 0, map.side, map.side, r); }
-void paste_region(MapRegion& into, const MapRegion& r) { paste_into(into.texels, into.x, into.y, into.width, into.height, r); }
+void paste_region(PaintedMap& map, const MapRegion& r) {
+  paste_into(map.texels, 0, 0, map.side, map.side, r);
+}
+void paste_region(MapRegion& into, const MapRegion& r) {
+  paste_into(into.texels, into.x, into.y, into.width, into.height, r);
+}
 
 MapRegion brush_bounds(const PaintedMap& map, const BrushStamp& s) {
-  const int x0 = std::max(0, int(std::floor(s.cx - s.radius_texels))), x1 = std::min(map.side, int(std::ceil(s.cx + s.radius_texels)));
-  const int y0 = std::max(0, int(std::floor(s.cy - s.radius_texels))), y1 = std::min(map.side, int(std::ceil(s.cy + s.radius_texels)));
+  const int x0 = std::max(0, int(std::floor(s.cx - s.radius_texels))),
+            x1 = std::min(map.side, int(std::ceil(s.cx + s.radius_texels)));
+  const int y0 = std::max(0, int(std::floor(s.cy - s.radius_texels))),
+            y1 = std::min(map.side, int(std::ceil(s.cy + s.radius_texels)));
   if (x1 <= x0 || y1 <= y0) return {};
   return {x0, y0, x1 - x0, y1 - y0, {}};
 }

@@ -17,13 +17,17 @@ namespace {
 
 [[noreturn]] void fail(const std::string& file, const std::string& path, const std::string& expected,
                        const json& found, const std::string& message = {}) {
-  throw Error(ErrorInfo{.file = file, .path = path, .expected = expected, .found = describe_json(found), .message = message});
+  throw Error(ErrorInfo{
+      .file = file, .path = path, .expected = expected, .found = describe_json(found), .message = message});
 }
 
 const json& require_key(const json& obj, const char* key, const std::string& file, const std::string& path) {
   auto it = obj.find(key);
   if (it == obj.end())
-    throw Error(ErrorInfo{.file = file, .path = path + "/" + key, .expected = std::string("key \"") + key + "\"", .found = "nothing"});
+    throw Error(ErrorInfo{.file = file,
+                          .path = path + "/" + key,
+                          .expected = std::string("key \"") + key + "\"",
+                          .found = "nothing"});
   return *it;
 }
 
@@ -34,7 +38,8 @@ void check_header(const json& doc, const std::string& file) {
     fail(file, "/welkin_scene", "scene format version " + std::to_string(kSceneFormatVersion), v);
   for (auto it = doc.begin(); it != doc.end(); ++it)
     if (it.key() != "welkin_scene" && it.key() != "entities" && it.key() != "modules")
-      fail(file, "/" + it.key(), "one of \"welkin_scene\", \"modules\", \"entities\"", json(it.key()), "unknown key");
+      fail(file, "/" + it.key(), "one of \"welkin_scene\", \"modules\", \"entities\"", json(it.key()),
+           "unknown key");
   const json& ents = require_key(doc, "entities", file, "");
   if (!ents.is_array()) fail(file, "/entities", "array of entities", ents);
 }
@@ -48,7 +53,8 @@ template <class Fn> void check_shape(const json& doc, const std::string& file, F
     if (!ents[i].is_object()) fail(file, "/entities/" + std::to_string(i), "entity object", ents[i]);
     auto comps = ents[i].find("components");
     if (comps == ents[i].end()) continue;
-    if (!comps->is_object()) fail(file, "/entities/" + std::to_string(i) + "/components", "object of components", *comps);
+    if (!comps->is_object())
+      fail(file, "/entities/" + std::to_string(i) + "/components", "object of components", *comps);
     components(*comps);
   }
 }
@@ -57,7 +63,8 @@ template <class Fn> void check_shape(const json& doc, const std::string& file, F
 
 std::vector<std::string> scene_component_names(const json& doc, const std::string& file) {
   std::vector<std::string> names;
-  std::unordered_set<std::string_view> seen;  // a scene may name very many components: no linear search per name
+  std::unordered_set<std::string_view>
+      seen;  // a scene may name very many components: no linear search per name
   check_shape(doc, file, [&](const json& comps) {
     for (auto it = comps.begin(); it != comps.end(); ++it)
       if (seen.insert(it.key()).second) names.push_back(it.key());
@@ -106,7 +113,8 @@ void load_scene(World& world, const json& doc, const std::string& file) {
         std::string cp = ep + "/components/" + it.key();
         try {
           const ComponentInfo& info = world.modules().require_component(it.key());
-          if (reg.has(e, info.type->id)) fail(file, cp, "each component once per entity", json(it.key()), "duplicate component");
+          if (reg.has(e, info.type->id))
+            fail(file, cp, "each component once per entity", json(it.key()), "duplicate component");
           object_from_json(*info.type, reg.emplace(e, *info.type), it.value());
         } catch (const Error& err) {
           throw err.with_file(file).with_path_prefix(err.info().file.empty() ? cp : "");

@@ -15,9 +15,10 @@ using nlohmann::json;
 
 namespace {
 
-[[noreturn]] void fail(const std::string& file, const std::string& path, const std::string& expected, const json& found,
-                       const std::string& message = {}) {
-  throw Error(ErrorInfo{.file = file, .path = path, .expected = expected, .found = describe_json(found), .message = message});
+[[noreturn]] void fail(const std::string& file, const std::string& path, const std::string& expected,
+                       const json& found, const std::string& message = {}) {
+  throw Error(ErrorInfo{
+      .file = file, .path = path, .expected = expected, .found = describe_json(found), .message = message});
 }
 
 double finite_number(const json& j, const std::string& file, const std::string& path) {
@@ -38,9 +39,11 @@ E parse_enum(const json& j, const std::vector<std::pair<const char*, E>>& names,
   fail(file, path, "one of " + all, j);
 }
 
-void check_keys(const json& obj, std::initializer_list<const char*> allowed, const std::string& file, const std::string& path) {
+void check_keys(const json& obj, std::initializer_list<const char*> allowed, const std::string& file,
+                const std::string& path) {
   for (auto it = obj.begin(); it != obj.end(); ++it)
-    if (std::find_if(allowed.begin(), allowed.end(), [&](const char* a) { return it.key() == a; }) == allowed.end()) {
+    if (std::find_if(allowed.begin(), allowed.end(), [&](const char* a) { return it.key() == a; }) ==
+        allowed.end()) {
       std::string names;
       for (const char* a : allowed) names += (names.empty() ? "" : ", ") + std::string("\"") + a + "\"";
       fail(file, path + "/" + it.key(), "one of " + names, json(it.key()), "unknown key");
@@ -76,7 +79,8 @@ Sequence parse_sequence(const json& doc, const std::string& file) {
   Sequence seq;
   seq.file = file;
   auto tracks = doc.find("tracks");
-  if (tracks == doc.end() || !tracks->is_array()) fail(file, "/tracks", "array of tracks", tracks == doc.end() ? json() : *tracks);
+  if (tracks == doc.end() || !tracks->is_array())
+    fail(file, "/tracks", "array of tracks", tracks == doc.end() ? json() : *tracks);
   double last_key = 0;
   for (size_t i = 0; i < tracks->size(); ++i) {
     std::string tp = "/tracks/" + std::to_string(i);
@@ -86,7 +90,8 @@ Sequence parse_sequence(const json& doc, const std::string& file) {
     Track tr;
     tr.json_path = tp;
     auto target = tj.find("target");
-    if (target == tj.end() || !target->is_string()) fail(file, tp + "/target", "\"component/field/path\"", target == tj.end() ? json() : *target);
+    if (target == tj.end() || !target->is_string())
+      fail(file, tp + "/target", "\"component/field/path\"", target == tj.end() ? json() : *target);
     std::string t = target->get<std::string>();
     auto slash = t.find('/');
     if (slash == std::string::npos || slash == 0 || slash + 1 == t.size())
@@ -98,8 +103,11 @@ Sequence parse_sequence(const json& doc, const std::string& file) {
       tr.entity = e->get<std::string>();
     }
     if (auto in = tj.find("interpolation"); in != tj.end())
-      tr.interpolation = parse_enum<Interpolation>(*in, {{"step", Interpolation::step}, {"linear", Interpolation::linear},
-                                                          {"smooth", Interpolation::smooth}, {"cubic", Interpolation::cubic}},
+      tr.interpolation = parse_enum<Interpolation>(*in,
+                                                   {{"step", Interpolation::step},
+                                                    {"linear", Interpolation::linear},
+                                                    {"smooth", Interpolation::smooth},
+                                                    {"cubic", Interpolation::cubic}},
                                                    file, tp + "/interpolation");
     if (auto w = tj.find("wrap"); w != tj.end()) {
       tr.wrap = finite_number(*w, file, tp + "/wrap");
@@ -110,7 +118,8 @@ Sequence parse_sequence(const json& doc, const std::string& file) {
       tr.optional = o->get<bool>();
     }
     auto keys = tj.find("keys");
-    if (keys == tj.end() || !keys->is_array()) fail(file, tp + "/keys", "array of keyframes", keys == tj.end() ? json() : *keys);
+    if (keys == tj.end() || !keys->is_array())
+      fail(file, tp + "/keys", "array of keyframes", keys == tj.end() ? json() : *keys);
     if (keys->empty()) fail(file, tp + "/keys", "at least one keyframe", *keys, "empty track");
     bool numeric = true;
     for (size_t k = 0; k < keys->size(); ++k) {
@@ -123,13 +132,15 @@ Sequence parse_sequence(const json& doc, const std::string& file) {
       key.t = finite_number(kj["t"], file, kp + "/t");
       if (key.t < 0) fail(file, kp + "/t", "time >= 0", kj["t"]);
       if (!tr.keys.empty() && key.t <= tr.keys.back().t)
-        fail(file, kp + "/t", "a time after " + std::to_string(tr.keys.back().t) + " s", kj["t"], "keyframes out of order");
+        fail(file, kp + "/t", "a time after " + std::to_string(tr.keys.back().t) + " s", kj["t"],
+             "keyframes out of order");
       if (!kj.contains("value")) fail(file, kp + "/value", "a value", json("nothing"));
       key.raw = kj["value"];
       if (key.raw.is_number()) {
         key.value = {finite_number(key.raw, file, kp + "/value")};
       } else if (key.raw.is_array()) {
-        for (size_t c = 0; c < key.raw.size(); ++c) key.value.push_back(finite_number(key.raw[c], file, kp + "/value/" + std::to_string(c)));
+        for (size_t c = 0; c < key.raw.size(); ++c)
+          key.value.push_back(finite_number(key.raw[c], file, kp + "/value/" + std::to_string(c)));
         if (key.value.empty()) fail(file, kp + "/value", "a non-empty array", key.raw);
       } else if (key.raw.is_string() || key.raw.is_boolean()) {
         numeric = false;
@@ -137,14 +148,20 @@ Sequence parse_sequence(const json& doc, const std::string& file) {
         fail(file, kp + "/value", "number, array of numbers, boolean or enumeration name", key.raw);
       }
       if (!tr.keys.empty() && numeric && key.value.size() != tr.keys.back().value.size())
-        fail(file, kp + "/value", std::to_string(tr.keys.back().value.size()) + " components like the previous key", key.raw);
+        fail(file, kp + "/value",
+             std::to_string(tr.keys.back().value.size()) + " components like the previous key", key.raw);
       if (auto e = kj.find("easing"); e != kj.end())
-        key.easing = parse_enum<Easing>(*e, {{"none", Easing::none}, {"ease_in", Easing::ease_in}, {"ease_out", Easing::ease_out},
-                                              {"ease_in_out", Easing::ease_in_out}}, file, kp + "/easing");
+        key.easing = parse_enum<Easing>(*e,
+                                        {{"none", Easing::none},
+                                         {"ease_in", Easing::ease_in},
+                                         {"ease_out", Easing::ease_out},
+                                         {"ease_in_out", Easing::ease_in_out}},
+                                        file, kp + "/easing");
       tr.keys.push_back(std::move(key));
     }
     if (!numeric && tr.interpolation != Interpolation::step)
-      fail(file, tp + "/interpolation", "\"step\" for non-numeric values", tj.value("interpolation", json("linear")));
+      fail(file, tp + "/interpolation", "\"step\" for non-numeric values",
+           tj.value("interpolation", json("linear")));
     last_key = std::max(last_key, tr.keys.back().t);
     seq.tracks.push_back(std::move(tr));
   }
@@ -162,7 +179,10 @@ std::vector<double> evaluate_track(const Track& tr, double t) {
   const auto& k = tr.keys;
   if (t <= k.front().t || k.size() == 1) return k.front().value;
   if (t >= k.back().t) return k.back().value;
-  size_t i = size_t(std::upper_bound(k.begin(), k.end(), t, [](double x, const Keyframe& key) { return x < key.t; }) - k.begin()) - 1;
+  size_t i = size_t(std::upper_bound(k.begin(), k.end(), t,
+                                     [](double x, const Keyframe& key) { return x < key.t; }) -
+                    k.begin()) -
+             1;
   const Keyframe& a = k[i];
   const Keyframe& b = k[i + 1];
   if (tr.interpolation == Interpolation::step) return a.value;
@@ -184,7 +204,8 @@ std::vector<double> evaluate_track(const Track& tr, double t) {
       double m0 = i > 0 ? (p1 - value_at(i - 1, c, p0)) / (b.t - k[i - 1].t) : (p1 - p0) / dt;
       double m1 = i + 2 < k.size() ? (value_at(i + 2, c, p1) - p0) / (k[i + 2].t - a.t) : (p1 - p0) / dt;
       double u2 = u * u, u3 = u2 * u;
-      v = (2 * u3 - 3 * u2 + 1) * p0 + (u3 - 2 * u2 + u) * dt * m0 + (-2 * u3 + 3 * u2) * p1 + (u3 - u2) * dt * m1;
+      v = (2 * u3 - 3 * u2 + 1) * p0 + (u3 - 2 * u2 + u) * dt * m0 + (-2 * u3 + 3 * u2) * p1 +
+          (u3 - u2) * dt * m1;
     } else {
       v = p0 + (p1 - p0) * u;
     }
@@ -235,7 +256,8 @@ void apply_sequence(const Sequence& seq, World& world, double t) {
       std::vector<double> v = evaluate_track(tr, t);
       FieldKind kind = ref.field->kind;
       if (v.size() == 1) {
-        bool integral = kind == FieldKind::integer || kind == FieldKind::enumeration || kind == FieldKind::boolean;
+        bool integral =
+            kind == FieldKind::integer || kind == FieldKind::enumeration || kind == FieldKind::boolean;
         ref.set_scalar(integral && ref.component < 0 ? std::round(v[0]) : v[0]);
       } else {
         ref.set_json(json(v));

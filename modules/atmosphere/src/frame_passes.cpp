@@ -157,13 +157,15 @@ void background_system(SystemContext& sc) {
   std::string inputs;
   if (!draw_stars) {
     auto put = [&inputs](const auto& v) { inputs.append(reinterpret_cast<const char*>(&v), sizeof v); };
-    GpuUniforms sky_u = u;  // the sky is at infinity: the aerial-perspective volume's frustum is not its input
+    // the sky is at infinity: the aerial-perspective volume's frustum is not its input
+    GpuUniforms sky_u = u;
     sky_u.aerial_view_projection = sky_u.aerial_inverse_view_projection = glm::mat4(0.0f);
     put(sky_u), put(gpu.sky_view_builds), put(gpu.lut_builds), put(gpu.lut_cache_reads), put(pixel_angle);
     put(rc.view.width), put(rc.view.height), put(rc.full_precision);
     for (const auto& [k, v] : discs) inputs += k + "=" + v + ";";
   }
-  const TextureDesc color_desc{.width = rc.view.width, .height = rc.view.height, .format = rc.radiance_format()};
+  const TextureDesc color_desc{
+      .width = rc.view.width, .height = rc.view.height, .format = rc.radiance_format()};
   if (!gpu.kept_sky || !(gpu.kept_sky->desc() == color_desc)) {
     gpu.kept_sky = std::make_unique<Texture>(color_desc);
     gpu.kept_sky_inputs.clear();
@@ -208,7 +210,8 @@ void background_system(SystemContext& sc) {
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_BLEND);
         if (!compute) {
-          rcp->shaders.graphics("atmosphere/sky.vert", "atmosphere/sky.frag", ground_light ? open_sky : sky).use();
+          rcp->shaders.graphics("atmosphere/sky.vert", "atmosphere/sky.frag", ground_light ? open_sky : sky)
+              .use();
           rcp->draw_fullscreen_triangle();
         }
         if (any_disc && !compute) {

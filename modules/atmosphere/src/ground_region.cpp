@@ -41,7 +41,8 @@ PixelRect ground_pixel_rect(const GpuUniforms& u, int width, int height) {
   }
   if (x1 < 0) return {};
   const int mx = width / kCells + 2, my = height / kCells + 2;
-  return {std::max(x0 - mx, 0), std::max(y0 - my, 0), std::min(x1 + mx + 1, width), std::min(y1 + my + 1, height)};
+  return {std::max(x0 - mx, 0), std::max(y0 - my, 0), std::min(x1 + mx + 1, width),
+          std::min(y1 + my + 1, height)};
 }
 
 }  // namespace welkin::atmosphere

@@ -42,9 +42,10 @@ bool load_persistent_luts(const DiskCache& cache, const std::string& key, Atmosp
   const size_t t_bytes = float_bytes(*gpu.transmittance), ms_bytes = float_bytes(*gpu.multiscattering);
   const auto bytes = cache.read(key, t_bytes + ms_bytes);
   if (!bytes) return false;
-  for (auto [texture, offset] : {std::pair{gpu.transmittance.get(), size_t(0)}, {gpu.multiscattering.get(), t_bytes}})
-    glTextureSubImage2D(texture->id(), 0, 0, 0, texture->desc().width, texture->desc().height, GL_RGBA, GL_FLOAT,
-                        bytes->data() + offset);
+  for (auto [texture, offset] :
+       {std::pair{gpu.transmittance.get(), size_t(0)}, {gpu.multiscattering.get(), t_bytes}})
+    glTextureSubImage2D(texture->id(), 0, 0, 0, texture->desc().width, texture->desc().height, GL_RGBA,
+                        GL_FLOAT, bytes->data() + offset);
   return true;
 }
 
@@ -84,36 +85,34 @@ static uint64_t light_state(const AtmosphereGpu& gpu) {
 
 void add_light_term(World& world) {
   LightEnvironment& env = world.resource<LightEnvironment>();
-  env.add(LightTerm{.name = "atmosphere",
-                    .include = "atmosphere/light_term.glsl",
-                    .lights = "atmosphere",
-                    .priority = 10,
-                    .aerial_perspective = "atmosphere_term_aerial_perspective",
-                    .medium = "atmosphere_term_medium",
-                    .textures = {"atmosphere.transmittance", "atmosphere.multiscattering", "atmosphere.sky_view",
-                                 "atmosphere.aerial_inscattering", "atmosphere.aerial_transmittance",
-                                 "atmosphere.sky_irradiance"},
-                    .blocks = {"atmosphere"},
-                    .bind = [&world](const LightEnvironment&) { bind_for_materials(world.resource<AtmosphereGpu>()); },
-                    .state = [&world] { return light_state(world.resource<AtmosphereGpu>()); }});
-  world.resource<AtmosphereGpu>().bindings = {.block = env.block("atmosphere"),
-                                              .transmittance = env.unit("atmosphere.transmittance"),
-                                              .multiscattering = env.unit("atmosphere.multiscattering"),
-                                              .sky_view = env.unit("atmosphere.sky_view"),
-                                              .aerial_inscattering = env.unit("atmosphere.aerial_inscattering"),
-                                              .aerial_transmittance = env.unit("atmosphere.aerial_transmittance"),
-                                              .sky_irradiance = env.unit("atmosphere.sky_irradiance")};
+  env.add(LightTerm{
+      .name = "atmosphere",
+      .include = "atmosphere/light_term.glsl",
+      .lights = "atmosphere",
+      .priority = 10,
+      .aerial_perspective = "atmosphere_term_aerial_perspective",
+      .medium = "atmosphere_term_medium",
+      .textures = {"atmosphere.transmittance", "atmosphere.multiscattering", "atmosphere.sky_view",
+                   "atmosphere.aerial_inscattering", "atmosphere.aerial_transmittance",
+                   "atmosphere.sky_irradiance"},
+      .blocks = {"atmosphere"},
+      .bind = [&world](const LightEnvironment&) { bind_for_materials(world.resource<AtmosphereGpu>()); },
+      .state = [&world] { return light_state(world.resource<AtmosphereGpu>()); }});
+  world.resource<AtmosphereGpu>().bindings = {
+      .block = env.block("atmosphere"),
+      .transmittance = env.unit("atmosphere.transmittance"),
+      .multiscattering = env.unit("atmosphere.multiscattering"),
+      .sky_view = env.unit("atmosphere.sky_view"),
+      .aerial_inscattering = env.unit("atmosphere.aerial_inscattering"),
+      .aerial_transmittance = env.unit("atmosphere.aerial_transmittance"),
+      .sky_irradiance = env.unit("atmosphere.sky_irradiance")};
 }
 
-void lut_system(SystemContext& sc) {
-  Registry& reg = sc.world.registry();
-  const Atmosphere atm = *reg.get<Atmosphere>(reg.first<Atmosphere>());
-  const Entity sun_e = reg.first<Sun>(), moon_e = reg.first<Moon>(), stars_e = reg.first<Stars>();
-  const Sun* sun = sun_e.is_null() ? nullptr : reg.get<Sun>(sun_e);
-  const Moon* moon = moon_e.is_null() ? nullptr : reg.get<Moon>(moon_e);
-  const Stars* stars = stars_e.is_null() ? nullptr : reg.get<Stars>(stars_e);
-  // Values set in code or by other systems never passed the loaders' checks; a bad one is an error
-  // naming the field, not a black image.
+namespace {
+
+// Values set in code or by other systems never passed the loaders' checks; a bad one is an error
+// naming the field, not a black image.
+void check_inputs(const Atmosphere& atm, const Sun* sun, const Moon* moon, const Stars* stars) {
   auto check = [](const TypeDesc& type, const void* object) {
     try {
       check_object(type, object);
@@ -125,14 +124,10 @@ void lut_system(SystemContext& sc) {
   if (sun) check(type_desc<Sun>(), sun);
   if (moon) check(type_desc<Moon>(), moon);
   if (stars) check(type_desc<Stars>(), stars);
+}
 
-  auto& rc = sc.world.resource<RenderContext>();
-  auto& gpu = sc.world.resource<AtmosphereGpu>();
-  GpuUniforms u = make_uniforms(atm, sun, moon, rc.view);
-  choose_aerial_frustum(u, gpu.aerial_uniforms, gpu.aerial_valid, gpu.uniforms.view_projection, gpu.view_turned);
-  gpu.view_turned = u.view_projection != gpu.uniforms.view_projection;
-  const ResolvedQuality q = resolve_quality(atm);
-
+// The LUTs' textures at the quality's sizes; true when a persistent one was (re)allocated.
+bool ensure_lut_textures(AtmosphereGpu& gpu, const ResolvedQuality& q, const RenderContext& rc) {
   // Persistent textures. Transmittance is float: long grazing paths keep relative precision.
   bool resized = ensure_texture(
       gpu.transmittance,
@@ -143,7 +138,9 @@ void lut_system(SystemContext& sc) {
                             .format = TextureFormat::rgba32f};
   resized |= ensure_texture(gpu.multiscattering, ms_desc);
   if (q.multiscattering_iterations > 0) ensure_texture(gpu.multiscattering_scratch, ms_desc);
-  if (ensure_texture(gpu.sky_view, {.width = q.sky_view_width, .height = q.sky_view_height, .format = rc.radiance_format()}))
+  if (ensure_texture(
+          gpu.sky_view,
+          {.width = q.sky_view_width, .height = q.sky_view_height, .format = rc.radiance_format()}))
     glTextureParameteri(gpu.sky_view->id(), GL_TEXTURE_WRAP_S, GL_REPEAT);  // azimuth is periodic
   const TextureDesc froxels{.width = q.aerial_perspective_width,
                             .height = q.aerial_perspective_height,
@@ -153,6 +150,172 @@ void lut_system(SystemContext& sc) {
   ensure_texture(gpu.aerial_transmittance, froxels);
   ensure_texture(gpu.sky_irradiance,
                  {.width = 4, .height = 1, .format = TextureFormat::rgba32f, .linear_filter = false});
+  return resized;
+}
+
+// What the atmosphere's passes of one frame share: its GPU state, the uniforms, the quality and the
+// LUTs' handles in the graph.
+struct LutFrame {
+  AtmosphereGpu* gpu;
+  RenderContext* rc;
+  ResolvedQuality q;
+  GpuUniforms u;
+  ShaderDefines moon_defs;
+  ResourceHandle trans, ms, sky_view, ap_s, ap_t, irradiance;
+};
+
+// The transmittance and multi-scattering LUTs: built, or read back from the disk cache when this
+// medium was built before by this program on this GL (on llvmpipe the multi-scattering LUT is most
+// of a start's GPU work).
+void add_persistent_lut_passes(RenderGraph& g, const LutFrame& f) {
+  AtmosphereGpu& gpu = *f.gpu;
+  std::string lut_key;
+  const DiskCache disk_cache = DiskCache::from_environment();
+  if (disk_cache.enabled()) {
+    lut_key = persistent_lut_key(f.rc->shaders, f.u);
+    if (load_persistent_luts(disk_cache, lut_key, gpu)) {
+      gpu.lut_uniforms = f.u;
+      gpu.luts_valid = true;
+      ++gpu.lut_cache_reads;
+      return;
+    }
+  }
+  gpu.luts_valid = false;  // until the passes below have run
+  AtmosphereGpu* gp = f.gpu;
+  RenderContext* rcp = f.rc;
+  const ResolvedQuality q = f.q;
+  const GpuUniforms u = f.u;
+  // Persistent outputs nobody reads this frame must still be produced: side effects.
+  g.add_pass(
+      "atmosphere.transmittance",
+      [&](PassBuilder& b) {
+        b.write(f.trans);
+        b.side_effect();
+      },
+      [gp, rcp, q](PassContext&) {
+        bind_for_materials(*gp);
+        bind_image_for_write(0, *gp->transmittance);
+        dispatch_compute(rcp->shaders.compute("atmosphere/transmittance_lut.comp"),
+                         group_count(q.transmittance_width, 8), group_count(q.transmittance_height, 8));
+      });
+  g.add_pass(
+      "atmosphere.multiscattering",
+      [&](PassBuilder& b) {
+        b.read(f.trans);
+        b.write(f.ms);
+        b.side_effect();
+      },
+      [gp, rcp, q, u, lut_key, disk_cache](PassContext&) {
+        bind_for_materials(*gp);
+        // Hillaire's estimate, then passes that each read the last one's output and write the
+        // other texture, ordered so that the final pass writes the LUT every reader binds.
+        const int n = q.multiscattering_iterations;
+        Texture* target[2] = {gp->multiscattering.get(), gp->multiscattering_scratch.get()};
+        bind_image_for_write(0, *target[n % 2]);
+        dispatch_compute(
+            rcp->shaders.compute("atmosphere/multiscattering_lut.comp", {{"ATM_MS_ITERATE", "0"}}),
+            q.multiscattering_size, q.multiscattering_size);
+        const Program& iterate =
+            rcp->shaders.compute("atmosphere/multiscattering_lut.comp", {{"ATM_MS_ITERATE", "1"}});
+        for (int k = n - 1; k >= 0; --k) {
+          glBindTextureUnit(gp->bindings.multiscattering, target[(k + 1) % 2]->id());
+          bind_image_for_write(0, *target[k % 2]);
+          dispatch_compute(iterate, q.multiscattering_size, q.multiscattering_size);
+        }
+        glBindTextureUnit(gp->bindings.multiscattering, gp->multiscattering->id());
+        gp->lut_uniforms = u;
+        gp->luts_valid = true;
+        ++gp->lut_builds;
+        if (!lut_key.empty()) store_persistent_luts(disk_cache, lut_key, *gp);
+      });
+}
+
+void add_sky_view_pass(RenderGraph& g, const LutFrame& f) {
+  AtmosphereGpu* gp = f.gpu;
+  RenderContext* rcp = f.rc;
+  g.add_pass(
+      "atmosphere.sky_view",
+      [&](PassBuilder& b) {
+        b.read(f.trans);
+        b.read(f.ms);
+        b.write(f.sky_view);
+      },
+      [gp, rcp, q = f.q, moon_defs = f.moon_defs, u = f.u](PassContext&) {
+        bind_for_materials(*gp);
+        bind_image_for_write(0, *gp->sky_view);
+        dispatch_compute(rcp->shaders.compute("atmosphere/sky_view_lut.comp", moon_defs),
+                         group_count(q.sky_view_width, 8), group_count(q.sky_view_height, 8));
+        gp->sky_view_uniforms = u;
+        gp->sky_view_valid = true;
+        ++gp->sky_view_builds;
+      });
+}
+
+void add_aerial_perspective_pass(RenderGraph& g, const LutFrame& f) {
+  AtmosphereGpu* gp = f.gpu;
+  RenderContext* rcp = f.rc;
+  g.add_pass(
+      "atmosphere.aerial_perspective",
+      [&](PassBuilder& b) {
+        b.read(f.trans);
+        b.read(f.ms);
+        b.write(f.ap_s);
+        b.write(f.ap_t);
+        // Materials that write no depth (the clouds) read it through the light environment, which
+        // the graph does not see: it is made whenever it is stale, geometry or not.
+        b.side_effect();
+      },
+      [gp, rcp, q = f.q, moon_defs = f.moon_defs, u = f.u](PassContext&) {
+        bind_for_materials(*gp);
+        bind_image_for_write(0, *gp->aerial_inscattering);
+        bind_image_for_write(1, *gp->aerial_transmittance);
+        dispatch_compute(rcp->shaders.compute("atmosphere/aerial_perspective_volume.comp", moon_defs),
+                         group_count(q.aerial_perspective_width, 8),
+                         group_count(q.aerial_perspective_height, 8));
+        gp->aerial_uniforms = u;
+        gp->aerial_valid = true;
+        ++gp->aerial_builds;
+      });
+}
+
+void add_sky_irradiance_pass(RenderGraph& g, const LutFrame& f, const ShaderDefines& irradiance_defines) {
+  AtmosphereGpu* gp = f.gpu;
+  RenderContext* rcp = f.rc;
+  g.add_pass(
+      "atmosphere.sky_irradiance",
+      [&](PassBuilder& b) {
+        b.read(f.trans);
+        b.read(f.ms);
+        b.read(f.sky_view);
+        b.write(f.irradiance);
+        b.side_effect();
+      },
+      [gp, rcp, irradiance_defines](PassContext&) {
+        bind_for_materials(*gp);
+        bind_image_for_write(0, *gp->sky_irradiance);
+        dispatch_compute(rcp->shaders.compute("atmosphere/sky_irradiance.comp", irradiance_defines), 1, 1);
+      });
+}
+
+}  // namespace
+
+void lut_system(SystemContext& sc) {
+  Registry& reg = sc.world.registry();
+  const Atmosphere atm = *reg.get<Atmosphere>(reg.first<Atmosphere>());
+  const Entity sun_e = reg.first<Sun>(), moon_e = reg.first<Moon>(), stars_e = reg.first<Stars>();
+  const Sun* sun = sun_e.is_null() ? nullptr : reg.get<Sun>(sun_e);
+  const Moon* moon = moon_e.is_null() ? nullptr : reg.get<Moon>(moon_e);
+  const Stars* stars = stars_e.is_null() ? nullptr : reg.get<Stars>(stars_e);
+  check_inputs(atm, sun, moon, stars);
+
+  auto& rc = sc.world.resource<RenderContext>();
+  auto& gpu = sc.world.resource<AtmosphereGpu>();
+  GpuUniforms u = make_uniforms(atm, sun, moon, rc.view);
+  choose_aerial_frustum(u, gpu.aerial_uniforms, gpu.aerial_valid, gpu.uniforms.view_projection,
+                        gpu.view_turned);
+  gpu.view_turned = u.view_projection != gpu.uniforms.view_projection;
+  const ResolvedQuality q = resolve_quality(atm);
+  const bool resized = ensure_lut_textures(gpu, q, rc);
   if (!gpu.uniform_buffer) gpu.uniform_buffer = std::make_unique<Buffer>(sizeof(GpuUniforms));
   gpu.uniform_buffer->upload(&u, sizeof(u));
   gpu.uniforms = u;
@@ -171,143 +334,33 @@ void lut_system(SystemContext& sc) {
   irradiance_defines["ATM_IRRADIANCE_MARCH"] = space || raymarch ? "1" : "0";
 
   RenderGraph& g = *sc.graph;
-  const ResourceHandle trans = g.import("atmosphere.transmittance", *gpu.transmittance);
-  const ResourceHandle ms = g.import("atmosphere.multiscattering", *gpu.multiscattering);
-  const ResourceHandle sky_view = g.import("atmosphere.sky_view", *gpu.sky_view);
-  const ResourceHandle ap_s = g.import("atmosphere.aerial_inscattering", *gpu.aerial_inscattering);
-  const ResourceHandle ap_t = g.import("atmosphere.aerial_transmittance", *gpu.aerial_transmittance);
-  const ResourceHandle irradiance = g.import("atmosphere.sky_irradiance", *gpu.sky_irradiance);
-  for (auto [name, h] : {std::pair{"atmosphere.transmittance", trans},
-                         {"atmosphere.multiscattering", ms},
-                         {"atmosphere.sky_view", sky_view},
-                         {"atmosphere.aerial_inscattering", ap_s},
-                         {"atmosphere.aerial_transmittance", ap_t},
-                         {"atmosphere.sky_irradiance", irradiance}})
+  LutFrame f{.gpu = &gpu, .rc = &rc, .q = q, .u = u, .moon_defs = moon_defs};
+  f.trans = g.import("atmosphere.transmittance", *gpu.transmittance);
+  f.ms = g.import("atmosphere.multiscattering", *gpu.multiscattering);
+  f.sky_view = g.import("atmosphere.sky_view", *gpu.sky_view);
+  f.ap_s = g.import("atmosphere.aerial_inscattering", *gpu.aerial_inscattering);
+  f.ap_t = g.import("atmosphere.aerial_transmittance", *gpu.aerial_transmittance);
+  f.irradiance = g.import("atmosphere.sky_irradiance", *gpu.sky_irradiance);
+  for (auto [name, h] : {std::pair{"atmosphere.transmittance", f.trans},
+                         {"atmosphere.multiscattering", f.ms},
+                         {"atmosphere.sky_view", f.sky_view},
+                         {"atmosphere.aerial_inscattering", f.ap_s},
+                         {"atmosphere.aerial_transmittance", f.ap_t},
+                         {"atmosphere.sky_irradiance", f.irradiance}})
     g.blackboard[name] = h;
-  AtmosphereGpu* gp = &gpu;
-  RenderContext* rcp = &rc;
 
-  // A medium built before, by this program on this GL, is read back from the disk cache: on
-  // llvmpipe the multi-scattering LUT is most of a start's GPU work.
-  std::string lut_key;
-  const DiskCache disk_cache = rebuild ? DiskCache::from_environment() : DiskCache();
-  bool build_luts = rebuild;
-  if (rebuild && disk_cache.enabled()) {
-    lut_key = persistent_lut_key(rc.shaders, u);
-    if (load_persistent_luts(disk_cache, lut_key, gpu)) {
-      gpu.lut_uniforms = u;
-      gpu.luts_valid = true;
-      ++gpu.lut_cache_reads;
-      build_luts = false;
-    }
-  }
-  if (build_luts) {
-    gpu.luts_valid = false;  // until the passes below have run
-    // Persistent outputs nobody reads this frame must still be produced: side effects.
-    g.add_pass(
-        "atmosphere.transmittance",
-        [&](PassBuilder& b) {
-          b.write(trans);
-          b.side_effect();
-        },
-        [gp, rcp, q](PassContext&) {
-          bind_for_materials(*gp);
-          bind_image_for_write(0, *gp->transmittance);
-          dispatch_compute(rcp->shaders.compute("atmosphere/transmittance_lut.comp"),
-                   group_count(q.transmittance_width, 8), group_count(q.transmittance_height, 8));
-        });
-    g.add_pass(
-        "atmosphere.multiscattering",
-        [&](PassBuilder& b) {
-          b.read(trans);
-          b.write(ms);
-          b.side_effect();
-        },
-        [gp, rcp, q, u, lut_key, disk_cache](PassContext&) {
-          bind_for_materials(*gp);
-          // Hillaire's estimate, then passes that each read the last one's output and write the
-          // other texture, ordered so that the final pass writes the LUT every reader binds.
-          const int n = q.multiscattering_iterations;
-          Texture* target[2] = {gp->multiscattering.get(), gp->multiscattering_scratch.get()};
-          bind_image_for_write(0, *target[n % 2]);
-          dispatch_compute(rcp->shaders.compute("atmosphere/multiscattering_lut.comp", {{"ATM_MS_ITERATE", "0"}}),
-                   q.multiscattering_size, q.multiscattering_size);
-          const Program& iterate =
-              rcp->shaders.compute("atmosphere/multiscattering_lut.comp", {{"ATM_MS_ITERATE", "1"}});
-          for (int k = n - 1; k >= 0; --k) {
-            glBindTextureUnit(gp->bindings.multiscattering, target[(k + 1) % 2]->id());
-            bind_image_for_write(0, *target[k % 2]);
-            dispatch_compute(iterate, q.multiscattering_size, q.multiscattering_size);
-          }
-          glBindTextureUnit(gp->bindings.multiscattering, gp->multiscattering->id());
-          gp->lut_uniforms = u;
-          gp->luts_valid = true;
-          ++gp->lut_builds;
-          if (!lut_key.empty()) store_persistent_luts(disk_cache, lut_key, *gp);
-        });
-  }
+  if (rebuild) add_persistent_lut_passes(g, f);
   // The sky-view LUT serves the LUT method inside the atmosphere only; from space, and with method
   // raymarch, the sky is marched per pixel instead.
   // A LUT rebuilt below stays invalid if its pass is culled before it runs.
   const bool sky_view_stale = rebuild || !gpu.sky_view_valid || sky_view_differs(u, gpu.sky_view_uniforms);
-  const bool aerial_stale = rebuild || !gpu.aerial_valid || aerial_perspective_differs(u, gpu.aerial_uniforms);
+  const bool aerial_stale =
+      rebuild || !gpu.aerial_valid || aerial_perspective_differs(u, gpu.aerial_uniforms);
   if (sky_view_stale) gpu.sky_view_valid = false;
   if (aerial_stale) gpu.aerial_valid = false;
-  if (!space && !raymarch && sky_view_stale) {
-    g.add_pass(
-        "atmosphere.sky_view",
-        [&](PassBuilder& b) {
-          b.read(trans);
-          b.read(ms);
-          b.write(sky_view);
-        },
-        [gp, rcp, q, moon_defs, u](PassContext&) {
-          bind_for_materials(*gp);
-          bind_image_for_write(0, *gp->sky_view);
-          dispatch_compute(rcp->shaders.compute("atmosphere/sky_view_lut.comp", moon_defs),
-                   group_count(q.sky_view_width, 8), group_count(q.sky_view_height, 8));
-          gp->sky_view_uniforms = u;
-          gp->sky_view_valid = true;
-          ++gp->sky_view_builds;
-        });
-  }
-  if (!space && aerial_stale) {
-    g.add_pass(
-        "atmosphere.aerial_perspective",
-        [&](PassBuilder& b) {
-          b.read(trans);
-          b.read(ms);
-          b.write(ap_s);
-          b.write(ap_t);
-          // Materials that write no depth (the clouds) read it through the light environment, which
-          // the graph does not see: it is made whenever it is stale, geometry or not.
-          b.side_effect();
-        },
-        [gp, rcp, q, moon_defs, u](PassContext&) {
-          bind_for_materials(*gp);
-          bind_image_for_write(0, *gp->aerial_inscattering);
-          bind_image_for_write(1, *gp->aerial_transmittance);
-          dispatch_compute(rcp->shaders.compute("atmosphere/aerial_perspective_volume.comp", moon_defs),
-                   group_count(q.aerial_perspective_width, 8), group_count(q.aerial_perspective_height, 8));
-          gp->aerial_uniforms = u;
-          gp->aerial_valid = true;
-          ++gp->aerial_builds;
-        });
-  }
-  g.add_pass(
-      "atmosphere.sky_irradiance",
-      [&](PassBuilder& b) {
-        b.read(trans);
-        b.read(ms);
-        b.read(sky_view);
-        b.write(irradiance);
-        b.side_effect();
-      },
-      [gp, rcp, irradiance_defines](PassContext&) {
-        bind_for_materials(*gp);
-        bind_image_for_write(0, *gp->sky_irradiance);
-        dispatch_compute(rcp->shaders.compute("atmosphere/sky_irradiance.comp", irradiance_defines), 1, 1);
-      });
+  if (!space && !raymarch && sky_view_stale) add_sky_view_pass(g, f);
+  if (!space && aerial_stale) add_aerial_perspective_pass(g, f);
+  add_sky_irradiance_pass(g, f, irradiance_defines);
 }
 
 }  // namespace welkin::atmosphere

@@ -191,7 +191,8 @@ void choose_aerial_frustum(GpuUniforms& u, const GpuUniforms& kept, bool kept_va
   }
   if (!turned_before) return;  // the first frame of a turn: perhaps the only one
   // Turning on, out of it: a new volume around this view, wider on the image plane.
-  const glm::mat4 widen = glm::scale(glm::mat4(1.0f), glm::vec3(1.0f / kAerialTurningMargin, 1.0f / kAerialTurningMargin, 1.0f));
+  const glm::mat4 widen =
+      glm::scale(glm::mat4(1.0f), glm::vec3(1.0f / kAerialTurningMargin, 1.0f / kAerialTurningMargin, 1.0f));
   u.aerial_view_projection = widen * u.view_projection;
   u.aerial_inverse_view_projection = u.inverse_view_projection * glm::inverse(widen);
 }

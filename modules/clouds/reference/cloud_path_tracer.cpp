@@ -93,7 +93,8 @@ class RadiancePath {
       ++events;
       if (lighting_.sun_irradiance > 0.0) {
         const double to_sun = ratio_tracking_transmittance(medium_, {x, sun}, kInfinity, rng, budget);
-        radiance += weight * lighting_.sun_irradiance * phase_.evaluate(glm::dot(ray.direction, sun)) * to_sun;
+        radiance +=
+            weight * lighting_.sun_irradiance * phase_.evaluate(glm::dot(ray.direction, sun)) * to_sun;
       }
       const glm::dvec3 next = phase_.sample_direction(ray.direction, rng);
       if (order >= settings_.max_orders) {

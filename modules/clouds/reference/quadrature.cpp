@@ -95,10 +95,11 @@ SingleScatteringResult single_scattering(const Medium& medium, const PhaseFuncti
     if (!(segment.majorant > 0.0) || !(segment.t1 > segment.t0)) continue;
     const double length = segment.t1 - segment.t0;
     // An infinite stretch is cut into panels of max_panel_optical_depth until it is opaque.
-    const double h = std::isfinite(length)
-                         ? length / panel_count(length, settings.max_panel_length,
-                                                length * segment.majorant, settings.max_panel_optical_depth)
-                         : std::min(settings.max_panel_optical_depth / segment.majorant, settings.max_panel_length);
+    const double h =
+        std::isfinite(length)
+            ? length / panel_count(length, settings.max_panel_length, length * segment.majorant,
+                                   settings.max_panel_optical_depth)
+            : std::min(settings.max_panel_optical_depth / segment.majorant, settings.max_panel_length);
     int panel = 0;
     for (double a = segment.t0; a < segment.t1 && camera_depth < kOpaqueDepth && panel < kMaxPanels;
          a += h, ++panel) {

@@ -38,7 +38,8 @@ ArchetypeBox archetype_box(const CloudBillboards& b, const CloudLayer& layer) {
   box.half_height_m = 0.5f * layer.thickness_m + layer.base_variation_m;
   // The bake's window leaves nothing beyond 0.95 of the half width from the axis: the quads and
   // the views cover the cylinder that holds the cloud, not the box's corners.
-  box.radius_m = std::sqrt(0.9025f * box.half_width_m * box.half_width_m + box.half_height_m * box.half_height_m);
+  box.radius_m =
+      std::sqrt(0.9025f * box.half_width_m * box.half_width_m + box.half_height_m * box.half_height_m);
   box.resolution = b.atlas_resolution;
   // Twice as fine upward as across (a layer is thin), at least 8 and at most as many as across.
   box.slices = std::clamp(2 * int(std::ceil(b.atlas_resolution * box.half_height_m / box.half_width_m)), 8,
@@ -50,19 +51,90 @@ ArchetypeBox archetype_box(const CloudBillboards& b, const CloudLayer& layer) {
 // Everything the bake reads: the layer's description, the medium, the noise, the atlas settings
 // and the coverage to 0.05 (so a keyed coverage re-bakes a few times, not every frame).
 float bake_coverage(float coverage) { return std::round(coverage * 20.0f) / 20.0f; }
-BillboardBakeKey bake_key(const CloudBillboards& b, const VolumetricClouds& clouds, const CloudLayer& L, float coverage) {
-  return {{float(b.archetypes), float(b.atlas_resolution), float(b.view_azimuths), float(b.view_elevations), b.cell_m,
-           float(b.seed), float(L.genus), L.base_altitude_m, L.thickness_m, L.density_per_m, L.shape_amount,
-           L.detail_amount, L.coverage_filter_width, L.base_variation_m, L.profile_exp_term, L.profile_exponent,
-           L.profile_linear_term, L.profile_constant_term, bake_coverage(coverage),
-           clouds.scattering_coefficient, clouds.absorption_coefficient, float(clouds.seed), clouds.shape_period_m,
-           clouds.detail_period_m, clouds.weather_period_m, clouds.turbulence_displacement_m}};
+BillboardBakeKey bake_key(const CloudBillboards& b, const VolumetricClouds& clouds, const CloudLayer& L,
+                          float coverage) {
+  return {{float(b.archetypes),
+           float(b.atlas_resolution),
+           float(b.view_azimuths),
+           float(b.view_elevations),
+           b.cell_m,
+           float(b.seed),
+           float(L.genus),
+           L.base_altitude_m,
+           L.thickness_m,
+           L.density_per_m,
+           L.shape_amount,
+           L.detail_amount,
+           L.coverage_filter_width,
+           L.base_variation_m,
+           L.profile_exp_term,
+           L.profile_exponent,
+           L.profile_linear_term,
+           L.profile_constant_term,
+           bake_coverage(coverage),
+           clouds.scattering_coefficient,
+           clouds.absorption_coefficient,
+           float(clouds.seed),
+           clouds.shape_period_m,
+           clouds.detail_period_m,
+           clouds.weather_period_m,
+           clouds.turbulence_displacement_m}};
 }
 
 void set_atlas_uniforms(const Program& p, const CloudBillboards& b, const ArchetypeBox& box) {
-  glProgramUniform4i(p.id(), p.location("u_atlas"), b.view_azimuths, b.view_elevations, b.archetypes, b.atlas_resolution);
+  glProgramUniform4i(p.id(), p.location("u_atlas"), b.view_azimuths, b.view_elevations, b.archetypes,
+                     b.atlas_resolution);
   p.set("u_box", glm::vec4(box.half_width_m, box.half_height_m, box.radius_m, float(box.slices)));
   p.set("u_volume", glm::vec4(float(box.resolution), box.centre_above_base_m, 0.0f, 0.0f));
+}
+
+// The archetypes' volumes and the atlas of their views made anew (the bake) for `key`.
+void add_bake_pass(RenderGraph& g, CloudsGpu& gpu, RenderContext& rc, const ShaderDefines& field, int packed,
+                   const CloudBillboards& billboards, const ArchetypeBox& box, const BillboardBakeKey& key,
+                   float coverage) {
+  BillboardsGpu& bg = gpu.billboards;
+  CloudsGpu* gp = &gpu;
+  const int views = billboards.view_azimuths * billboards.view_elevations;
+  bg.volume = std::make_unique<Texture>(TextureDesc{.width = box.resolution,
+                                                    .height = box.resolution,
+                                                    .depth = box.slices * billboards.archetypes,
+                                                    .format = TextureFormat::r32f});
+  bg.atlas = std::make_unique<Texture>(TextureDesc{.width = billboards.atlas_resolution,
+                                                   .height = billboards.atlas_resolution,
+                                                   .depth = 2 * views * billboards.archetypes,
+                                                   .array = true,
+                                                   .format = TextureFormat::rgba16f});
+  bg.archetypes = std::make_unique<Buffer>(size_t(billboards.archetypes) * sizeof(glm::vec4));
+  bg.baked = key;
+  ++bg.bakes;
+  const float rounded_coverage = bake_coverage(coverage);
+  g.add_pass("clouds.billboards_bake", [](PassBuilder& b) { b.side_effect(); },
+             [gp, &rc, field, packed, billboards, box, views, rounded_coverage](PassContext&) {
+               BillboardsGpu& bb = gp->billboards;
+               bind_field(*gp);
+               glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, bb.archetypes->id());
+               bind_image_for_write(0, *bb.volume);
+               bind_image_for_write(1, *bb.atlas);
+               glBindTextureUnit(8, bb.volume->id());
+               const int r = billboards.atlas_resolution;
+               const int64_t invocations[3] = {
+                   billboards.archetypes,
+                   int64_t(box.resolution) * box.resolution * box.slices * billboards.archetypes,
+                   int64_t(r) * r * views * billboards.archetypes};
+               for (int stage = 0; stage < 3; ++stage) {
+                 ShaderDefines d = field;
+                 d["BILLBOARDS_BAKE_STAGE"] = std::to_string(stage);
+                 if (stage == 2) d["BILLBOARDS_VOLUME"] = "8";
+                 const Program& p = rc.shaders.compute("clouds/billboards_bake.comp", d);
+                 set_atlas_uniforms(p, billboards, box);
+                 glProgramUniform1ui(p.id(), p.location("u_seed"), GLuint(billboards.seed));
+                 p.set("u_layer", packed);
+                 p.set("u_coverage", rounded_coverage);
+                 dispatch_compute(p, group_count(int(invocations[stage]), 64), 1);
+                 glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                                 GL_TEXTURE_FETCH_BARRIER_BIT);
+               }
+             });
 }
 
 }  // namespace
@@ -76,16 +148,8 @@ void billboards_system(SystemContext& sc) {
   if (be.is_null()) return;
   const CloudBillboards billboards = *reg.get<CloudBillboards>(be);
   check_component(billboards);
-  const Entity ce = reg.first<VolumetricClouds>();
-  if (ce.is_null())
-    throw Error(ErrorInfo{.path = std::string(CloudBillboards::kTypeName),
-                          .expected = "a clouds.VolumetricClouds in the scene (the layers the billboards draw)",
-                          .found = "none"});
-  const VolumetricClouds& clouds = *reg.get<VolumetricClouds>(ce);
-  if (billboards.layer >= int(clouds.layers.size()))
-    throw Error(ErrorInfo{.path = std::string(CloudBillboards::kTypeName) + "/layer",
-                          .expected = "the index of a layer of clouds.VolumetricClouds (0 to " + std::to_string(int(clouds.layers.size()) - 1) + ")",
-                          .found = std::to_string(billboards.layer)});
+  const VolumetricClouds& clouds =
+      drawn_clouds(reg, CloudBillboards::kTypeName, billboards.layer, "billboards");
   const int packed = gpu.billboards_layer;
   const int count = billboards.billboards;
   bg.drawn = 0;
@@ -101,43 +165,7 @@ void billboards_system(SystemContext& sc) {
   // The bake, when what it reads has changed.
   const float coverage = gpu.layers[size_t(packed)].coverage;
   const BillboardBakeKey key = bake_key(billboards, clouds, layer, coverage);
-  if (!(key == bg.baked)) {
-    const int views = billboards.view_azimuths * billboards.view_elevations;
-    bg.volume = std::make_unique<Texture>(TextureDesc{.width = box.resolution, .height = box.resolution,
-                                                      .depth = box.slices * billboards.archetypes, .format = TextureFormat::r32f});
-    bg.atlas = std::make_unique<Texture>(TextureDesc{.width = billboards.atlas_resolution, .height = billboards.atlas_resolution,
-                                                     .depth = 2 * views * billboards.archetypes, .array = true,
-                                                     .format = TextureFormat::rgba16f});
-    bg.archetypes = std::make_unique<Buffer>(size_t(billboards.archetypes) * sizeof(glm::vec4));
-    bg.baked = key;
-    ++bg.bakes;
-    const float rounded_coverage = bake_coverage(coverage);
-    g.add_pass("clouds.billboards_bake", [](PassBuilder& b) { b.side_effect(); },
-               [gp, &rc, field, packed, billboards, box, views, rounded_coverage](PassContext&) {
-                 BillboardsGpu& bb = gp->billboards;
-                 bind_field(*gp);
-                 glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, bb.archetypes->id());
-                 bind_image_for_write(0, *bb.volume);
-                 bind_image_for_write(1, *bb.atlas);
-                 glBindTextureUnit(8, bb.volume->id());
-                 const int r = billboards.atlas_resolution;
-                 const int64_t invocations[3] = {billboards.archetypes,
-                                                 int64_t(box.resolution) * box.resolution * box.slices * billboards.archetypes,
-                                                 int64_t(r) * r * views * billboards.archetypes};
-                 for (int stage = 0; stage < 3; ++stage) {
-                   ShaderDefines d = field;
-                   d["BILLBOARDS_BAKE_STAGE"] = std::to_string(stage);
-                   if (stage == 2) d["BILLBOARDS_VOLUME"] = "8";
-                   const Program& p = rc.shaders.compute("clouds/billboards_bake.comp", d);
-                   set_atlas_uniforms(p, billboards, box);
-                   glProgramUniform1ui(p.id(), p.location("u_seed"), GLuint(billboards.seed));
-                   p.set("u_layer", packed);
-                   p.set("u_coverage", rounded_coverage);
-                   dispatch_compute(p, group_count(int(invocations[stage]), 64), 1);
-                   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-                 }
-               });
-  }
+  if (!(key == bg.baked)) add_bake_pass(g, gpu, rc, field, packed, billboards, box, key, coverage);
 
   // Placement: the clusters' grid and choice over the billboards' ring, then the instances.
   const PlacementGrid grid = placement_grid(gpu, view, layer, billboards.cell_m, billboards.far_m);
@@ -152,28 +180,30 @@ void billboards_system(SystemContext& sc) {
   const bool moon = gpu.block.moon_marched > 0.5f;
   const glm::vec3 light_dir = moon ? glm::vec3(0, 0, 1) : gpu.context.sun_direction;
   bg.drawn = count;
-  g.add_pass("clouds.billboards_place", [](PassBuilder& b) { b.side_effect(); },
-             [gp, &rc, &world, field, grid, packed, count, order_size, ring, fade, billboards, box, moon](PassContext&) {
-               BillboardsGpu& bb = gp->billboards;
-               bind_field(*gp);
-               world.resource<LightEnvironment>().bind();
-               glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, bb.billboards->id());
-               glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, bb.order->id());
-               glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, bb.archetypes->id());
-               bb.placement.choose(rc.shaders, field, grid, packed, count, ring, uint32_t(billboards.seed));
-               const Program& p = rc.shaders.compute("clouds/billboards_place.comp", field);
-               set_placement_uniforms(p, grid, uint32_t(billboards.seed));
-               set_atlas_uniforms(p, billboards, box);
-               p.set("u_layer", packed);
-               p.set("u_count", count);
-               p.set("u_order_size", order_size);
-               p.set("u_fade", fade);
-               p.set("u_density_scale", billboards.density_scale);
-               p.set("u_light", moon ? 1 : 0);
-               dispatch_compute(p, group_count(order_size, 64), 1);
-               glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-               sort_far_to_near(rc.shaders, order_size);
-             });
+  g.add_pass(
+      "clouds.billboards_place", [](PassBuilder& b) { b.side_effect(); },
+      [gp, &rc, &world, field, grid, packed, count, order_size, ring, fade, billboards, box,
+       moon](PassContext&) {
+        BillboardsGpu& bb = gp->billboards;
+        bind_field(*gp);
+        world.resource<LightEnvironment>().bind();
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, bb.billboards->id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, bb.order->id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, bb.archetypes->id());
+        bb.placement.choose(rc.shaders, field, grid, packed, count, ring, uint32_t(billboards.seed));
+        const Program& p = rc.shaders.compute("clouds/billboards_place.comp", field);
+        set_placement_uniforms(p, grid, uint32_t(billboards.seed));
+        set_atlas_uniforms(p, billboards, box);
+        p.set("u_layer", packed);
+        p.set("u_count", count);
+        p.set("u_order_size", order_size);
+        p.set("u_fade", fade);
+        p.set("u_density_scale", billboards.density_scale);
+        p.set("u_light", moon ? 1 : 0);
+        dispatch_compute(p, group_count(order_size, 64), 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        sort_far_to_near(rc.shaders, order_size);
+      });
 
   const FrameTargets t = *sc.targets;
   const int width = std::max(1, int(std::ceil(view.width * billboards.resolution_scale)));

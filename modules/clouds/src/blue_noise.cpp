@@ -22,14 +22,16 @@ class Energy {
     const int px = p % n_, py = p / n_;
     for (int y = 0; y < n_; ++y)
       for (int x = 0; x < n_; ++x)
-        e_[size_t(y) * n_ + x] += sign * kernel_[size_t((y - py + n_) % n_) * n_ + size_t((x - px + n_) % n_)];
+        e_[size_t(y) * n_ + x] +=
+            sign * kernel_[size_t((y - py + n_) % n_) * n_ + size_t((x - px + n_) % n_)];
   }
   // The set pixel of highest energy (tightest cluster) or the unset one of lowest (largest void).
   int extreme(const std::vector<uint8_t>& bits, bool cluster) const {
     int best = -1;
     for (int i = 0; i < n_ * n_; ++i) {
       if (bool(bits[size_t(i)]) != cluster) continue;
-      if (best < 0 || (cluster ? e_[size_t(i)] > e_[size_t(best)] : e_[size_t(i)] < e_[size_t(best)])) best = i;
+      if (best < 0 || (cluster ? e_[size_t(i)] > e_[size_t(best)] : e_[size_t(i)] < e_[size_t(best)]))
+        best = i;
     }
     return best;
   }

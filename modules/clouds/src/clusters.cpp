@@ -28,7 +28,8 @@ ClustersGpu::~ClustersGpu() {
 
 std::vector<glm::vec4> puff_proxy_mesh(int level) {
   assets::ControlMesh cube;
-  for (int i = 0; i < 8; ++i) cube.positions.push_back({i & 1 ? 1.0f : -1.0f, i & 2 ? 1.0f : -1.0f, i & 4 ? 1.0f : -1.0f});
+  for (int i = 0; i < 8; ++i)
+    cube.positions.push_back({i & 1 ? 1.0f : -1.0f, i & 2 ? 1.0f : -1.0f, i & 4 ? 1.0f : -1.0f});
   cube.face_sizes.assign(6, 4);
   cube.face_indices = {0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4, 2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5};
   const assets::RefinedMesh m = assets::refine(cube, {.levels = level,
@@ -75,6 +76,53 @@ glm::vec2 genus_form(Genus genus) {
   }
 }
 
+// What placing a frame's puffs needs, taken when the pass is declared.
+struct PuffPlacement {
+  ShaderDefines field;
+  PlacementGrid grid;
+  int packed, n_clusters, n_puffs, order_size, count;
+  glm::vec4 range, genus;
+  glm::vec3 light_dir;
+  bool moon, sorted;
+  uint32_t seed;
+};
+
+// The clusters' cells chosen, their puffs placed and (when sorted) ordered far to near.
+void place_puffs(CloudsGpu& gpu, RenderContext& rc, World& world, const PuffPlacement& pp) {
+  ClustersGpu& c = gpu.clusters;
+  const PlacementGrid& grid = pp.grid;
+  bind_field(gpu);
+  world.resource<LightEnvironment>().bind();
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, c.puffs->id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, c.order->id());
+  // A cluster spreads over its cell: cells a cell beyond the ring's ends may hold some of it.
+  const glm::vec4& range = pp.range;
+  const glm::vec2 ring{range.x - 0.5f * range.y - float(grid.cell_m), range.z + float(grid.cell_m)};
+  c.placement.choose(rc.shaders, pp.field, grid, pp.packed, pp.n_clusters, ring, pp.seed);
+  const int invocations[2] = {pp.count, pp.order_size};
+  for (int stage = 2; stage < 4; ++stage) {
+    ShaderDefines d = pp.field;
+    d["CLUSTERS_STAGE"] = std::to_string(stage);
+    const Program& p = rc.shaders.compute("clouds/clusters_place.comp", d);
+    set_placement_uniforms(p, grid, pp.seed);
+    p.set("u_wind_en", grid.wind_en);
+    p.set("u_layer", pp.packed);
+    p.set("u_clusters", pp.n_clusters);
+    p.set("u_puffs", pp.n_puffs);
+    p.set("u_range", range);
+    p.set("u_genus", pp.genus);
+    p.set("u_order_size", pp.order_size);
+    p.set("u_light_dir", pp.light_dir);
+    p.set("u_light", pp.moon ? 1 : 0);
+    p.set("u_axis_wind", grid.axis_wind);
+    p.set("u_axis_across", grid.axis_across);
+    p.set("u_axis_up", grid.axis_up);
+    dispatch_compute(p, group_count(invocations[stage - 2], 64), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+  if (pp.sorted) sort_far_to_near(rc.shaders, pp.order_size);
+}
+
 }  // namespace
 
 void clusters_system(SystemContext& sc) {
@@ -84,17 +132,8 @@ void clusters_system(SystemContext& sc) {
   const CloudClusters* clusters = first_clusters(world);
   if (!clusters) return;
   check_component(*clusters);
-  Registry& reg = world.registry();
-  const Entity ce = reg.first<VolumetricClouds>();
-  if (ce.is_null())
-    throw Error(ErrorInfo{.path = std::string(CloudClusters::kTypeName),
-                          .expected = "a clouds.VolumetricClouds in the scene (the layers the clusters draw)",
-                          .found = "none"});
-  const VolumetricClouds& clouds = *reg.get<VolumetricClouds>(ce);
-  if (clusters->layer >= int(clouds.layers.size()))
-    throw Error(ErrorInfo{.path = std::string(CloudClusters::kTypeName) + "/layer",
-                          .expected = "the index of a layer of clouds.VolumetricClouds (0 to " + std::to_string(int(clouds.layers.size()) - 1) + ")",
-                          .found = std::to_string(clusters->layer)});
+  const VolumetricClouds& clouds =
+      drawn_clouds(world.registry(), CloudClusters::kTypeName, clusters->layer, "clusters");
   const int packed = gpu.clusters_layer;
   const int count = clusters->clusters * clusters->puffs_per_cluster;
   cg.puff_count = 0;
@@ -123,50 +162,27 @@ void clusters_system(SystemContext& sc) {
   const bool moon = gpu.block.moon_marched > 0.5f;
   const glm::vec3 light_dir = moon ? glm::vec3(0, 0, 1) : ctx.sun_direction;
   const glm::vec2 form = genus_form(layer.genus);
-  const ShaderDefines field = field_defines(gpu);
-  const glm::vec4 range{gpu.clusters_near_m, clusters->crossfade_m, clusters->far_m, clusters->puff_size};
-  const glm::vec4 genus{form.x, form.y, clusters->density_scale, 0.0f};
-  const int n_clusters = clusters->clusters, n_puffs = clusters->puffs_per_cluster;
-  const bool sorted = clusters->compositing == ClusterCompositing::sorted;
+  const PuffPlacement placement{
+      .field = field_defines(gpu),
+      .grid = grid,
+      .packed = packed,
+      .n_clusters = clusters->clusters,
+      .n_puffs = clusters->puffs_per_cluster,
+      .order_size = order_size,
+      .count = count,
+      .range = {gpu.clusters_near_m, clusters->crossfade_m, clusters->far_m, clusters->puff_size},
+      .genus = {form.x, form.y, clusters->density_scale, 0.0f},
+      .light_dir = light_dir,
+      .moon = moon,
+      .sorted = clusters->compositing == ClusterCompositing::sorted,
+      .seed = uint32_t(clusters->seed)};
   CloudsGpu* gp = &gpu;
   cg.puff_count = count;
 
   RenderGraph& g = *sc.graph;
   g.add_pass(
       "clouds.clusters_place", [](PassBuilder& b) { b.side_effect(); },
-      [gp, &rc, &world, field, grid, packed, n_clusters, n_puffs, order_size, range, genus, light_dir, moon, sorted,
-       seed = uint32_t(clusters->seed), count](PassContext&) {
-        ClustersGpu& c = gp->clusters;
-        bind_field(*gp);
-        world.resource<LightEnvironment>().bind();
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, c.puffs->id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, c.order->id());
-        // A cluster spreads over its cell: cells a cell beyond the ring's ends may hold some of it.
-        const glm::vec2 ring{range.x - 0.5f * range.y - float(grid.cell_m), range.z + float(grid.cell_m)};
-        c.placement.choose(rc.shaders, field, grid, packed, n_clusters, ring, seed);
-        const int invocations[2] = {count, order_size};
-        for (int stage = 2; stage < 4; ++stage) {
-          ShaderDefines d = field;
-          d["CLUSTERS_STAGE"] = std::to_string(stage);
-          const Program& p = rc.shaders.compute("clouds/clusters_place.comp", d);
-          set_placement_uniforms(p, grid, seed);
-          p.set("u_wind_en", grid.wind_en);
-          p.set("u_layer", packed);
-          p.set("u_clusters", n_clusters);
-          p.set("u_puffs", n_puffs);
-          p.set("u_range", range);
-          p.set("u_genus", genus);
-          p.set("u_order_size", order_size);
-          p.set("u_light_dir", light_dir);
-          p.set("u_light", moon ? 1 : 0);
-          p.set("u_axis_wind", grid.axis_wind);
-          p.set("u_axis_across", grid.axis_across);
-          p.set("u_axis_up", grid.axis_up);
-          dispatch_compute(p, group_count(invocations[stage - 2], 64), 1);
-          glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        }
-        if (sorted) sort_far_to_near(rc.shaders, order_size);
-      });
+      [gp, &rc, &world, placement](PassContext&) { place_puffs(*gp, rc, world, placement); });
 
   const FrameTargets t = *sc.targets;
   const int samples = clusters->samples;

@@ -7,6 +7,8 @@
 
 #include "clouds_gpu.h"
 #include "placement.h"
+#include "welkin/core/error.h"
+#include "welkin/core/world.h"
 #include "welkin/gfx/compute.h"
 
 namespace welkin::clouds {
@@ -17,6 +19,23 @@ void ensure_buffer(std::unique_ptr<Buffer>& buffer, size_t& capacity, size_t byt
     buffer = std::make_unique<Buffer>(bytes);
     capacity = bytes;
   }
+}
+
+const VolumetricClouds& drawn_clouds(Registry& reg, std::string_view component, int layer,
+                                     std::string_view drawer) {
+  const Entity ce = reg.first<VolumetricClouds>();
+  if (ce.is_null())
+    throw Error(ErrorInfo{.path = std::string(component),
+                          .expected = "a clouds.VolumetricClouds in the scene (the layers the " +
+                                      std::string(drawer) + " draw)",
+                          .found = "none"});
+  const VolumetricClouds& clouds = *reg.get<VolumetricClouds>(ce);
+  if (layer >= int(clouds.layers.size()))
+    throw Error(ErrorInfo{.path = std::string(component) + "/layer",
+                          .expected = "the index of a layer of clouds.VolumetricClouds (0 to " +
+                                      std::to_string(int(clouds.layers.size()) - 1) + ")",
+                          .found = std::to_string(layer)});
+  return clouds;
 }
 
 int next_power_of_two(int n) {
@@ -36,13 +55,15 @@ std::vector<int32_t> cells_nearest_first(int grid) {
     const double x = c % grid + 0.5 - middle, y = c / grid + 0.5 - middle;
     return x * x + y * y;
   };
-  std::stable_sort(cells.begin(), cells.end(), [&](int32_t a, int32_t b) { return distance2(a) < distance2(b); });
+  std::stable_sort(cells.begin(), cells.end(),
+                   [&](int32_t a, int32_t b) { return distance2(a) < distance2(b); });
   return cells;
 }
 
 }  // namespace
 
-PlacementGrid placement_grid(const CloudsGpu& gpu, const FrameView& view, const CloudLayer& layer, double cell_m, double far_m) {
+PlacementGrid placement_grid(const CloudsGpu& gpu, const FrameView& view, const CloudLayer& layer,
+                             double cell_m, double far_m) {
   PlacementGrid g;
   g.grid = std::max(2, 2 * int(std::ceil(far_m / cell_m)));
   g.cell_m = cell_m;
@@ -53,7 +74,8 @@ PlacementGrid placement_grid(const CloudsGpu& gpu, const FrameView& view, const 
   g.north = glm::cross(up, g.east);
   const glm::dvec2 wind = glm::dvec2(layer.wind_mps);
   const glm::dvec2 drift = wind * gpu.context.time_s;
-  const glm::dvec2 camera_en{glm::dot(view.camera_position_m, g.east), glm::dot(view.camera_position_m, g.north)};
+  const glm::dvec2 camera_en{glm::dot(view.camera_position_m, g.east),
+                             glm::dot(view.camera_position_m, g.north)};
   const glm::dvec2 in_grid = (camera_en - drift) / cell_m;
   const glm::dvec2 camera_cell = glm::floor(in_grid);
   g.first_cell = glm::ivec2(camera_cell) - glm::ivec2(g.grid / 2);
@@ -85,8 +107,8 @@ void PlacementBuffers::ensure(int grid, int chosen_count) {
   ensure_buffer(chosen, chosen_capacity, size_t(std::max(chosen_count, 1)) * sizeof(int32_t));
 }
 
-void PlacementBuffers::choose(ShaderLibrary& shaders, const ShaderDefines& field, const PlacementGrid& g, int layer,
-                              int choose_count, glm::vec2 ring, uint32_t seed) const {
+void PlacementBuffers::choose(ShaderLibrary& shaders, const ShaderDefines& field, const PlacementGrid& g,
+                              int layer, int choose_count, glm::vec2 ring, uint32_t seed) const {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, cells->id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, chosen->id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, cell_order->id());
@@ -118,7 +140,8 @@ void sort_far_to_near(ShaderLibrary& shaders, int size) {
       for (int k = 2; k <= block; k *= 2)
         for (int g = std::countr_zero(unsigned(k)) - 1; g >= 0; --g) steps.emplace_back(std::to_string(k), g);
     } else {
-      for (int g = block_bits - 1; g >= 0; --g) steps.emplace_back("u_k", g);  // a larger merge's narrow steps
+      for (int g = block_bits - 1; g >= 0; --g)
+        steps.emplace_back("u_k", g);  // a larger merge's narrow steps
     }
     std::string list;
     int low = -1;
@@ -158,16 +181,19 @@ void sort_far_to_near(ShaderLibrary& shaders, int size) {
 
 FarCloudTargets far_cloud_targets(RenderGraph& graph, PassBuilder& b, int width, int height) {
   FarCloudTargets t;
-  auto color = graph.blackboard.find("clouds.clusters"), front = graph.blackboard.find("clouds.cluster_front");
+  auto color = graph.blackboard.find("clouds.clusters"),
+       front = graph.blackboard.find("clouds.cluster_front");
   if (color != graph.blackboard.end() && front != graph.blackboard.end()) {
     t.color = b.write(color->second);
     t.front = b.write(front->second);
     t.width = graph.resource_desc(t.color).width;
     t.height = graph.resource_desc(t.color).height;
   } else {
-    t.color = b.create("clouds.clusters", TextureDesc{.width = width, .height = height, .format = TextureFormat::rgba16f});
-    t.front = b.create("clouds.cluster_front",
-                       TextureDesc{.width = width, .height = height, .format = TextureFormat::r32f, .linear_filter = false});
+    t.color = b.create("clouds.clusters",
+                       TextureDesc{.width = width, .height = height, .format = TextureFormat::rgba16f});
+    t.front = b.create(
+        "clouds.cluster_front",
+        TextureDesc{.width = width, .height = height, .format = TextureFormat::r32f, .linear_filter = false});
     t.width = width, t.height = height, t.created = true;
   }
   graph.blackboard["clouds.clusters"] = t.color;

@@ -3,8 +3,10 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <memory>
+#include <string_view>
 
 #include "welkin/clouds/components.h"
+#include "welkin/core/registry.h"
 #include "welkin/gfx/camera.h"
 #include "welkin/gfx/gl_objects.h"
 #include "welkin/gfx/render_graph.h"
@@ -13,6 +15,11 @@
 namespace welkin::clouds {
 
 struct CloudsGpu;
+// The clouds whose layer `layer` a mid- or far-range path draws (`component`: its component's type
+// name, `drawer`: what it draws); an error naming the component when the scene has none or no such
+// layer.
+const VolumetricClouds& drawn_clouds(Registry& reg, std::string_view component, int layer,
+                                     std::string_view drawer);
 // Where the clusters and the billboards stand: a grid of cells in the camera's tangent plane,
 // drifting with the layer's wind (shaders/clouds/placement.glsl), of which stages 0 and 1 of
 // clusters_place.comp score every cell and choose the nearest that hold cloud.

@@ -22,12 +22,20 @@ void register_clouds(ModuleContext& ctx) {
   ctx.system({.name = "clouds.shadows", .phase = Phase::render, .order = -50,
               .reads = {type_id<VolumetricClouds>()}, .run = shadow_system});
   // The billboards before the mesh clusters, which draw over them (the billboards lie beyond).
-  ctx.system({.name = "clouds.billboards", .phase = Phase::render, .order = 144,
-              .reads = {type_id<CloudBillboards>()}, .optional_reads = {type_id<VolumetricClouds>()}, .run = billboards_system});
+  ctx.system({.name = "clouds.billboards",
+              .phase = Phase::render,
+              .order = 144,
+              .reads = {type_id<CloudBillboards>()},
+              .optional_reads = {type_id<VolumetricClouds>()},
+              .run = billboards_system});
   // The mesh clusters after the god rays (140) and before the march, which stops where they turn
   // opaque and composites the nearer volumetric clouds over them.
-  ctx.system({.name = "clouds.clusters", .phase = Phase::render, .order = 145,
-              .reads = {type_id<CloudClusters>()}, .optional_reads = {type_id<VolumetricClouds>()}, .run = clusters_system});
+  ctx.system({.name = "clouds.clusters",
+              .phase = Phase::render,
+              .order = 145,
+              .reads = {type_id<CloudClusters>()},
+              .optional_reads = {type_id<VolumetricClouds>()},
+              .run = clusters_system});
   ctx.system({.name = "clouds.march", .phase = Phase::render, .order = 150,
               .reads = {type_id<VolumetricClouds>()}, .run = clouds_system});
 }

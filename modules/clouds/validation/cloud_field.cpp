@@ -15,7 +15,8 @@ double smoothstep(double a, double b, double x) {
 
 NoiseVolumes read_noise(const CloudsGpu& gpu) {
   NoiseVolumes n;
-  n.shape_size = gpu.shape->desc().width, n.detail_size = gpu.detail->desc().width, n.weather_size = gpu.weather->desc().width;
+  n.shape_size = gpu.shape->desc().width, n.detail_size = gpu.detail->desc().width,
+  n.weather_size = gpu.weather->desc().width;
   auto read = [](const Texture& t, GLenum format, int channels, std::vector<uint8_t>& out) {
     const int s = t.desc().width;
     out.resize(size_t(s) * s * s * size_t(channels));
@@ -30,7 +31,8 @@ NoiseVolumes read_noise(const CloudsGpu& gpu) {
     n.coverage_map_side = gpu.coverage_map->desc().width;
     n.coverage_map.resize(size_t(n.coverage_map_side) * size_t(n.coverage_map_side));
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glGetTextureImage(gpu.coverage_map->id(), 0, GL_RED, GL_UNSIGNED_BYTE, GLsizei(n.coverage_map.size()), n.coverage_map.data());
+    glGetTextureImage(gpu.coverage_map->id(), 0, GL_RED, GL_UNSIGNED_BYTE, GLsizei(n.coverage_map.size()),
+                      n.coverage_map.data());
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
   }
   return n;
@@ -40,7 +42,8 @@ CloudField::CloudField(NoiseVolumes noise, const FrameBlock& frame, std::vector<
     : noise_(std::move(noise)), frame_(frame), layers_(std::move(layers)) {}
 
 // Trilinear with repeat, texel centres at (i + 0.5) / size: what GL's linear filter does.
-double CloudField::sample(const std::vector<uint8_t>& v, int size, int channels, int channel, glm::dvec3 uvw) const {
+double CloudField::sample(const std::vector<uint8_t>& v, int size, int channels, int channel,
+                          glm::dvec3 uvw) const {
   const glm::dvec3 p = uvw * double(size) - 0.5;
   const glm::dvec3 f = p - glm::floor(p);
   const glm::ivec3 i = glm::ivec3(glm::floor(p));
@@ -50,7 +53,10 @@ double CloudField::sample(const std::vector<uint8_t>& v, int size, int channels,
     glm::ivec3 c = i + o;
     for (int a = 0; a < 3; ++a) c[a] = ((c[a] % size) + size) % size;
     const double w = (o.x ? f.x : 1.0 - f.x) * (o.y ? f.y : 1.0 - f.y) * (o.z ? f.z : 1.0 - f.z);
-    sum += w * v[(size_t(c.z) * size * size + size_t(c.y) * size + size_t(c.x)) * size_t(channels) + size_t(channel)] / 255.0;
+    sum += w *
+           v[(size_t(c.z) * size * size + size_t(c.y) * size + size_t(c.x)) * size_t(channels) +
+             size_t(channel)] /
+           255.0;
   }
   return sum;
 }
@@ -67,7 +73,8 @@ glm::dvec2 CloudField::sphere(const glm::dvec3& origin, const glm::dvec3& dir, d
   const glm::dvec3 up(frame_.up);
   const double R = double(frame_.planet_radius_m) + alt, r_c = frame_.camera_radius_m;
   const double b = r_c * glm::dot(up, dir) + glm::dot(origin, dir);
-  const double c = (alt - double(frame_.camera_altitude_m)) * (R + r_c) - (2.0 * r_c * glm::dot(up, origin) + glm::dot(origin, origin));
+  const double c = (alt - double(frame_.camera_altitude_m)) * (R + r_c) -
+                   (2.0 * r_c * glm::dot(up, origin) + glm::dot(origin, origin));
   const double disc = b * b + c;
   if (disc < 0.0) return {1.0, -1.0};
   const double s = std::sqrt(disc);
@@ -78,9 +85,9 @@ glm::dvec2 CloudField::sphere(const glm::dvec3& origin, const glm::dvec3& dir, d
 // read bilinearly, clamped to its edge; 0 off the map.
 double CloudField::painted_coverage(const glm::dvec3& x) const {
   if (frame_.has_map < 0.5f || noise_.coverage_map_side < 1) return 0.0;
-  const glm::dvec3 q = glm::dvec3(frame_.map_origin) +
-                       glm::dvec3(glm::dot(x, glm::dvec3(frame_.map_east)), glm::dot(x, glm::dvec3(frame_.map_north)),
-                                  glm::dot(x, glm::dvec3(frame_.map_up)));
+  const glm::dvec3 q = glm::dvec3(frame_.map_origin) + glm::dvec3(glm::dot(x, glm::dvec3(frame_.map_east)),
+                                                                  glm::dot(x, glm::dvec3(frame_.map_north)),
+                                                                  glm::dot(x, glm::dvec3(frame_.map_up)));
   if (q.z <= 0.0) return 0.0;
   const glm::dvec2 uv = glm::dvec2(q.x, -q.y) * (double(frame_.map_scale) / q.z) + 0.5;
   if (uv.x < 0.0 || uv.y < 0.0 || uv.x > 1.0 || uv.y > 1.0) return 0.0;
@@ -91,15 +98,16 @@ double CloudField::painted_coverage(const glm::dvec3& x) const {
   double v = 0.0;
   for (int k = 0; k < 4; ++k) {
     const glm::ivec2 c = glm::clamp(i + glm::ivec2(k & 1, k >> 1), glm::ivec2(0), glm::ivec2(n - 1));
-    v += ((k & 1) ? f.x : 1.0 - f.x) * ((k >> 1) ? f.y : 1.0 - f.y) * noise_.coverage_map[size_t(c.y) * size_t(n) + size_t(c.x)];
+    v += ((k & 1) ? f.x : 1.0 - f.x) * ((k >> 1) ? f.y : 1.0 - f.y) *
+         noise_.coverage_map[size_t(c.y) * size_t(n) + size_t(c.x)];
   }
   return painted_coverage_offset(v);
 }
 
 double CloudField::coverage(const LayerBlock& L, const glm::dvec3& x) const {
   const glm::dvec3 suv = glm::dvec3(frame_.system_origin) + x * double(frame_.system_per_m);
-  const double c =
-      system_coverage(L.coverage, sample(noise_.systems, noise_.systems_size, 1, 0, suv), frame_.system_amount);
+  const double c = system_coverage(L.coverage, sample(noise_.systems, noise_.systems_size, 1, 0, suv),
+                                   frame_.system_amount);
   return L.follows_map > 0.5f ? clamp01(c + painted_coverage(x)) : c;
 }
 
@@ -119,8 +127,8 @@ double CloudField::layer_density(const LayerBlock& L, const glm::dvec3& x, doubl
   if (d0 <= 0.0) return 0.0;
   const double top = (1.0 - L.dome) * 1.0 + L.dome * std::max(d0, 0.05);
   const double envelope = smoothstep(0.0, 0.08, t) * (1.0 - smoothstep(top * 0.75, top, t));
-  const double profile = clamp01(L.profile_exp_term * std::exp(L.profile_exponent * t) + L.profile_linear_term * t +
-                                 L.profile_constant_term);
+  const double profile = clamp01(L.profile_exp_term * std::exp(L.profile_exponent * t) +
+                                 L.profile_linear_term * t + L.profile_constant_term);
   const double b = d0 * envelope * profile;
   if (b <= 0.0) return 0.0;
   const glm::dvec3 shape_uvw = glm::dvec3(frame_.shape_origin) + x * double(frame_.shape_per_m);
@@ -133,7 +141,8 @@ double CloudField::layer_density(const LayerBlock& L, const glm::dvec3& x, doubl
     const double k = double(frame_.turbulence_m) * d0 * clamp01(1.0 - t / 0.3);
     glm::dvec3 xd = x;
     if (k > 0.0)
-      for (int a = 0; a < 3; ++a) xd[a] += k * (2.0 * sample(noise_.shape, noise_.shape_size, 4, 1 + a, shape_uvw) - 1.0);
+      for (int a = 0; a < 3; ++a)
+        xd[a] += k * (2.0 * sample(noise_.shape, noise_.shape_size, 4, 1 + a, shape_uvw) - 1.0);
     const double n = sample(noise_.detail, noise_.detail_size, 1, 0,
                             glm::dvec3(frame_.detail_origin) + xd * double(frame_.detail_per_m));
     const double m = clamp01(t * 4.0);

@@ -72,9 +72,13 @@ CloudProbe::CloudProbe(const VolumetricClouds& clouds, double sun_azimuth_deg, d
         {{"name", "sun"},
          {"components",
           {{"core.DirectionalLight",
-            {{"azimuth_deg", sun_azimuth_deg}, {"elevation_deg", sun_elevation_deg}, {"color", {1, 1, 1}},
-             {"illuminance_lux", kSunIlluminance}, {"ambient_fraction", 0.0}}}}}},
-        {{"name", "clouds"}, {"components", {{"clouds.VolumetricClouds", object_to_json(type_desc<VolumetricClouds>(), &c)}}}}}}};
+            {{"azimuth_deg", sun_azimuth_deg},
+             {"elevation_deg", sun_elevation_deg},
+             {"color", {1, 1, 1}},
+             {"illuminance_lux", kSunIlluminance},
+             {"ambient_fraction", 0.0}}}}}},
+        {{"name", "clouds"},
+         {"components", {{"clouds.VolumetricClouds", object_to_json(type_desc<VolumetricClouds>(), &c)}}}}}}};
   load_scene(*world_, doc, "cloud probe");
   renderer_ = std::make_unique<Renderer>(*world_);
   sun_direction_ = direction_from_azimuth_elevation(sun_azimuth_deg, sun_elevation_deg);
@@ -116,10 +120,14 @@ struct CloudProbe::ReferenceScene {
   CloudMedium medium;
   std::unique_ptr<ref::PhaseFunction> phase;
   ReferenceScene(CloudField f, const VolumetricClouds& c) : field(std::move(f)), medium(field) {
-    if (c.phase == PhaseModel::droplet_mie) phase = std::make_unique<ref::ApproximateMie>(c.droplet_diameter_um);
-    else phase = std::make_unique<ref::DualLobeHenyeyGreenstein>(c.phase_g_forward, c.phase_g_backward, 1.0 - c.phase_mix);
+    if (c.phase == PhaseModel::droplet_mie)
+      phase = std::make_unique<ref::ApproximateMie>(c.droplet_diameter_um);
+    else
+      phase = std::make_unique<ref::DualLobeHenyeyGreenstein>(c.phase_g_forward, c.phase_g_backward,
+                                                              1.0 - c.phase_mix);
     medium.single_scattering_albedo =
-        c.scattering_coefficient / std::max(double(c.scattering_coefficient + c.absorption_coefficient), 1e-12);
+        c.scattering_coefficient /
+        std::max(double(c.scattering_coefficient + c.absorption_coefficient), 1e-12);
   }
 };
 
@@ -128,13 +136,15 @@ std::unique_ptr<CloudProbe::ReferenceScene> CloudProbe::reference_scene() {
   return std::make_unique<ReferenceScene>(CloudField(read_noise(gpu), gpu.block, gpu.layers), clouds());
 }
 
-ref::CloudRadianceEstimate CloudProbe::reference_radiance(const CloudView& view, const ref::PathTraceSettings& settings) {
+ref::CloudRadianceEstimate CloudProbe::reference_radiance(const CloudView& view,
+                                                          const ref::PathTraceSettings& settings) {
   aim(view);
   renderer_->render_frame(FrameInfo{.index = frame_++}, 1, 1);  // this view's frame block and layers
   const std::unique_ptr<ReferenceScene> scene = reference_scene();
   const glm::dvec3 dir = direction_from_azimuth_elevation(view.heading_deg, view.pitch_deg);
   return ref::path_trace(scene->medium, *scene->phase, ref::Ray{glm::dvec3(0.0), dir},
-                         ref::Lighting{.sun_direction = sun_direction_, .sun_irradiance = kSunIlluminance}, settings);
+                         ref::Lighting{.sun_direction = sun_direction_, .sun_irradiance = kSunIlluminance},
+                         settings);
 }
 
 std::vector<double> CloudProbe::gpu_image(const Camera& camera, int width, int height) {
@@ -148,7 +158,8 @@ std::vector<double> CloudProbe::gpu_image(const Camera& camera, int width, int h
   return image;
 }
 
-std::vector<ref::CloudRadianceEstimate> CloudProbe::reference_image(const Camera& camera, int width, int height,
+std::vector<ref::CloudRadianceEstimate> CloudProbe::reference_image(const Camera& camera, int width,
+                                                                    int height,
                                                                     const ref::PathTraceSettings& settings) {
   gpu_image(camera, width, height);  // this view's frame block and layers
   const std::unique_ptr<ReferenceScene> scene = reference_scene();
@@ -162,7 +173,8 @@ std::vector<ref::CloudRadianceEstimate> CloudProbe::reference_image(const Camera
     s.batch_size = std::max<std::uint64_t>(settings.samples, 1);
     for (size_t i = next++; i < image.size(); i = next++) {
       s.seed = settings.seed + i;
-      const glm::dvec3 dir = glm::normalize(glm::dvec3(pixel_direction(view, double(i % width) + 0.5, double(i / width) + 0.5)));
+      const glm::dvec3 dir =
+          glm::normalize(glm::dvec3(pixel_direction(view, double(i % width) + 0.5, double(i / width) + 0.5)));
       image[i] = ref::path_trace(scene->medium, *scene->phase, ref::Ray{glm::dvec3(0.0), dir}, lighting, s);
     }
   };

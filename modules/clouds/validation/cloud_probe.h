@@ -36,7 +36,8 @@ class CloudProbe {
   // Radiance (cd/m^2, green channel) of the ray through the centre of a 1x1 frame.
   double gpu_radiance(const CloudView& view);
   // The path-traced radiance of the same ray through the same field (the noise read back).
-  reference::CloudRadianceEstimate reference_radiance(const CloudView& view, const reference::PathTraceSettings& settings);
+  reference::CloudRadianceEstimate reference_radiance(const CloudView& view,
+                                                      const reference::PathTraceSettings& settings);
   // Median GPU milliseconds of the clouds' passes per frame of width x height, and of a copy.
   struct Cost {
     double clouds_ms = 0.0, copy_ms = 0.0;

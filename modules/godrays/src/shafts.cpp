@@ -43,7 +43,8 @@ struct PlanetView {
 PlanetView planet_view(const MapFrame& planet, const glm::dvec3& camera_m) {
   const glm::dvec3 from_centre = camera_m - planet.planet_center_m;
   const double r = glm::length(from_centre);
-  return {glm::vec3(from_centre / r), glm::vec2(float(planet.planet_radius_m), float(r - planet.planet_radius_m))};
+  return {glm::vec3(from_centre / r),
+          glm::vec2(float(planet.planet_radius_m), float(r - planet.planet_radius_m))};
 }
 
 // Whether the sun stands above the horizon of a point `reach_m` above the camera (the planet's
@@ -53,7 +54,8 @@ bool sun_lights_air(const MapFrame& planet, const glm::vec3& sun, const glm::dve
   const glm::dvec3 from_centre = camera_m - planet.planet_center_m;
   const double r = glm::length(from_centre) + double(reach_m);
   const double dip = std::acos(std::clamp(planet.planet_radius_m / r, -1.0, 1.0));
-  const double elevation = std::asin(std::clamp(double(glm::dot(glm::dvec3(sun), from_centre / glm::length(from_centre))), -1.0, 1.0));
+  const double elevation = std::asin(
+      std::clamp(double(glm::dot(glm::dvec3(sun), from_centre / glm::length(from_centre))), -1.0, 1.0));
   return elevation > -dip;
 }
 
@@ -68,8 +70,8 @@ struct ShaftsDraw {
 };
 
 // The shafts' loss at its resolution, in the pass's form (welkin/gfx/screen_pass.h).
-void run_shafts(RenderContext& rc, World& world, const Texture& target, const Texture& depth, const ShaftsDraw& s,
-                const SetCommon& set_common) {
+void run_shafts(RenderContext& rc, World& world, const Texture& target, const Texture& depth,
+                const ShaftsDraw& s, const SetCommon& set_common) {
   const bool compute = rc.forms.compute("godrays.shafts");
   world.resource<LightEnvironment>().bind();
   glBindTextureUnit(0, depth.id());
@@ -103,8 +105,8 @@ struct ApplyDraw {
 
 // The shafts and the haze applied to the frame, in the pass's form: blending over a triangle (or the
 // tiles the shafts touch), or a compute pass loading and storing the frame in place.
-void run_apply(RenderContext& rc, World& world, const Texture& color, const Texture* loss, const Texture* depth,
-               const ApplyDraw& a, const SetCommon& set_common) {
+void run_apply(RenderContext& rc, World& world, const Texture& color, const Texture* loss,
+               const Texture* depth, const ApplyDraw& a, const SetCommon& set_common) {
   const bool compute = rc.forms.compute("godrays.apply");
   if (loss) glBindTextureUnit(0, loss->id());
   if (depth) {
@@ -168,12 +170,14 @@ void shafts_system(SystemContext& sc) {
     shafts = sun_uv.has_value() && sun_lights_air(planet, *sun, view.camera_position_m, 0.0f);
   }
   if (!shafts && !haze) return;
-  const glm::vec4 haze_block = haze ? glm::vec4(haze->density_per_m, 1.0f / haze->scale_height_m, haze->scattering, haze->absorption)
-                                    : glm::vec4(0.0f);
+  const glm::vec4 haze_block =
+      haze ? glm::vec4(haze->density_per_m, 1.0f / haze->scale_height_m, haze->scattering, haze->absorption)
+           : glm::vec4(0.0f);
   const float haze_g = haze ? haze->phase_g : 0.0f;
   const char* with_haze = haze ? "1" : "0";
   // Uniforms both passes share: the view ray, the planet, the haze.
-  auto set_common = [inverse_vp = view.inverse_view_projection, ground, haze_block, haze_g](const Program& p, float max_distance) {
+  auto set_common = [inverse_vp = view.inverse_view_projection, ground, haze_block, haze_g](
+                        const Program& p, float max_distance) {
     p.set("u_inverse_view_projection", inverse_vp);
     p.set("u_max_distance_m", max_distance);
     p.set("u_up", ground.up);
@@ -208,7 +212,8 @@ void shafts_system(SystemContext& sc) {
         "godrays.shafts",
         [&](PassBuilder& b) {
           b.read(t.depth);
-          *loss = b.create("godrays.loss", TextureDesc{.width = w, .height = h, .format = rc.radiance_format()});
+          *loss =
+              b.create("godrays.loss", TextureDesc{.width = w, .height = h, .format = rc.radiance_format()});
         },
         [&rc, &world, t, loss, defines, max_distance, reach, sun_at, jitter, set_common](PassContext& pc) {
           const ShaftsDraw draw{defines, max_distance, reach, sun_at, jitter};
@@ -222,7 +227,8 @@ void shafts_system(SystemContext& sc) {
           "godrays.filter",
           [&](PassBuilder& b) {
             b.read(*loss);
-            *filtered = b.create("godrays.loss_filtered", TextureDesc{.width = w, .height = h, .format = rc.radiance_format()});
+            *filtered = b.create("godrays.loss_filtered",
+                                 TextureDesc{.width = w, .height = h, .format = rc.radiance_format()});
           },
           [&rc, loss, filtered](PassContext& pc) {
             Framebuffer fb(&pc.texture(*filtered), nullptr);
@@ -240,9 +246,10 @@ void shafts_system(SystemContext& sc) {
   // (apply.vert): they are zero wherever no tap toward the sun meets geometry. The marched shafts
   // are nowhere zero under broken cloud, and their tiles cost 1.56 ms against the triangle's 1.08.
   const bool tiles = shafts && !haze && rays->method == ShaftMethod::screen_space;
-  const ShaderDefines apply_defines = {
-      {"GODRAYS_SHAFTS", shafts ? "1" : "0"}, {"GODRAYS_HAZE", with_haze}, {"GODRAYS_TILES", tiles ? "1" : "0"},
-      {"GODRAYS_TILE_TEXELS", std::to_string(kApplyTileTexels)}};
+  const ShaderDefines apply_defines = {{"GODRAYS_SHAFTS", shafts ? "1" : "0"},
+                                       {"GODRAYS_HAZE", with_haze},
+                                       {"GODRAYS_TILES", tiles ? "1" : "0"},
+                                       {"GODRAYS_TILE_TEXELS", std::to_string(kApplyTileTexels)}};
   g.add_pass(
       "godrays.apply",
       [&](PassBuilder& b) {
@@ -252,8 +259,8 @@ void shafts_system(SystemContext& sc) {
         b.write(t.color);
       },
       [&rc, &world, t, loss, set_common,
-       draw = ApplyDraw{shafts, haze != nullptr, tiles, loss_size, apply_defines, sun.value_or(glm::vec3(0.0f, 0.0f, 1.0f))}](
-          PassContext& pc) {
+       draw = ApplyDraw{shafts, haze != nullptr, tiles, loss_size, apply_defines,
+                        sun.value_or(glm::vec3(0.0f, 0.0f, 1.0f))}](PassContext& pc) {
         run_apply(rc, world, pc.texture(t.color), draw.shafts ? &pc.texture(*loss) : nullptr,
                   draw.haze ? &pc.texture(t.depth) : nullptr, draw, set_common);
       });

@@ -8,13 +8,19 @@ void describe(TypeBuilder<Terrain>& t) {
   t.tooltip("glTF terrain or scenery on the planet (Draco, LOD chunks, PBR)");
   t.field("file", &Terrain::file).tooltip(".glb or .gltf; external files only beside it");
   t.field("anchor", &Terrain::anchor).values({{"scene_origin", 0}, {"offset", 1}, {"geodetic", 2}});
-  t.field("offset_m", &Terrain::offset_m).unit("m").range(-1e8, 1e8).tooltip("Model origin in the scene (anchor = offset)");
+  t.field("offset_m", &Terrain::offset_m)
+      .unit("m")
+      .range(-1e8, 1e8)
+      .tooltip("Model origin in the scene (anchor = offset)");
   t.field("latitude_deg", &Terrain::latitude_deg).unit("deg").range(-90, 90).tooltip("Anchor = geodetic");
   t.field("longitude_deg", &Terrain::longitude_deg).unit("deg").range(-180, 180).tooltip("Anchor = geodetic");
   t.field("height_m", &Terrain::height_m).unit("m").range(-12000, 1e6);
   t.field("heading_deg", &Terrain::heading_deg).unit("deg").range(-360, 360);
   t.field("follow_curvature", &Terrain::follow_curvature).tooltip("Bend the model onto the planet's surface");
-  t.field("planet_radius_km", &Terrain::planet_radius_km).unit("km").range(1, 1e5).tooltip("When the scene has no atmosphere");
+  t.field("planet_radius_km", &Terrain::planet_radius_km)
+      .unit("km")
+      .range(1, 1e5)
+      .tooltip("When the scene has no atmosphere");
   t.field("chunks_per_side", &Terrain::chunks_per_side).range(1, 128);
   t.field("lod_levels", &Terrain::lod_levels).range(1, 10);
   t.field("lod_pixel_error", &Terrain::lod_pixel_error).unit("px").range(0.1, 100);

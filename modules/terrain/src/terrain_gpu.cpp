@@ -17,7 +17,8 @@ namespace {
 GlBufferName upload(std::span<const uint8_t> bytes) {
   GLuint id = 0;
   glCreateBuffers(1, &id);
-  glNamedBufferStorage(id, GLsizeiptr(std::max<size_t>(1, bytes.size())), bytes.empty() ? nullptr : bytes.data(), 0);
+  glNamedBufferStorage(id, GLsizeiptr(std::max<size_t>(1, bytes.size())),
+                       bytes.empty() ? nullptr : bytes.data(), 0);
   return GlBufferName(id);
 }
 
@@ -38,7 +39,8 @@ GlTextureName upload_rgba(const assets::Image& img, const assets::Sampler& sampl
   glCreateTextures(GL_TEXTURE_2D, 1, &id);
   glTextureStorage2D(id, assets::mip_level_count(img.width, img.height), srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8,
                      img.width, img.height);
-  assets::for_each_mip_level(img, srgb, assets::mip_edge_of_gl_wrap(sampler.wrap_s), assets::mip_edge_of_gl_wrap(sampler.wrap_t),
+  assets::for_each_mip_level(img, srgb, assets::mip_edge_of_gl_wrap(sampler.wrap_s),
+                             assets::mip_edge_of_gl_wrap(sampler.wrap_t),
                              [&](int level, int w, int h, const uint8_t* rgba) {
                                glTextureSubImage2D(id, level, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
                              });
@@ -63,7 +65,8 @@ GlTextureName upload_bc1(const assets::Bc1Chain& chain, const assets::Sampler& s
 // GL 4.5 core does not require S3TC; llvmpipe and desktop GPUs have it (and its sRGB forms).
 bool bc1_supported() {
   return epoxy_has_gl_extension("GL_EXT_texture_compression_s3tc") &&
-         (epoxy_has_gl_extension("GL_EXT_texture_sRGB") || epoxy_has_gl_extension("GL_EXT_texture_compression_s3tc_srgb"));
+         (epoxy_has_gl_extension("GL_EXT_texture_sRGB") ||
+          epoxy_has_gl_extension("GL_EXT_texture_compression_s3tc_srgb"));
 }
 
 // The compressed chain of one image as the disk cache keeps it: its size, then its blocks. The key is
@@ -71,8 +74,8 @@ bool bc1_supported() {
 // levels or the blocks are made differently (mip_levels.cpp, block_compression.cpp).
 std::string bc1_cache_key(const assets::Image& img, const assets::Sampler& sampler, bool srgb) {
   char key[96];
-  std::snprintf(key, sizeof key, "terrain-bc1-v1|%016llx|%d|%d|%d|", static_cast<unsigned long long>(img.encoded_hash),
-                int(srgb), sampler.wrap_s, sampler.wrap_t);
+  std::snprintf(key, sizeof key, "terrain-bc1-v1|%016llx|%d|%d|%d|",
+                static_cast<unsigned long long>(img.encoded_hash), int(srgb), sampler.wrap_s, sampler.wrap_t);
   return key;
 }
 
@@ -82,7 +85,8 @@ std::optional<assets::Bc1Chain> read_bc1(const DiskCache& disk, const std::strin
   int32_t wh[2];
   std::memcpy(wh, size->data(), sizeof wh);
   const assets::LoadLimits limits;
-  if (wh[0] < 1 || wh[1] < 1 || wh[0] > limits.max_image_side || wh[1] > limits.max_image_side) return std::nullopt;
+  if (wh[0] < 1 || wh[1] < 1 || wh[0] > limits.max_image_side || wh[1] > limits.max_image_side)
+    return std::nullopt;
   assets::Bc1Chain chain = assets::bc1_layout(wh[0], wh[1]);
   auto blocks = disk.read(key + "blocks", chain.levels.back().offset + chain.levels.back().size);
   if (!blocks) return std::nullopt;
@@ -97,8 +101,9 @@ void write_bc1(const DiskCache& disk, const std::string& key, const assets::Bc1C
 }
 
 std::string cache_key(const Terrain& s) {
-  return s.file + "|" + std::to_string(s.compress_images) + "|" + std::to_string(s.chunks_per_side) + "|" + std::to_string(s.lod_levels) + "|" +
-         std::to_string(s.refine) + "|" + std::to_string(s.refine_levels) + "|" + std::to_string(s.refine_max_triangles);
+  return s.file + "|" + std::to_string(s.compress_images) + "|" + std::to_string(s.chunks_per_side) + "|" +
+         std::to_string(s.lod_levels) + "|" + std::to_string(s.refine) + "|" +
+         std::to_string(s.refine_levels) + "|" + std::to_string(s.refine_max_triangles);
 }
 
 }  // namespace
@@ -137,7 +142,8 @@ TerrainCache::LoadedMesh TerrainCache::load_mesh(const Terrain& s, TerrainMesh& 
         cached = mesh_from_bytes(*counts, loaded.body, loaded.arrays);
       }
   const size_t materials = loaded.model->materials.size();
-  if (cached && std::all_of(cached->chunks.begin(), cached->chunks.end(), [&](const Chunk& c) { return c.material < int(materials); })) {
+  if (cached && std::all_of(cached->chunks.begin(), cached->chunks.end(),
+                            [&](const Chunk& c) { return c.material < int(materials); })) {
     mesh = std::move(*cached);
     ++mesh_cache_reads;
     return loaded;
@@ -161,7 +167,9 @@ TerrainCache::LoadedMesh TerrainCache::load_mesh(const Terrain& s, TerrainMesh& 
 GpuTerrain& TerrainCache::get(const Terrain& s) {
   auto& slot = terrains[cache_key(s)];
   if (slot) return *slot;
-  if (s.file.empty()) throw Error(ErrorInfo{.path = "terrain.Terrain/file", .expected = "a .glb or .gltf file", .found = "nothing"});
+  if (s.file.empty())
+    throw Error(
+        ErrorInfo{.path = "terrain.Terrain/file", .expected = "a .glb or .gltf file", .found = "nothing"});
   auto gpu = std::make_unique<GpuTerrain>();
   LoadedMesh loaded = load_mesh(s, gpu->mesh);
   gpu->positions = upload(loaded.arrays.positions);
@@ -211,7 +219,8 @@ std::vector<GpuMaterial> TerrainCache::upload_materials(const Terrain& s, const 
     const assets::Image& img = model.images[size_t(image)];
     if (!img.rgba.empty()) return img;
     if (!decoded) decoded = assets_without_geometry.load(s.file);
-    if (size_t(image) >= decoded->images.size() || decoded->images[size_t(image)].encoded_hash != img.encoded_hash)
+    if (size_t(image) >= decoded->images.size() ||
+        decoded->images[size_t(image)].encoded_hash != img.encoded_hash)
       throw Error(ErrorInfo{.file = s.file, .path = "/images/" + std::to_string(image),
                             .message = "the file changed while it was being read; load it again"});
     return decoded->images[size_t(image)];
@@ -244,7 +253,8 @@ std::vector<GpuMaterial> TerrainCache::upload_materials(const Terrain& s, const 
     g.metallic_roughness = texture(mat.metallic_roughness, false);
     g.occlusion = texture(mat.occlusion, false);
     g.emissive_map = texture(mat.emissive, true);
-    const assets::TextureRef* refs[4] = {&mat.base_color, &mat.metallic_roughness, &mat.occlusion, &mat.emissive};
+    const assets::TextureRef* refs[4] = {&mat.base_color, &mat.metallic_roughness, &mat.occlusion,
+                                         &mat.emissive};
     for (size_t i = 0; i < 4; ++i)
       if (refs[i]->transform.present) g.uv_transforms[i] = refs[i]->transform.matrix();
     g.occlusion_strength = mat.occlusion.scale;

@@ -68,7 +68,9 @@ Flat flatten(const assets::Primitive& prim, const glm::mat4& node_world, const T
 }  // namespace
 
 uint32_t pack_normal(const glm::vec3& n) {
-  auto q = [](float v) { return uint32_t(int32_t(std::lround(std::clamp(v, -1.0f, 1.0f) * 511.0f))) & 0x3FFu; };
+  auto q = [](float v) {
+    return uint32_t(int32_t(std::lround(std::clamp(v, -1.0f, 1.0f) * 511.0f))) & 0x3FFu;
+  };
   return q(n.x) | q(n.y) << 10 | q(n.z) << 20;
 }
 
@@ -97,7 +99,9 @@ TerrainMesh build_terrain_mesh(const assets::Model& model, const Terrain& s) {
       std::vector<std::vector<uint32_t>> buckets(size_t(n) * n);
       glm::vec2 extent = glm::max(glm::vec2(hi - lo), glm::vec2(1e-3f));
       for (size_t t = 0; t + 2 < f.indices.size(); t += 3) {
-        glm::vec3 c = (f.positions[f.indices[t]] + f.positions[f.indices[t + 1]] + f.positions[f.indices[t + 2]]) / 3.0f;
+        glm::vec3 c =
+            (f.positions[f.indices[t]] + f.positions[f.indices[t + 1]] + f.positions[f.indices[t + 2]]) /
+            3.0f;
         int cx = std::clamp(int((c.x - lo.x) / extent.x * n), 0, n - 1);
         int cy = std::clamp(int((c.y - lo.y) / extent.y * n), 0, n - 1);
         auto& b = buckets[size_t(cy) * n + cx];
@@ -126,7 +130,8 @@ TerrainMesh build_terrain_mesh(const assets::Model& model, const Terrain& s) {
                 local_pos.push_back(f.positions[i]);
               }
               local_idx.push_back(uint32_t(to_local[i]));
-              chunk.min = glm::min(chunk.min, f.positions[i]), chunk.max = glm::max(chunk.max, f.positions[i]);
+              chunk.min = glm::min(chunk.min, f.positions[i]),
+              chunk.max = glm::max(chunk.max, f.positions[i]);
             }
           start = end;
           for (uint32_t g : global) to_local[g] = -1;
@@ -140,8 +145,9 @@ TerrainMesh build_terrain_mesh(const assets::Model& model, const Terrain& s) {
             size_t target = std::max<size_t>(3, finer.size() / 4 / 3 * 3);
             float error = 0.0f;
             // Borders locked: the chunk's outline stays identical at every level, so no cracks.
-            coarser.resize(meshopt_simplify(coarser.data(), finer.data(), finer.size(), &local_pos[0].x, local_pos.size(),
-                                            sizeof(glm::vec3), target, 1.0f, meshopt_SimplifyLockBorder, &error));
+            coarser.resize(meshopt_simplify(coarser.data(), finer.data(), finer.size(), &local_pos[0].x,
+                                            local_pos.size(), sizeof(glm::vec3), target, 1.0f,
+                                            meshopt_SimplifyLockBorder, &error));
             if (coarser.size() >= finer.size()) break;  // nothing left to remove
             levels.push_back(std::move(coarser));
             errors.push_back(std::max(error * scale, errors.back()));
@@ -151,34 +157,42 @@ TerrainMesh build_terrain_mesh(const assets::Model& model, const Terrain& s) {
           // Each level then draws from a prefix of the chunk's vertices, and a rasteriser that shades
           // a draw's whole index range (llvmpipe does) shades only those: the coarsest levels of the
           // far chunks had shaded all of their chunk's vertices, 11 ms of the demo's 12 ms terrain floor.
-          for (auto& level : levels) meshopt_optimizeVertexCache(level.data(), level.data(), level.size(), local_pos.size());
+          for (auto& level : levels)
+            meshopt_optimizeVertexCache(level.data(), level.data(), level.size(), local_pos.size());
           std::vector<uint32_t> coarse_first;
-          for (auto level = levels.rbegin(); level != levels.rend(); ++level) coarse_first.insert(coarse_first.end(), level->begin(), level->end());
+          for (auto level = levels.rbegin(); level != levels.rend(); ++level)
+            coarse_first.insert(coarse_first.end(), level->begin(), level->end());
           std::vector<uint32_t> remap(local_pos.size());
-          meshopt_optimizeVertexFetchRemap(remap.data(), coarse_first.data(), coarse_first.size(), local_pos.size());
+          meshopt_optimizeVertexFetchRemap(remap.data(), coarse_first.data(), coarse_first.size(),
+                                           local_pos.size());
           std::vector<uint32_t> ordered(global.size());
-          for (size_t i = 0; i < global.size(); ++i) ordered[remap[i]] = global[i];  // every vertex is in level 0
+          for (size_t i = 0; i < global.size(); ++i)
+            ordered[remap[i]] = global[i];  // every vertex is in level 0
           chunk.base_vertex = uint32_t(out.positions.size());
           for (uint32_t g : ordered)
-            out.positions.push_back(f.positions[g]), out.normals.push_back(pack_normal(f.normals[g])), out.uvs.push_back(f.uvs[g]);
+            out.positions.push_back(f.positions[g]), out.normals.push_back(pack_normal(f.normals[g])),
+                out.uvs.push_back(f.uvs[g]);
           for (size_t l = 0; l < levels.size(); ++l) {
             uint32_t used = 0;
             for (uint32_t i : levels[l]) used = std::max(used, remap[i] + 1);
-            chunk.lods.push_back(LodRange{uint32_t(out.indices.size()), uint32_t(levels[l].size()), errors[l], used});
+            chunk.lods.push_back(
+                LodRange{uint32_t(out.indices.size()), uint32_t(levels[l].size()), errors[l], used});
             for (uint32_t i : levels[l]) out.indices.push_back(uint16_t(remap[i]));
           }
           out.chunks.push_back(std::move(chunk));
         }
     }
   }
-  if (out.positions.empty()) throw Error(ErrorInfo{.file = model.file, .message = "the model has no triangles to draw"});
+  if (out.positions.empty())
+    throw Error(ErrorInfo{.file = model.file, .message = "the model has no triangles to draw"});
   return out;
 }
 
 int select_lod(const Chunk& chunk, double distance_m, double pixels_per_radian, double pixel_error) {
   int chosen = 0;
   for (int l = 1; l < int(chunk.lods.size()); ++l)
-    if (chunk.lods[size_t(l)].error_m / std::max(distance_m, 1e-3) * pixels_per_radian <= pixel_error) chosen = l;
+    if (chunk.lods[size_t(l)].error_m / std::max(distance_m, 1e-3) * pixels_per_radian <= pixel_error)
+      chosen = l;
   return chosen;
 }
 
@@ -220,8 +234,8 @@ template <class T> std::vector<T> take(std::span<const uint8_t> bytes, size_t& a
 std::optional<size_t> body_size(const uint64_t (&c)[kCountFields], size_t max_bytes) {
   // Each count alone within the limit first, so that the sum (at most 4 limits) cannot overflow.
   const uint64_t limit = std::min<uint64_t>(max_bytes, uint64_t(1) << 60);
-  if (c[kVertices] > limit / kVertexBytes || c[kIndices] > limit / sizeof(uint16_t) || c[kChunks] > limit / sizeof(ChunkRecord) ||
-      c[kLods] > limit / sizeof(LodRecord))
+  if (c[kVertices] > limit / kVertexBytes || c[kIndices] > limit / sizeof(uint16_t) ||
+      c[kChunks] > limit / sizeof(ChunkRecord) || c[kLods] > limit / sizeof(LodRecord))
     return std::nullopt;
   const uint64_t size = c[kVertices] * kVertexBytes + c[kIndices] * sizeof(uint16_t) +
                         c[kChunks] * sizeof(ChunkRecord) + c[kLods] * sizeof(LodRecord) + sizeof(MeshRecord);
@@ -239,9 +253,10 @@ bool read_counts(std::span<const uint8_t> bytes, uint64_t (&c)[kCountFields]) {
 
 std::string mesh_cache_key(uint64_t content_hash, const Terrain& s) {
   return "welkin terrain: mesh, version " + std::to_string(kMeshCacheVersion) + ", meshoptimizer " +
-         std::to_string(MESHOPTIMIZER_VERSION) + "\nfile " + std::to_string(content_hash) + "\nchunks per side " +
-         std::to_string(s.chunks_per_side) + ", lod levels " + std::to_string(s.lod_levels) + ", refine " +
-         std::to_string(int(s.refine)) + " " + std::to_string(s.refine_levels) + " " + std::to_string(s.refine_max_triangles) + "\n";
+         std::to_string(MESHOPTIMIZER_VERSION) + "\nfile " + std::to_string(content_hash) +
+         "\nchunks per side " + std::to_string(s.chunks_per_side) + ", lod levels " +
+         std::to_string(s.lod_levels) + ", refine " + std::to_string(int(s.refine)) + " " +
+         std::to_string(s.refine_levels) + " " + std::to_string(s.refine_max_triangles) + "\n";
 }
 
 std::string mesh_counts_bytes(const TerrainMesh& m) {
@@ -279,11 +294,14 @@ std::optional<size_t> mesh_body_size(std::span<const uint8_t> counts, size_t max
 }
 
 MeshArrays mesh_arrays(const TerrainMesh& m) {
-  auto bytes = [](const auto& v) { return std::span(reinterpret_cast<const uint8_t*>(v.data()), v.size() * sizeof(v[0])); };
+  auto bytes = [](const auto& v) {
+    return std::span(reinterpret_cast<const uint8_t*>(v.data()), v.size() * sizeof(v[0]));
+  };
   return {bytes(m.positions), bytes(m.normals), bytes(m.uvs), bytes(m.indices)};
 }
 
-std::optional<TerrainMesh> mesh_from_bytes(std::span<const uint8_t> counts, std::span<const uint8_t> body, MeshArrays& arrays) {
+std::optional<TerrainMesh> mesh_from_bytes(std::span<const uint8_t> counts, std::span<const uint8_t> body,
+                                           MeshArrays& arrays) {
   uint64_t c[kCountFields];
   if (!read_counts(counts, c)) return std::nullopt;
   const std::optional<size_t> size = body_size(c, body.size());
@@ -320,10 +338,14 @@ std::optional<TerrainMesh> mesh_from_bytes(std::span<const uint8_t> counts, std:
     Chunk chunk{.min = r.min, .max = r.max, .material = r.material, .base_vertex = r.base_vertex};
     for (uint32_t k = 0; k < r.lods; ++k) {
       const LodRecord& l = lods[next_lod++];
-      if (uint64_t(l.first_index) + l.index_count > c[kIndices] || l.index_count % 3 != 0) return std::nullopt;
+      if (uint64_t(l.first_index) + l.index_count > c[kIndices] || l.index_count % 3 != 0)
+        return std::nullopt;
       const std::optional<uint32_t> used = used_vertices(l, r.base_vertex);
       if (!used) return std::nullopt;
-      chunk.lods.push_back(LodRange{.first_index = l.first_index, .index_count = l.index_count, .error_m = l.error_m, .vertex_count = *used});
+      chunk.lods.push_back(LodRange{.first_index = l.first_index,
+                                    .index_count = l.index_count,
+                                    .error_m = l.error_m,
+                                    .vertex_count = *used});
     }
     m.chunks.push_back(std::move(chunk));
   }

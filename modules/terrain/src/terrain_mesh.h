@@ -73,7 +73,8 @@ MeshArrays mesh_arrays(const TerrainMesh& mesh);
 // The mesh's chunks and bounds back, its arrays left empty and found in `body` (`arrays`); nullopt
 // unless every range is consistent: the chunks' levels inside the indices and every index inside the
 // vertices (the cache folder is input like any other).
-std::optional<TerrainMesh> mesh_from_bytes(std::span<const uint8_t> counts, std::span<const uint8_t> body, MeshArrays& arrays);
+std::optional<TerrainMesh> mesh_from_bytes(std::span<const uint8_t> counts, std::span<const uint8_t> body,
+                                           MeshArrays& arrays);
 
 // The finest level whose projected error stays within `pixel_error` for a chunk at `distance_m`
 // seen by a camera with `pixels_per_radian` (height / vertical field of view); coarser when far.

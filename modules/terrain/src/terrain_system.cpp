@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "terrain_gpu.h"
+#include "terrain_passes.h"
 #include "terrain_system.h"
 #include "welkin/core/error.h"
 #include "welkin/core/world.h"
@@ -44,7 +45,8 @@ Cascades make_cascades(const FrameView& v, const glm::vec3& sun, float distance_
   const float ty = std::tan(v.vertical_fov_rad * 0.5f), tx = ty * float(v.width) / float(v.height);
   glm::vec3 up = std::abs(sun.z) > 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1);
   // The light's axes (those of glm::lookAt toward -sun with `up`).
-  const glm::dvec3 f = -glm::dvec3(sun), s = glm::normalize(glm::cross(f, glm::dvec3(up))), u = glm::cross(s, f);
+  const glm::dvec3 f = -glm::dvec3(sun), s = glm::normalize(glm::cross(f, glm::dvec3(up))),
+                   u = glm::cross(s, f);
   for (int i = 0; i < 3; ++i) {
     // The slice in the view's own axes (right, up, forward), so that its radius is the same number
     // however the view is turned (computed from turned corners, it changed in its last bits, and the
@@ -62,11 +64,13 @@ Cascades make_cascades(const FrameView& v, const glm::vec3& sun, float distance_
     const double step = radius / 8.0;
     const glm::dvec3 world = v.camera_position_m + glm::dvec3(centre);
     auto snap = [step](double x) { return std::round(x / step) * step; };
-    glm::dvec3 snapped = s * snap(glm::dot(world, s)) + u * snap(glm::dot(world, u)) + f * snap(glm::dot(world, f));
+    glm::dvec3 snapped =
+        s * snap(glm::dot(world, s)) + u * snap(glm::dot(world, u)) + f * snap(glm::dot(world, f));
     radius += float(step);
     if (previous && previous->extent_m[size_t(i)] == 2.0f * radius) {
       const glm::dvec3 d = world - previous->centre_m[size_t(i)];
-      if (std::abs(glm::dot(d, s)) <= step && std::abs(glm::dot(d, u)) <= step && std::abs(glm::dot(d, f)) <= step)
+      if (std::abs(glm::dot(d, s)) <= step && std::abs(glm::dot(d, u)) <= step &&
+          std::abs(glm::dot(d, f)) <= step)
         snapped = previous->centre_m[size_t(i)];
     }
     const glm::vec3 rel = glm::vec3(snapped - v.camera_position_m);
@@ -80,51 +84,11 @@ Cascades make_cascades(const FrameView& v, const glm::vec3& sun, float distance_
   return c;
 }
 
-struct Draw {
-  uint32_t first, count;
-  int material;
-  uint32_t base_vertex;
-  uint32_t vertex_count;  // the level's vertices: the first of its chunk's
-};
-
-// One chunk's level: 16-bit indices counted from the chunk's first vertex, and the range of vertices
-// they use (a rasteriser that shades a draw's whole range then shades only the level's).
-void draw_elements(const Draw& d) {
-  glDrawRangeElementsBaseVertex(GL_TRIANGLES, 0, std::max(d.vertex_count, 1u) - 1, GLsizei(d.count), GL_UNSIGNED_SHORT,
-                                reinterpret_cast<const void*>(uintptr_t(d.first) * sizeof(uint16_t)), GLint(d.base_vertex));
-}
-
-// A chunk that casts shadows, with its camera-relative bounds (culled against each cascade).
-struct Caster {
-  size_t chunk;
-  glm::vec3 lo, hi;
-};
-
-struct Placed {
-  GpuTerrain* gpu;
-  glm::dvec3 anchor_m;  // model origin in the scene frame
-  glm::mat3 rotation;   // heading
-  float inverse_two_radius;
-  std::vector<Draw> draws;
-  float lod_pixel_error;
-  std::vector<Caster> casters;  // every chunk (casters outside the view still cast)
-  std::array<std::vector<Draw>, 3> shadow_draws;  // per cascade: the casters it sees, at its level
-  size_t triangles = 0;
-};
-
-// Where a terrain sits relative to the camera, for terrain.vert (view and shadow passes alike).
-void bind_placement(const Program& prog, const Placed& p, const FrameView& view) {
-  prog.set("u_anchor_relative", glm::vec3(p.anchor_m - view.camera_position_m));
-  prog.set("u_anchor_xy", glm::vec2(p.anchor_m));
-  prog.set("u_rotation", p.rotation);
-  prog.set("u_inverse_two_radius", p.inverse_two_radius);
-  glBindVertexArray(p.gpu->vao.id());
-}
-
 bool outside_view(const glm::mat4& view_projection, const glm::vec3& lo, const glm::vec3& hi) {
   int out[6] = {0, 0, 0, 0, 0, 0};
   for (int i = 0; i < 8; ++i) {
-    glm::vec4 c = view_projection * glm::vec4(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z, 1.0f);
+    glm::vec4 c =
+        view_projection * glm::vec4(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z, 1.0f);
     out[0] += c.x < -c.w;
     out[1] += c.x > c.w;
     out[2] += c.y < -c.w;
@@ -139,7 +103,8 @@ bool outside_view(const glm::mat4& view_projection, const glm::vec3& lo, const g
 // What one cascade's depths are drawn from, in the scene's frame (the camera's position aside: a
 // cascade that stays put keeps its depths as the camera moves): where it is, the sun, the atlas's
 // size, and each caster's mesh, placement and the levels drawn.
-std::string cascade_inputs(const Cascades& c, int i, const glm::vec3& sun, const std::vector<Placed>& placed, int size) {
+std::string cascade_inputs(const Cascades& c, int i, const glm::vec3& sun, const std::vector<Placed>& placed,
+                           int size) {
   std::string bytes;
   auto put = [&bytes](const auto& v) { bytes.append(reinterpret_cast<const char*>(&v), sizeof v); };
   put(c.centre_m[size_t(i)]), put(c.extent_m[size_t(i)]), put(sun), put(size);
@@ -154,7 +119,8 @@ std::string cascade_inputs(const Cascades& c, int i, const glm::vec3& sun, const
 // view, the frame's size and format, the shaders, and the light environment (its composition and
 // every term's state: the sun, the sky, the cascades, the clouds' shadows). None when a term cannot
 // say what it reads: then the terrain is drawn every frame.
-std::optional<uint64_t> view_inputs(const std::vector<Placed>& placed, const RenderContext& rc, const LightEnvironment& env) {
+std::optional<uint64_t> view_inputs(const std::vector<Placed>& placed, const RenderContext& rc,
+                                    const LightEnvironment& env) {
   const std::optional<uint64_t> light = env.state();
   if (!light) return std::nullopt;
   const FrameView& v = rc.view;
@@ -163,8 +129,10 @@ std::optional<uint64_t> view_inputs(const std::vector<Placed>& placed, const Ren
   const int frame[3] = {v.width, v.height, int(rc.full_precision)};
   h = fnv1a_64_of(frame, fnv1a_64_of(rc.shaders.environment_version(), h));
   for (const Placed& p : placed) {
-    h = fnv1a_64_of(p.inverse_two_radius, fnv1a_64_of(p.rotation, fnv1a_64_of(p.anchor_m, fnv1a_64_of(p.gpu, h))));
-    h = fnv1a_64(std::string_view(reinterpret_cast<const char*>(p.draws.data()), p.draws.size() * sizeof(Draw)), h);
+    h = fnv1a_64_of(p.inverse_two_radius,
+                    fnv1a_64_of(p.rotation, fnv1a_64_of(p.anchor_m, fnv1a_64_of(p.gpu, h))));
+    h = fnv1a_64(
+        std::string_view(reinterpret_cast<const char*>(p.draws.data()), p.draws.size() * sizeof(Draw)), h);
   }
   return h;
 }
@@ -180,7 +148,8 @@ glm::dvec3 anchor_position(World& world, const Terrain& t) {
       if (!planet || !planet->origin)
         throw Error(ErrorInfo{.path = "terrain.Terrain/anchor",
                               .expected = "a scene whose origin has a latitude and longitude (a time of day)",
-                              .found = "none", .message = "a geodetic anchor needs the scene's geodetic origin"});
+                              .found = "none",
+                              .message = "a geodetic anchor needs the scene's geodetic origin"});
       const double lat0 = planet->origin->latitude_deg, lon0 = planet->origin->longitude_deg;
       double dlon = std::remainder(t.longitude_deg - lon0, 360.0);
       return {glm::radians(dlon) * std::cos(glm::radians(lat0)) * kEarthRadiusM,
@@ -199,54 +168,60 @@ void add_light_term(World& world) {
       .blocks = {"terrain.cascades"},
       .bind = [&world](const LightEnvironment& env) {
         TerrainCache& cache = world.resource<TerrainCache>();
-        env.bind_block("terrain.cascades", cache.cascade_buffer, &cache.cascade_block, sizeof(cache.cascade_block));
+        env.bind_block("terrain.cascades", cache.cascade_buffer, &cache.cascade_block,
+                       sizeof(cache.cascade_block));
         if (cache.shadow_atlas) glBindTextureUnit(env.unit("terrain.shadow_atlas"), cache.shadow_atlas->id());
       },
       // The block as this frame set it, and the atlas's drawings: a frame that draws it again counts
       // as changed in the next (its draw is recorded when it runs).
       .state = [&world] {
         const TerrainCache& cache = world.resource<TerrainCache>();
-        return fnv1a_64_of(cache.cascade_block,
-                           fnv1a_64_of(cache.cascade_draws, fnv1a_64_of(uintptr_t(cache.shadow_atlas.get()))));
+        return fnv1a_64_of(
+            cache.cascade_block,
+            fnv1a_64_of(cache.cascade_draws, fnv1a_64_of(uintptr_t(cache.shadow_atlas.get()))));
       }});
 }
 
-void terrain_system(SystemContext& sc) {
-  World& world = sc.world;
+namespace {
+
+// Each terrain placed in the scene, with the chunks the view draws (their levels chosen, those outside
+// the view culled) and those that cast shadows; each drawn chunk's pixels go into `covered` and into
+// the frame's geometry.
+std::vector<Placed> place_terrains(World& world, FrameTargets& frame, PixelRect& covered) {
   auto& rc = world.resource<RenderContext>();
   auto& cache = world.resource<TerrainCache>();
   const FrameView& view = rc.view;
-  // The frame's depth holds no other geometry yet: a kept terrain's depth can replace it whole.
-  const bool depth_empty = sc.targets->geometry.empty();
   const double pixels_per_radian = view.height / view.vertical_fov_rad;
   // The scene's planet when a module set it (the atmosphere's), else each terrain's own.
   const PlanetFrame* planet = world.find_resource<PlanetFrame>();
   const std::optional<double> planet_radius_m =
       planet && planet->from_scene ? std::optional<double>(planet->radius_m) : std::nullopt;
-
-  auto placed = std::make_shared<std::vector<Placed>>();
-  PixelRect covered;  // every pixel the drawn chunks may cover
+  std::vector<Placed> placed;
   world.registry().each<Terrain>([&](Entity, Terrain& t) {
     Placed p;
     p.gpu = &cache.get(t);
     p.anchor_m = anchor_position(world, t);
     float h = glm::radians(t.heading_deg);
     // Heading turns the model clockwise seen from above (x east, y north).
-    p.rotation = glm::mat3(glm::vec3(std::cos(h), -std::sin(h), 0), glm::vec3(std::sin(h), std::cos(h), 0), glm::vec3(0, 0, 1));
+    p.rotation = glm::mat3(glm::vec3(std::cos(h), -std::sin(h), 0), glm::vec3(std::sin(h), std::cos(h), 0),
+                           glm::vec3(0, 0, 1));
     double radius_m = planet_radius_m ? *planet_radius_m : t.planet_radius_km * 1000.0;
     p.inverse_two_radius = t.follow_curvature ? float(0.5 / radius_m) : 0.0f;
     p.lod_pixel_error = t.lod_pixel_error;
     const glm::vec3 rel = glm::vec3(p.anchor_m - view.camera_position_m);
-    const uint64_t placement = fnv1a_64_of(
-        p.inverse_two_radius, fnv1a_64_of(p.rotation, fnv1a_64_of(p.anchor_m, fnv1a_64(t.file, uintptr_t(p.gpu)))));
+    const uint64_t placement =
+        fnv1a_64_of(p.inverse_two_radius,
+                    fnv1a_64_of(p.rotation, fnv1a_64_of(p.anchor_m, fnv1a_64(t.file, uintptr_t(p.gpu)))));
     for (const Chunk& c : p.gpu->mesh.chunks) {
       // Chunk box, camera-relative (rotation applied to the corners' hull; curvature lowers it a little).
       glm::vec3 lo(INFINITY), hi(-INFINITY);
       for (int i = 0; i < 8; ++i) {
-        glm::vec3 corner = p.rotation * glm::vec3(i & 1 ? c.max.x : c.min.x, i & 2 ? c.max.y : c.min.y, i & 4 ? c.max.z : c.min.z);
+        glm::vec3 corner = p.rotation * glm::vec3(i & 1 ? c.max.x : c.min.x, i & 2 ? c.max.y : c.min.y,
+                                                  i & 4 ? c.max.z : c.min.z);
         lo = glm::min(lo, corner), hi = glm::max(hi, corner);
       }
-      glm::vec2 far_xy = glm::max(glm::abs(glm::vec2(lo) + glm::vec2(p.anchor_m)), glm::abs(glm::vec2(hi) + glm::vec2(p.anchor_m)));
+      glm::vec2 far_xy = glm::max(glm::abs(glm::vec2(lo) + glm::vec2(p.anchor_m)),
+                                  glm::abs(glm::vec2(hi) + glm::vec2(p.anchor_m)));
       lo.z -= glm::dot(far_xy, far_xy) * p.inverse_two_radius;
       lo += rel, hi += rel;
       double distance = glm::length(glm::max(glm::max(lo, -hi), glm::vec3(0.0f)));
@@ -258,92 +233,93 @@ void terrain_system(SystemContext& sc) {
       // What this chunk writes to the depth: its level's triangles, placed (the view aside).
       const PixelRect pixels = screen_rect(view, lo, hi);
       covered.include(pixels);
-      sc.targets->add_geometry(pixels, fnv1a_64_of(l.first_index, fnv1a_64_of(l.index_count, placement)));
+      frame.add_geometry(pixels, fnv1a_64_of(l.first_index, fnv1a_64_of(l.index_count, placement)));
       p.draws.push_back({l.first_index, l.index_count, material, c.base_vertex, l.vertex_count});
       p.triangles += l.index_count / 3;
     }
-    placed->push_back(std::move(p));
+    placed.push_back(std::move(p));
   });
+  return placed;
+}
 
-  const FrameTargets targets = *sc.targets;
-  // Shadows: cascades from the first terrain that casts them (one sun, one set of cascades).
+// Shadows: cascades from the first terrain that casts them (one sun, one set of cascades), their
+// block set, and a pass that draws those whose place, sun or casters changed since their last
+// drawing. Returns the atlas's handle (invalid without shadows); `drawn`: whether a pass draws one.
+ResourceHandle add_shadow_pass(SystemContext& sc, const std::shared_ptr<std::vector<Placed>>& placed,
+                               bool& drawn) {
+  World& world = sc.world;
+  auto& rc = world.resource<RenderContext>();
+  auto& cache = world.resource<TerrainCache>();
   std::optional<glm::vec3> sun = scene_sun_direction(world);
   if (sun && sun->z <= 0.0f) sun.reset();  // no shadows from a sun below the horizon
   const Terrain* shadow_settings = nullptr;
   world.registry().each<Terrain>([&](Entity, Terrain& t) {
     if (t.cast_shadows && !shadow_settings) shadow_settings = &t;
   });
-  auto cascades = std::make_shared<std::optional<Cascades>>();
-  ResourceHandle shadow_handle;
   cache.cascade_block.far_m.w = 0.0f;  // until a cascade is made this frame
-  bool cascades_drawn = false;
-  if (sun && shadow_settings) {
-    *cascades = make_cascades(view, *sun, shadow_settings->shadow_distance_m, 20000.0f, cache.cascade_places);
-    const Cascades& cs = **cascades;
-    cache.cascade_places = TerrainCache::CascadePlaces{.centre_m = cs.centre_m, .extent_m = cs.extent_m};
-    const int size = shadow_settings->shadow_map_size;
-    Texture& atlas = cache.shadow_map(size);
-    for (int i = 0; i < kShadowCascades; ++i) {
-      cache.cascade_block.light_view_projection[i] = cs.light_view_projection[size_t(i)];
-      cache.cascade_block.far_m[i] = cs.far_m[size_t(i)];
-      cache.cascade_block.texel_m[i] = cs.extent_m[size_t(i)] / float(size);
-    }
-    cache.cascade_block.far_m.w = 1.0f;
-    // Each cascade draws the casters its square sees, at the level whose error stays within the
-    // terrain's pixel error in the cascade's texels: the far cascades draw coarse levels.
-    for (Placed& p : *placed)
-      for (int i = 0; i < kShadowCascades; ++i) {
-        const double texels_per_m = size / double(cs.extent_m[size_t(i)]);
-        for (const Caster& k : p.casters) {
-          if (outside_view(cs.light_view_projection[size_t(i)], k.lo, k.hi)) continue;
-          const Chunk& c = p.gpu->mesh.chunks[k.chunk];
-          const LodRange& l = c.lods[size_t(select_lod(c, 1.0, texels_per_m, p.lod_pixel_error))];
-          const int material = c.material < 0 ? int(p.gpu->materials.size()) - 1 : c.material;
-          p.shadow_draws[size_t(i)].push_back({l.first_index, l.index_count, material, c.base_vertex, l.vertex_count});
-        }
-      }
-    shadow_handle = sc.graph->import("terrain.shadow_atlas", atlas);
-    // A cascade whose place, sun and casters are those of its last drawing keeps its depths.
-    auto inputs = std::make_shared<std::array<std::string, kShadowCascades>>();
-    std::vector<int> stale;
-    for (int i = 0; i < kShadowCascades; ++i) {
-      (*inputs)[size_t(i)] = cascade_inputs(cs, i, *sun, *placed, size);
-      if ((*inputs)[size_t(i)] != cache.cascade_inputs[size_t(i)]) stale.push_back(i);
-    }
-    cascades_drawn = !stale.empty();
-    if (cascades_drawn)
-    sc.graph->add_pass("terrain.shadows", [&](PassBuilder& b) { b.write(shadow_handle); },
-                       [placed, cascades, shadow_handle, size, &rc, &cache, inputs, stale](PassContext& pc) {
-      Framebuffer fb(nullptr, &pc.texture(shadow_handle));
-      fb.bind();
-      glEnable(GL_DEPTH_TEST);
-      glDepthFunc(GL_LESS);
-      glDepthMask(GL_TRUE);
-      glClearDepth(1.0);
-      glEnable(GL_SCISSOR_TEST);
-      glEnable(GL_POLYGON_OFFSET_FILL);
-      glPolygonOffset(2.0f, 4.0f);  // slope-scaled bias against self-shadowing acne
-      const Program& prog = rc.shaders.graphics("terrain/terrain.vert", "terrain/depth.frag");
-      prog.use();
-      for (int i : stale) {
-        glViewport(i * size, 0, size, size);
-        glScissor(i * size, 0, size, size);
-        glClear(GL_DEPTH_BUFFER_BIT);
-        prog.set("u_view_projection", (**cascades).light_view_projection[size_t(i)]);
-        for (const Placed& p : *placed) {
-          bind_placement(prog, p, rc.view);
-          for (const Draw& d : p.shadow_draws[size_t(i)]) draw_elements(d);
-        }
-        // Once drawn: a frame that failed before this draws it again.
-        cache.cascade_inputs[size_t(i)] = (*inputs)[size_t(i)];
-        ++cache.cascade_draws;
-      }
-      glDisable(GL_SCISSOR_TEST);
-      glDisable(GL_POLYGON_OFFSET_FILL);
-      glDepthFunc(GL_GREATER);  // back to the frame's reversed-Z convention
-      glClearDepth(0.0);
-    });
+  drawn = false;
+  if (!sun || !shadow_settings) return {};
+  const Cascades cs =
+      make_cascades(rc.view, *sun, shadow_settings->shadow_distance_m, 20000.0f, cache.cascade_places);
+  cache.cascade_places = TerrainCache::CascadePlaces{.centre_m = cs.centre_m, .extent_m = cs.extent_m};
+  const int size = shadow_settings->shadow_map_size;
+  Texture& atlas = cache.shadow_map(size);
+  for (int i = 0; i < kShadowCascades; ++i) {
+    cache.cascade_block.light_view_projection[i] = cs.light_view_projection[size_t(i)];
+    cache.cascade_block.far_m[i] = cs.far_m[size_t(i)];
+    cache.cascade_block.texel_m[i] = cs.extent_m[size_t(i)] / float(size);
   }
+  cache.cascade_block.far_m.w = 1.0f;
+  // Each cascade draws the casters its square sees, at the level whose error stays within the
+  // terrain's pixel error in the cascade's texels: the far cascades draw coarse levels.
+  for (Placed& p : *placed)
+    for (int i = 0; i < kShadowCascades; ++i) {
+      const double texels_per_m = size / double(cs.extent_m[size_t(i)]);
+      for (const Caster& k : p.casters) {
+        if (outside_view(cs.light_view_projection[size_t(i)], k.lo, k.hi)) continue;
+        const Chunk& c = p.gpu->mesh.chunks[k.chunk];
+        const LodRange& l = c.lods[size_t(select_lod(c, 1.0, texels_per_m, p.lod_pixel_error))];
+        const int material = c.material < 0 ? int(p.gpu->materials.size()) - 1 : c.material;
+        p.shadow_draws[size_t(i)].push_back(
+            {l.first_index, l.index_count, material, c.base_vertex, l.vertex_count});
+      }
+    }
+  const ResourceHandle shadow_handle = sc.graph->import("terrain.shadow_atlas", atlas);
+  // A cascade whose place, sun and casters are those of its last drawing keeps its depths.
+  std::array<std::string, kShadowCascades> inputs;
+  std::vector<int> stale;
+  for (int i = 0; i < kShadowCascades; ++i) {
+    inputs[size_t(i)] = cascade_inputs(cs, i, *sun, *placed, size);
+    if (inputs[size_t(i)] != cache.cascade_inputs[size_t(i)]) stale.push_back(i);
+  }
+  drawn = !stale.empty();
+  if (drawn)
+    sc.graph->add_pass(
+        "terrain.shadows", [&](PassBuilder& b) { b.write(shadow_handle); },
+        [placed, light_view_projection = cs.light_view_projection, shadow_handle, size, &rc, &cache,
+         inputs = std::move(inputs), stale](PassContext& pc) {
+          draw_shadow_cascades(pc.texture(shadow_handle), *placed, light_view_projection, size, stale,
+                               inputs, rc, cache);
+        });
+  return shadow_handle;
+}
+
+}  // namespace
+
+void terrain_system(SystemContext& sc) {
+  World& world = sc.world;
+  auto& rc = world.resource<RenderContext>();
+  auto& cache = world.resource<TerrainCache>();
+  const FrameView& view = rc.view;
+  // The frame's depth holds no other geometry yet: a kept terrain's depth can replace it whole.
+  const bool depth_empty = sc.targets->geometry.empty();
+  SurfaceDraw surface_draw;  // covered: every pixel the drawn chunks may cover
+  auto placed =
+      std::make_shared<std::vector<Placed>>(place_terrains(world, *sc.targets, surface_draw.covered));
+
+  const FrameTargets targets = *sc.targets;
+  bool cascades_drawn = false;
+  const ResourceHandle shadow_handle = add_shadow_pass(sc, placed, cascades_drawn);
   // A still view under still light draws the same terrain again, bit for bit: while what it is drawn
   // from stays the same (and no cascade is drawn this frame: its drawing is not yet in the light's
   // state), the frame takes the colour and depth drawn last, a copy instead of 110k triangles shaded.
@@ -351,27 +327,16 @@ void terrain_system(SystemContext& sc) {
   if (depth_empty && !cascades_drawn) inputs = view_inputs(*placed, rc, world.resource<LightEnvironment>());
   const bool keep = inputs && *inputs == cache.kept_inputs && cache.kept_color;
   if (keep) {
-    sc.graph->add_pass("terrain", [&](PassBuilder& b) {
-      b.read(targets.color);
-      b.write(targets.color);
-      b.write(targets.depth);
-    }, [targets, &rc, &cache](PassContext& pc) {
-      // The kept depth replaces the frame's; the kept colour goes where it holds terrain (the depth
-      // test against a triangle at infinity passes exactly there); the sky stays elsewhere.
-      const Texture& depth = pc.texture(targets.depth);
-      copy_texture(*cache.kept_depth, depth);
-      Framebuffer fb(&pc.texture(targets.color), &depth);
-      fb.bind();
-      glEnable(GL_DEPTH_TEST);
-      glDepthFunc(GL_LESS);
-      glDepthMask(GL_FALSE);
-      glDisable(GL_BLEND);
-      rc.shaders.graphics("fullscreen.vert", "copy.frag").use();
-      glBindTextureUnit(0, cache.kept_color->id());
-      rc.draw_fullscreen_triangle();
-      glDepthMask(GL_TRUE);
-      glDepthFunc(GL_GREATER);
-    });
+    sc.graph->add_pass(
+        "terrain",
+        [&](PassBuilder& b) {
+          b.read(targets.color);
+          b.write(targets.color);
+          b.write(targets.depth);
+        },
+        [targets, &rc, &cache](PassContext& pc) {
+          draw_kept_terrain(pc.texture(targets.color), pc.texture(targets.depth), rc, cache);
+        });
     return;
   }
 
@@ -379,120 +344,43 @@ void terrain_system(SystemContext& sc) {
   // per pixel. Shading in the first pass would run the light for whole quads and blocks around
   // triangles of a pixel or two: several times the pixels the terrain covers on a software rasteriser.
   // The materials' own light goes into the frame's colour first, only where a drawn one has any.
-  bool emissive = false, own_transforms = false;
   for (const Placed& p : *placed)
     for (const Draw& d : p.draws) {
       const GpuMaterial& m = p.gpu->materials[size_t(d.material)];
-      emissive = emissive || m.emissive != glm::vec3(0.0f);
-      own_transforms = own_transforms || m.own_transforms();
+      surface_draw.emissive = surface_draw.emissive || m.emissive != glm::vec3(0.0f);
+      surface_draw.own_transforms = surface_draw.own_transforms || m.own_transforms();
     }
   auto surface = std::make_shared<ResourceHandle>();
-  sc.graph->add_pass("terrain", [&](PassBuilder& b) {
-    b.read(targets.color);
-    b.write(targets.color);
-    b.read(targets.depth);
-    b.write(targets.depth);
-    *surface = b.create("terrain.surface", TextureDesc{.width = view.width, .height = view.height,
-                                                       .format = TextureFormat::rgba32ui, .linear_filter = false});
-  }, [placed, targets, surface, covered, emissive, own_transforms, &rc, &cache](PassContext& pc) {
-    ++cache.view_draws;
-    Framebuffer fb({&pc.texture(targets.color), &pc.texture(*surface)}, &pc.texture(targets.depth));
-    fb.bind();
-    // No terrain yet: the light pass skips what other geometry drew before (roughness 0).
-    const GLuint none[4] = {0, 0, 0, 0};
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(covered.x0, covered.y0, covered.x1 - covered.x0, covered.y1 - covered.y0);
-    glClearBufferuiv(GL_COLOR, 1, none);
-    glColorMaski(0, emissive, emissive, emissive, emissive);
-    glDisable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ZERO);  // several draw buffers: no second source colour may be named
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_GREATER);
-    glDepthMask(GL_TRUE);
-    glEnable(GL_CULL_FACE);
-    const Program& prog = rc.shaders.graphics("terrain/terrain.vert", "terrain/terrain.frag",
-                                              {{"TERRAIN_TEXTURE_TRANSFORMS", own_transforms ? "1" : "0"}});
-    prog.use();
-    prog.set("u_view_projection", rc.view.view_projection);
-    for (const Placed& p : *placed) {
-      bind_placement(prog, p, rc.view);
-      int bound = -2;
-      for (const Draw& d : p.draws) {
-        if (d.material != bound) {
-          const GpuMaterial& m = p.gpu->materials[size_t(d.material)];
-          prog.set("u_base_color_factor", m.base_color_factor);
-          prog.set("u_metallic", m.metallic);
-          prog.set("u_roughness", m.roughness);
-          prog.set("u_emissive", m.emissive);
-          prog.set("u_occlusion_strength", m.occlusion_strength);
-          prog.set("u_uv_transform", m.uv_transforms[0]);
-          prog.set("u_metallic_roughness_transform", m.uv_transforms[1]);
-          prog.set("u_occlusion_transform", m.uv_transforms[2]);
-          prog.set("u_emissive_transform", m.uv_transforms[3]);
-          prog.set("u_has_base_color", m.base_color ? 1 : 0);
-          prog.set("u_has_metallic_roughness", m.metallic_roughness ? 1 : 0);
-          prog.set("u_has_occlusion", m.occlusion ? 1 : 0);
-          prog.set("u_has_emissive", m.emissive_map ? 1 : 0);
-          glBindTextureUnit(0, m.base_color.id());
-          glBindTextureUnit(1, m.metallic_roughness.id());
-          glBindTextureUnit(2, m.occlusion.id());
-          glBindTextureUnit(3, m.emissive_map.id());
-          bound = d.material;
-        }
-        draw_elements(d);
-      }
-    }
-    glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_SCISSOR_TEST);
-  });
-
-  sc.graph->add_pass("terrain.light", [&](PassBuilder& b) {
-    b.read(targets.color);
-    b.write(targets.color);
-    b.read(targets.depth);
-    b.read(*surface);
-    if (shadow_handle.valid()) b.read(shadow_handle);
-  }, [targets, surface, covered, emissive, &rc, &world, &cache, inputs](PassContext& pc) {
-    const Texture &color = pc.texture(targets.color), &depth = pc.texture(targets.depth);
-    {
-      // Depth attached read-only and read at the fragment's own texel (GL 4.5, 9.3.1); the triangle
-      // at infinity passes GL_LESS only where something was drawn.
-      Framebuffer fb(&color, &depth);
-      fb.bind();
-      glEnable(GL_DEPTH_TEST);
-      glDepthFunc(GL_LESS);
-      glDepthMask(GL_FALSE);
-      glEnable(GL_SCISSOR_TEST);
-      glScissor(covered.x0, covered.y0, covered.x1 - covered.x0, covered.y1 - covered.y0);
-      if (emissive) {
-        glEnable(GL_BLEND);
-        glBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);  // onto the materials' own light
-      }
-      world.resource<LightEnvironment>().bind();
-      const Program& prog = rc.shaders.graphics("fullscreen.vert", "terrain/light.frag");
-      prog.use();
-      prog.set("u_inverse_view_projection", rc.view.inverse_view_projection);
-      glBindTextureUnit(0, depth.id());
-      glBindTextureUnit(1, pc.texture(*surface).id());
-      rc.draw_fullscreen_triangle();
-      glDisable(GL_BLEND);
-      glBlendFunc(GL_ONE, GL_ZERO);
-      glDisable(GL_SCISSOR_TEST);
-      glDepthMask(GL_TRUE);
-      glDepthFunc(GL_GREATER);
-    }
-    // Recorded once drawn (a failed frame draws again); kept when drawn twice alike.
-    if (inputs && *inputs == cache.drawn_inputs) {
-      const TextureDesc color_desc = color.desc(), depth_desc = depth.desc();
-      if (!cache.kept_color || !(cache.kept_color->desc() == color_desc)) cache.kept_color = std::make_unique<Texture>(color_desc);
-      if (!cache.kept_depth || !(cache.kept_depth->desc() == depth_desc)) cache.kept_depth = std::make_unique<Texture>(depth_desc);
-      copy_texture(color, *cache.kept_color);
-      copy_texture(depth, *cache.kept_depth);
-      cache.kept_inputs = *inputs;
-    }
-    cache.drawn_inputs = inputs.value_or(0);
-  });
+  sc.graph->add_pass(
+      "terrain",
+      [&](PassBuilder& b) {
+        b.read(targets.color);
+        b.write(targets.color);
+        b.read(targets.depth);
+        b.write(targets.depth);
+        *surface = b.create("terrain.surface", TextureDesc{.width = view.width,
+                                                          .height = view.height,
+                                                          .format = TextureFormat::rgba32ui,
+                                                          .linear_filter = false});
+      },
+      [placed, targets, surface_draw, &rc, &cache, surface](PassContext& pc) {
+        ++cache.view_draws;
+        draw_surface(pc.texture(targets.color), pc.texture(*surface), pc.texture(targets.depth), *placed,
+                     surface_draw, rc);
+      });
+  sc.graph->add_pass(
+      "terrain.light",
+      [&](PassBuilder& b) {
+        b.read(targets.color);
+        b.write(targets.color);
+        b.read(targets.depth);
+        b.read(*surface);
+        if (shadow_handle.valid()) b.read(shadow_handle);
+      },
+      [targets, surface, surface_draw, &rc, &world, &cache, inputs](PassContext& pc) {
+        draw_surface_light(pc.texture(targets.color), pc.texture(targets.depth), pc.texture(*surface),
+                           surface_draw, inputs, rc, world, cache);
+      });
 }
 
 }  // namespace welkin::terrain

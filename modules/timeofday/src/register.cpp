@@ -9,12 +9,17 @@ void describe(TypeBuilder<TimeOfDay>& t) {
   t.field("year", &TimeOfDay::year).range(1900, 2100).tooltip("Years covered to SPA accuracy");
   t.field("month", &TimeOfDay::month).range(1, 12);
   t.field("day", &TimeOfDay::day).range(1, 31);
-  t.field("local_time_h", &TimeOfDay::local_time_h).unit("h").range(0, 24).tooltip("Local clock time (UTC + offset)");
+  t.field("local_time_h", &TimeOfDay::local_time_h)
+      .unit("h")
+      .range(0, 24)
+      .tooltip("Local clock time (UTC + offset)");
   t.field("utc_offset_h", &TimeOfDay::utc_offset_h).unit("h").range(-14, 14);
   t.field("latitude_deg", &TimeOfDay::latitude_deg).unit("deg").range(-90, 90);
   t.field("longitude_deg", &TimeOfDay::longitude_deg).unit("deg").range(-180, 180).tooltip("East positive");
   t.field("elevation_m", &TimeOfDay::elevation_m).unit("m").range(-11000, 1e8);
-  t.field("time_scale", &TimeOfDay::time_scale).range(-1e6, 1e6).tooltip("Simulated seconds per second; 0 pauses");
+  t.field("time_scale", &TimeOfDay::time_scale)
+      .range(-1e6, 1e6)
+      .tooltip("Simulated seconds per second; 0 pauses");
   t.field("pressure_mbar", &TimeOfDay::pressure_mbar).unit("mbar").range(0, 5000).tooltip("For refraction");
   t.field("temperature_c", &TimeOfDay::temperature_c).unit("C").range(-273, 1000).tooltip("For refraction");
   t.field("refraction", &TimeOfDay::refraction).tooltip("Raise the sun and moon by atmospheric refraction");

@@ -20,7 +20,8 @@ struct SequenceCache {
     std::error_code ec;
     auto stamp = std::filesystem::last_write_time(path, ec);
     auto it = entries.find(path);
-    if (it == entries.end() || it->second.stamp != stamp) it = entries.insert_or_assign(path, Entry{stamp, load_sequence_file(path)}).first;
+    if (it == entries.end() || it->second.stamp != stamp)
+      it = entries.insert_or_assign(path, Entry{stamp, load_sequence_file(path)}).first;
     return it->second.sequence;
   }
 };
@@ -32,7 +33,8 @@ void sequence_player_system(SystemContext& sc) {
     if (p.file.empty()) return;
     const Sequence& seq = cache.get(p.file);
     if (p.playing && sc.frame.dt_s > 0) p.time_s += sc.frame.dt_s * p.speed;
-    if (p.loop && seq.duration_s > 0) p.time_s = std::fmod(std::fmod(p.time_s, seq.duration_s) + seq.duration_s, seq.duration_s);
+    if (p.loop && seq.duration_s > 0)
+      p.time_s = std::fmod(std::fmod(p.time_s, seq.duration_s) + seq.duration_s, seq.duration_s);
     apply_sequence(seq, sc.world, p.time_s);
   });
 }

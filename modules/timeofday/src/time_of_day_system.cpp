@@ -66,8 +66,11 @@ void set_local_time(TimeOfDay& tod, const UtcTime& utc) {
 }
 
 SkyState sky_of(const TimeOfDay& tod) {
-  Observer obs{.latitude_deg = tod.latitude_deg, .longitude_deg = tod.longitude_deg, .elevation_m = tod.elevation_m,
-               .pressure_mbar = tod.pressure_mbar, .temperature_c = tod.temperature_c};
+  Observer obs{.latitude_deg = tod.latitude_deg,
+               .longitude_deg = tod.longitude_deg,
+               .elevation_m = tod.elevation_m,
+               .pressure_mbar = tod.pressure_mbar,
+               .temperature_c = tod.temperature_c};
   EphemerisOptions opt{.apply_refraction = tod.refraction};
   if (tod.delta_t_mode == DeltaTMode::manual) opt.delta_t_s = tod.delta_t_s;
   std::string err;

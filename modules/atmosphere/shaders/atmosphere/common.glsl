@@ -1,7 +1,8 @@
 #pragma once
 // Everything the atmosphere shaders share: the uniform block (src/uniforms.h mirrors it), the LUT
-// samplers at the units the runtime's light environment assigned (WELKIN_UNIT_*), the medium, phase functions, ray geometry and the LUT parameterisations.
-// Lengths are km in a planet-centred frame whose axes are the scene's (x east, y north, z up).
+// samplers at the units the runtime's light environment assigned (WELKIN_UNIT_*), the medium, phase
+// functions, ray geometry and the LUT parameterisations. Lengths are km in a planet-centred frame whose axes
+// are the scene's (x east, y north, z up).
 #define ATM_PI 3.14159265358979
 
 layout(std140, binding = WELKIN_BLOCK_ATMOSPHERE) uniform WelkinAtmosphere {

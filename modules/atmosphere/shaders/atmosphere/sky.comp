@@ -20,5 +20,6 @@ void main() {
   if (texelFetch(u_depth, pixel, 0).r > 0.0) return;
 #endif
   vec4 color;
-  if (sky_pixel(sky_direction(screen_ndc(pixel, imageSize(o_color))), color)) imageStore(o_color, pixel, color);
+  if (sky_pixel(sky_direction(screen_ndc(pixel, imageSize(o_color))), color))
+    imageStore(o_color, pixel, color);
 }

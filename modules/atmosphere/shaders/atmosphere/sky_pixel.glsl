@@ -52,7 +52,9 @@ vec3 ground_light_change(vec3 v) {
   vec3 n = normalize(g);
   vec3 p = v * (iv.y * 1000.0);  // camera-relative metres
   float r_c = length(o), r_g = atm_bottom() + atm_ground_albedo.w;
-  vec3 t_view = min(atm_transmittance(r_g, -dot(n, v)) / max(atm_transmittance(r_c, -dot(o / r_c, v)), vec3(1e-12)), vec3(1.0));
+  vec3 t_view =
+      min(atm_transmittance(r_g, -dot(n, v)) / max(atm_transmittance(r_c, -dot(o / r_c, v)), vec3(1e-12)),
+          vec3(1.0));
   AtmLight l0 = atm_sun_light(), l1 = atm_moon_light_source();
   float mu0 = dot(n, l0.direction);
   vec3 e_sun = l0.illuminance * atm_transmittance_to_light(r_g, mu0, l0.angular_radius) * max(mu0, 0.0);

@@ -70,7 +70,8 @@ void main() {
     float tau = billboard_march_depth(p, l_local, archetype, 24) * scale;
     float step_opacity = 1.0 - exp(-sigma * dt);
     light += transmittance * step_opacity *
-             clouds_sample_source(mu, phase_single, tau, sigma, max(p.z + u_volume.y, 0.0), u_light_dir, v_up, b.light.rgb, b.sky.rgb);
+             clouds_sample_source(mu, phase_single, tau, sigma, max(p.z + u_volume.y, 0.0), u_light_dir, v_up,
+                                  b.light.rgb, b.sky.rgb);
     if (transmittance > 0.5 && transmittance * (1.0 - step_opacity) <= 0.5) front = t;
     transmittance *= 1.0 - step_opacity;
   }
@@ -86,7 +87,8 @@ void main() {
     float along = dot(dir, v_plane[i].xyz);
     if (v_weights[i] <= 0.0 || abs(along) < 1e-6) continue;
     t_plane[i] = v_plane[i].w / along;
-    vec2 uv = t_plane[i] * vec2(dot(dir, v_axis_a[i].xyz), dot(dir, v_axis_b[i].xyz)) + vec2(v_axis_a[i].w, v_axis_b[i].w);
+    vec2 uv = t_plane[i] * vec2(dot(dir, v_axis_a[i].xyz), dot(dir, v_axis_b[i].xyz)) +
+              vec2(v_axis_a[i].w, v_axis_b[i].w);
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) continue;
     uvw[i] = vec3(uv, v_layers[i]);
     a[i] = textureLod(u_atlas_texture, uvw[i], 0.0);
@@ -115,9 +117,10 @@ void main() {
   float phase_single = clouds_phase(mu, 1.0);
   Billboard b = bb_billboards[v_billboard];
   vec3 source = clouds_diffusion_model
-      ? clouds_diffusion_source(mu, phase_single, direct, diffuse, sigma * scale, max(height, 0.0), u_light_dir, v_up, b.light.rgb, b.sky.rgb)
-      : clouds_sample_source(mu, phase_single, tau, sigma * scale, max(height, 0.0), u_light_dir, v_up,
-                             b.light.rgb, b.sky.rgb);
+                    ? clouds_diffusion_source(mu, phase_single, direct, diffuse, sigma * scale,
+                                              max(height, 0.0), u_light_dir, v_up, b.light.rgb, b.sky.rgb)
+                    : clouds_sample_source(mu, phase_single, tau, sigma * scale, max(height, 0.0),
+                                           u_light_dir, v_up, b.light.rgb, b.sky.rgb);
   light = opacity * source;
   if (opacity > 0.5) front = t_half;
 #endif

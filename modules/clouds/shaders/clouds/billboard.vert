@@ -37,7 +37,8 @@ void main() {
   }
   vec3 toward_camera = -normalize(c);
   ivec3 views;
-  billboard_views(vec3(dot(toward_camera, v_wind), dot(toward_camera, v_across), dot(toward_camera, v_up)), views, v_weights);
+  billboard_views(vec3(dot(toward_camera, v_wind), dot(toward_camera, v_across), dot(toward_camera, v_up)),
+                  views, v_weights);
   for (int i = 0; i < 3; ++i) {
     int v = views[i];
     vec3 d = billboard_view_direction(v / u_atlas.x, v % u_atlas.x), right, up;
@@ -52,5 +53,6 @@ void main() {
   }
   // The box that holds the cloud (its window's cylinder), not its bounding sphere: a cloud seen from
   // the side covers a band, a third of the sphere's square.
-  v_position = box_screen_corner(c, v_wind * (0.95 * u_box.x), v_across * (0.95 * u_box.x), v_up * u_box.y, gl_VertexID, gl_Position);
+  v_position = box_screen_corner(c, v_wind * (0.95 * u_box.x), v_across * (0.95 * u_box.x), v_up * u_box.y,
+                                 gl_VertexID, gl_Position);
 }

@@ -20,20 +20,23 @@ struct Billboard {
   vec4 centre;            // camera-relative m (the archetype box's centre); w: optical-depth scale (0: none)
   vec4 light;             // irradiance of the marched light at the centre; w: distance from the camera m
   vec4 sky;               // sky irradiance on a horizontal plane at the centre; w: archetype index
-  vec4 ap_inscattering;   // the air between the camera and the centre; w: the archetype's turn about the vertical (radians)
+  vec4 ap_inscattering;   // the air between the camera and the centre; w: the archetype's turn about the
+                          // vertical (radians)
   vec4 ap_transmittance;
 };
 
 uniform ivec4 u_atlas;  // view azimuths, view elevations, archetypes, texels per side
 uniform vec4 u_box;     // half width m, half height m, bounding radius m, volume slices per archetype
-uniform vec4 u_volume;  // texels per side of an archetype's volume, height of the box's centre above the layer's base m
+uniform vec4 u_volume;  // texels per side of an archetype's volume, height of the box's centre above the
+                        // layer's base m
 
 // The elevations' sines span [-kBillboardSinRange, kBillboardSinRange] (one row: the horizon).
 const float kBillboardSinRange = 0.6;
 
 // Toward the viewer of view (row, column), in the archetype's frame.
 vec3 billboard_view_direction(int row, int column) {
-  float s = u_atlas.y > 1 ? -kBillboardSinRange + 2.0 * kBillboardSinRange * float(row) / float(u_atlas.y - 1) : 0.0;
+  float s = u_atlas.y > 1 ? -kBillboardSinRange + 2.0 * kBillboardSinRange * float(row) / float(u_atlas.y - 1)
+                          : 0.0;
   float a = 6.2831853 * float(column) / float(u_atlas.x);
   float c = sqrt(1.0 - s * s);
   return vec3(c * cos(a), c * sin(a), s);
@@ -51,10 +54,13 @@ void billboard_views(vec3 d, out ivec3 views, out vec3 weights) {
   float fa = fract(a) * float(u_atlas.x);
   int c0 = int(floor(fa)) % u_atlas.x, c1 = (c0 + 1) % u_atlas.x;
   float wa = fract(fa);
-  float fr = u_atlas.y > 1 ? clamp((d.z + kBillboardSinRange) / (2.0 * kBillboardSinRange), 0.0, 1.0) * float(u_atlas.y - 1) : 0.0;
+  float fr = u_atlas.y > 1 ? clamp((d.z + kBillboardSinRange) / (2.0 * kBillboardSinRange), 0.0, 1.0) *
+                                 float(u_atlas.y - 1)
+                           : 0.0;
   int r0 = min(int(floor(fr)), max(u_atlas.y - 2, 0)), r1 = min(r0 + 1, u_atlas.y - 1);
   float wr = u_atlas.y > 1 ? fr - float(r0) : 0.0;
-  int v00 = r0 * u_atlas.x + c0, v01 = r0 * u_atlas.x + c1, v10 = r1 * u_atlas.x + c0, v11 = r1 * u_atlas.x + c1;
+  int v00 = r0 * u_atlas.x + c0, v01 = r0 * u_atlas.x + c1, v10 = r1 * u_atlas.x + c0,
+      v11 = r1 * u_atlas.x + c1;
   if (wa >= wr) {
     views = ivec3(v00, v01, v11);
     weights = vec3(1.0 - wa, wa - wr, wr);
@@ -68,9 +74,12 @@ void billboard_views(vec3 d, out ivec3 views, out vec3 weights) {
 vec4 billboard_sh(vec3 w) { return vec4(0.282095, 0.488603 * w.y, 0.488603 * w.z, 0.488603 * w.x); }
 // A transmittance toward w from its coefficients (kept within its range: a first-order fit of a
 // sharp function may overshoot).
-float billboard_transmittance(vec4 sh, vec3 w, float lowest) { return clamp(dot(sh, billboard_sh(w)), lowest, 1.0); }
+float billboard_transmittance(vec4 sh, vec3 w, float lowest) {
+  return clamp(dot(sh, billboard_sh(w)), lowest, 1.0);
+}
 
-// Where a segment p + t d (the archetype's frame, m) lies in the box: (t near, t far), near > far when missed.
+// Where a segment p + t d (the archetype's frame, m) lies in the box: (t near, t far), near > far when
+// missed.
 vec2 billboard_box_span(vec3 p, vec3 d) {
   vec3 half_size = vec3(u_box.x, u_box.x, u_box.y);
   vec3 inv = 1.0 / (abs(d) + 1e-12) * sign(d + 1e-30);
@@ -87,14 +96,16 @@ float billboard_extinction(vec3 p, int archetype) {
   if (any(lessThan(f, vec3(0.0))) || any(greaterThan(f, vec3(1.0)))) return 0.0;
   float slices = u_box.w;
   // Kept half a slice inside its own stack: no archetype reads its neighbour's.
-  float z = (clamp(f.z * slices, 0.5, slices - 0.5) + float(archetype) * slices) / (slices * float(u_atlas.z));
+  float z =
+      (clamp(f.z * slices, 0.5, slices - 0.5) + float(archetype) * slices) / (slices * float(u_atlas.z));
   return textureLod(u_billboard_volume, vec3(f.xy, z), 0.0).r;
 }
 // The optical depth from p toward w, to where the ray leaves the box, in `steps` midpoint steps.
 float billboard_march_depth(vec3 p, vec3 w, int archetype, int steps) {
   float length_m = max(billboard_box_span(p, w).y, 0.0);
   float dt = length_m / float(steps), tau = 0.0;
-  for (int i = 0; i < steps; ++i) tau += billboard_extinction(p + w * ((float(i) + 0.5) * dt), archetype) * dt;
+  for (int i = 0; i < steps; ++i)
+    tau += billboard_extinction(p + w * ((float(i) + 0.5) * dt), archetype) * dt;
   return tau;
 }
 #endif

@@ -17,7 +17,8 @@
 #include "clouds/transmittance.glsl"
 
 layout(local_size_x = 64) in;
-layout(std430, binding = 7) buffer BillboardArchetypes { vec4 bb_archetypes[]; };  // place (m in the noise's frame), score
+// place (m in the noise's frame), score
+layout(std430, binding = 7) buffer BillboardArchetypes { vec4 bb_archetypes[]; };
 #if BILLBOARDS_BAKE_STAGE == 1
 layout(r32f, binding = 0) uniform writeonly image3D o_volume;
 #elif BILLBOARDS_BAKE_STAGE == 2
@@ -39,9 +40,11 @@ CloudLayerGpu bake_layer() {
 float archetype_field(CloudLayerGpu L, vec3 x, float h) {
   clouds_detail_sample = -1.0, clouds_painted_sample = 2.0, clouds_detail_displacement = 0.0;
   clouds_system_g = 0.5;
-  clouds_shape_sample = textureLod(cl_shape_noise, x * cl.shape_per_m, clouds_lod(1.0 / (cl.shape_per_m * 128.0)));
+  clouds_shape_sample =
+      textureLod(cl_shape_noise, x * cl.shape_per_m, clouds_lod(1.0 / (cl.shape_per_m * 128.0)));
   float envelope;
-  return clouds_layer_density(L, clouds_weather_fetch(L, x), false, true, x, h, envelope) * (cl.scattering + cl.absorption);
+  return clouds_layer_density(L, clouds_weather_fetch(L, x), false, true, x, h, envelope) *
+         (cl.scattering + cl.absorption);
 }
 
 void main() {
@@ -54,9 +57,11 @@ void main() {
 #if BILLBOARDS_BAKE_STAGE == 0
   if (id >= u_atlas.z) return;
   // Scores are sums of five envelopes (at most 5): archetype k aims at 5 (k + 1/2) / K.
-  float period = 1.0 / L.weather_per_m, target = 5.0 * (float(id) + 0.5) / float(u_atlas.z), best = 3.4e38, best_score = 0.0;
+  float period = 1.0 / L.weather_per_m, target = 5.0 * (float(id) + 0.5) / float(u_atlas.z), best = 3.4e38,
+        best_score = 0.0;
   vec2 place = vec2(0.0);
-  const vec2 columns[5] = vec2[5](vec2(0.0), vec2(0.5, 0.0), vec2(-0.5, 0.0), vec2(0.0, 0.5), vec2(0.0, -0.5));
+  const vec2 columns[5] =
+      vec2[5](vec2(0.0), vec2(0.5, 0.0), vec2(-0.5, 0.0), vec2(0.0, 0.5), vec2(0.0, -0.5));
   for (int j = 0; j < 64; ++j) {
     vec2 p = random4(ivec2(id, 0), j, 2u).xy * period;
     float score = 0.0, t, d0;
@@ -73,8 +78,9 @@ void main() {
   if (id >= n * n * slices * u_atlas.z) return;
   int i = id % n, j = (id / n) % n, l = id / (n * n);
   int archetype = l / slices;
-  vec3 p = vec3((vec2(i, j) + 0.5) / float(n) * 2.0 - 1.0, (float(l % slices) + 0.5) / float(slices) * 2.0 - 1.0) *
-           vec3(hw, hw, hh);
+  vec3 p =
+      vec3((vec2(i, j) + 0.5) / float(n) * 2.0 - 1.0, (float(l % slices) + 0.5) / float(slices) * 2.0 - 1.0) *
+      vec3(hw, hw, hh);
   // The weather faded out toward the box's sides: a cloud inside it, not a cut block of the layer.
   clouds_weather_scale = 1.0 - smoothstep(0.55, 0.95, length(p.xy) / hw);
   clouds_footprint_m = 2.0 * hw / float(n);  // the noise averaged over a voxel
@@ -93,7 +99,8 @@ void main() {
   int steps = 2 * int(u_volume.x);
   float dt = max(span.y - span.x, 0.0) / float(steps);
   float tau = 0.0;
-  for (int s = 0; s < steps; ++s) tau += billboard_extinction(q + f * (span.x + (float(s) + 0.5) * dt), archetype) * dt;
+  for (int s = 0; s < steps; ++s)
+    tau += billboard_extinction(q + f * (span.x + (float(s) + 0.5) * dt), archetype) * dt;
   // Empty: no depth, the transmittance 1 toward every direction.
   vec4 a = vec4(0.0), sh_diffuse = vec4(1.0 / 0.282095, 0.0, 0.0, 0.0);
   if (tau > 1e-5) {
@@ -106,7 +113,8 @@ void main() {
     for (int s = 0; s < steps && next < 5; ++s) {
       float step_tau = billboard_extinction(q + f * (span.x + (float(s) + 0.5) * dt), archetype) * dt;
       while (next < 5 && sum + step_tau >= -log(1.0 - shares[next] * opacity)) {
-        t_at[next] = span.x + (float(s) + (-log(1.0 - shares[next] * opacity) - sum) / max(step_tau, 1e-30)) * dt;
+        t_at[next] =
+            span.x + (float(s) + (-log(1.0 - shares[next] * opacity) - sum) / max(step_tau, 1e-30)) * dt;
         ++next;
       }
       sum += step_tau;

@@ -1,9 +1,9 @@
 // The billboards' instances, each frame: one per cell the clusters' placement chose (cells scored by
 // the layer's weather, nearest first, clouds/clusters_place.comp stages 0 and 1): the archetype
 // whose weather matches the cell's, its box centred over the cell at the layer's middle height, its
-// optical depth scaled by the cross-fades and by how much cloud the cell's weather allows against the archetype's
-// own place, turned about the vertical by the hash; the light, sky and air at its centre; its sort
-// key (distance).
+// optical depth scaled by the cross-fades and by how much cloud the cell's weather allows against the
+// archetype's own place, turned about the vertical by the hash; the light, sky and air at its centre; its
+// sort key (distance).
 #include "clouds/density.glsl"
 #include "clouds/placement.glsl"
 #include "clouds/billboards.glsl"
@@ -53,7 +53,8 @@ void main() {
       float miss = abs(bb_archetypes[k].z - score) + 1e-3 * fract(u.z * 7.0 + float(k) * 0.618);
       if (bb_archetypes[k].z > 0.0 && miss < nearest) nearest = miss, archetype = k;
     }
-    float fade = smoothstep(u_fade.x, u_fade.y + 1e-3, rho) * (1.0 - smoothstep(u_fade.z - 1e-3, u_fade.w, rho));
+    float fade =
+        smoothstep(u_fade.x, u_fade.y + 1e-3, rho) * (1.0 - smoothstep(u_fade.z - 1e-3, u_fade.w, rho));
     // A cell weaker than the weakest archetype thins it.
     float weather = clamp(score / max(bb_archetypes[archetype].z, 1e-6), 0.0, 1.0);
     float scale = u_density_scale * fade * weather;
@@ -63,7 +64,8 @@ void main() {
       b.light = vec4(u_light == 1 ? welkin_moon_irradiance(c) : welkin_sun_irradiance(c), rho);
       b.sky = vec4(welkin_sky_irradiance(up), float(archetype));
       vec3 t;
-      b.ap_inscattering = vec4(welkin_aerial_perspective(c, t), 6.2831853 * u.w);  // w: its turn about the vertical
+      // w: its turn about the vertical
+      b.ap_inscattering = vec4(welkin_aerial_perspective(c, t), 6.2831853 * u.w);
       b.ap_transmittance = vec4(t, 0.0);
       key = rho;
     }

@@ -60,7 +60,8 @@ struct CloudsFrameGpu {
   float system_amount;       // the weather systems' amount
   float system_slope_per_m;  // the largest change of the weather systems' signal per metre
   float noise_unused;        // (padding)
-  vec3 system_origin;  // the camera in weather-system periods (fraction; the scene's origin at the anchor, drift applied)
+  vec3 system_origin;  // the camera in weather-system periods (fraction; the scene's origin at the anchor,
+                       // drift applied)
   float system_per_m;  // 1 / the weather systems' period
   mat4 inverse_view_projection;  // camera-relative
 };

@@ -8,9 +8,11 @@
 // src/clusters.cpp mirrors it (ClusterPuffGpu, std430).
 struct ClusterPuff {
   vec4 centre;            // camera-relative m; w: peak extinction 1/m (0: no puff)
-  vec4 radii;             // along the clusters' axes (wind, across, up) m; w: optical depth toward the light through the cluster's other puffs
+  vec4 radii;  // along the clusters' axes (wind, across, up) m; w: optical depth toward the light through the
+               // cluster's other puffs
   vec4 light;             // irradiance of the marched light at the centre; w: distance from the camera m
-  vec4 sky;               // sky irradiance on a horizontal plane at the centre; w: the centre's height above the cluster's base m
+  vec4 sky;  // sky irradiance on a horizontal plane at the centre; w: the centre's height above the cluster's
+             // base m
   vec4 ap_inscattering;   // the air between the camera and the centre
   vec4 ap_transmittance;
   vec4 light_gradient;    // how that optical depth changes across the puff: per unit of its normalised axes
@@ -24,7 +26,9 @@ vec3 puff_local(vec3 x, vec3 centre, vec3 radii) {
   vec3 r = x - centre;
   return vec3(dot(r, u_axis_wind), dot(r, u_axis_across), dot(r, u_axis_up)) / radii;
 }
-vec3 puff_direction(vec3 d, vec3 radii) { return vec3(dot(d, u_axis_wind), dot(d, u_axis_across), dot(d, u_axis_up)) / radii; }
+vec3 puff_direction(vec3 d, vec3 radii) {
+  return vec3(dot(d, u_axis_wind), dot(d, u_axis_across), dot(d, u_axis_up)) / radii;
+}
 
 // A ray po + t pd in the normalised frame against the unit sphere: (t_mid, a, q_min, half length of
 // the chord); half length < 0: missed.

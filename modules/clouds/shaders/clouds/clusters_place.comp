@@ -16,17 +16,20 @@
 layout(local_size_x = 64) in;
 
 layout(std430, binding = 1) buffer ClusterPuffs { ClusterPuff cp_puffs[]; };
-layout(std430, binding = 2) buffer ClusterCells { float cp_cells[]; };      // each cell's cloud (mean extinction, 1/m)
-layout(std430, binding = 3) buffer ClusterChosen { int cp_chosen[]; };      // the cell of each cluster (-1: none)
+// each cell's cloud (mean extinction, 1/m)
+layout(std430, binding = 2) buffer ClusterCells { float cp_cells[]; };
+// the cell of each cluster (-1: none)
+layout(std430, binding = 3) buffer ClusterChosen { int cp_chosen[]; };
 layout(std430, binding = 4) readonly buffer ClusterCellOrder { int cp_cell_order[]; };  // cells nearest first
-layout(std430, binding = 5) buffer ClusterOrder { uvec2 cp_order[]; };      // (sort key bits, puff) per instance
+// (sort key bits, puff) per instance
+layout(std430, binding = 5) buffer ClusterOrder { uvec2 cp_order[]; };
 
 uniform vec2 u_wind_en;           // the wind's direction in (east, north)
 uniform int u_layer;              // the packed layer the clusters draw
 uniform int u_clusters, u_puffs;  // budget, puffs per cluster
 uniform vec4 u_range;             // near m, cross-fade m, far m, puff size
-uniform vec2 u_ring;              // stage 0: the cells whose centres lie this far from the camera (m) are candidates
-uniform vec4 u_genus;             // dome (0 sheet .. 1 dome), form (0 heaps, 1 sheets, 2 streaks), density scale
+uniform vec2 u_ring;   // stage 0: the cells whose centres lie this far from the camera (m) are candidates
+uniform vec4 u_genus;  // dome (0 sheet .. 1 dome), form (0 heaps, 1 sheets, 2 streaks), density scale
 uniform int u_order_size;         // the sort's power-of-two size
 uniform vec3 u_light_dir;         // toward the marched light
 uniform int u_light;              // 0 sun, 1 moon
@@ -35,6 +38,32 @@ float field_at(vec3 x) {
   clouds_system_g = clouds_weather_system_at(x);
   return clouds_density(x, false, false);
 }
+
+#if CLUSTERS_STAGE == 2
+// A puff's radii, its offset from the cluster's centre (along the wind, across it, m) and its centre's
+// height above the base (m), from its random numbers u and v, by the genus's form.
+void puff_shape(vec4 u, vec4 v, float cluster_radius, float thickness, float size, out vec3 radii,
+                out vec2 offset, out float height) {
+  int form = int(u_genus.y);
+  if (form == 2) {
+    // Streaks: long along the wind, narrow across, thin.
+    radii = vec3(0.5, 0.12, 0.0) * cluster_radius * size;
+    radii.z = min(0.4 * thickness, radii.y);
+    offset = vec2((u.x - 0.5) * 2.0 * cluster_radius, (u.y - 0.5) * 0.5 * cluster_radius);
+    height = radii.z + u.z * max(thickness - 2.0 * radii.z, 0.0);
+  } else {
+    // Heaps (a dome over a flat base, higher in the middle) or sheets (flattened puffs filling the layer).
+    float r = cluster_radius * sqrt(u.x), angle = 6.2831853 * u.y;
+    offset = r * vec2(cos(angle), sin(angle));
+    float horizontal = (form == 1 ? 0.45 : 0.38) * cluster_radius * size * (0.75 + 0.5 * v.x);
+    float vertical = min(form == 1 ? 0.4 * horizontal : horizontal, 0.45 * thickness);
+    radii = vec3(horizontal, horizontal, vertical);
+    float top = thickness * mix(1.0, 1.0 - (r * r) / (cluster_radius * cluster_radius), u_genus.x);
+    // Centres from a third of a radius above the base (the draw cuts each puff at the base).
+    height = 0.35 * vertical + u.z * max(top - 1.35 * vertical, 0.0);
+  }
+}
+#endif
 
 void main() {
   clouds_load();
@@ -78,24 +107,7 @@ void main() {
     vec3 radii;
     vec2 offset;  // along the wind, across it (m)
     float height;  // of the centre above the base (m)
-    int form = int(u_genus.y);
-    if (form == 2) {
-      // Streaks: long along the wind, narrow across, thin.
-      radii = vec3(0.5, 0.12, 0.0) * cluster_radius * size;
-      radii.z = min(0.4 * thickness, radii.y);
-      offset = vec2((u.x - 0.5) * 2.0 * cluster_radius, (u.y - 0.5) * 0.5 * cluster_radius);
-      height = radii.z + u.z * max(thickness - 2.0 * radii.z, 0.0);
-    } else {
-      // Heaps (a dome over a flat base, higher in the middle) or sheets (flattened puffs filling the layer).
-      float r = cluster_radius * sqrt(u.x), angle = 6.2831853 * u.y;
-      offset = r * vec2(cos(angle), sin(angle));
-      float horizontal = (form == 1 ? 0.45 : 0.38) * cluster_radius * size * (0.75 + 0.5 * v.x);
-      float vertical = min(form == 1 ? 0.4 * horizontal : horizontal, 0.45 * thickness);
-      radii = vec3(horizontal, horizontal, vertical);
-      float top = thickness * mix(1.0, 1.0 - (r * r) / (cluster_radius * cluster_radius), u_genus.x);
-      // Centres from a third of a radius above the base (the draw cuts each puff at the base).
-      height = 0.35 * vertical + u.z * max(top - 1.35 * vertical, 0.0);
-    }
+    puff_shape(u, v, cluster_radius, thickness, size, radii, offset, height);
     vec2 puff_en = centre_en + offset.x * u_wind_en + offset.y * across_en;
     // The base rises and falls with the weather, as in the field: read once at the cluster's centre.
     vec3 at_centre = layer_point(centre_en, base);
@@ -141,14 +153,16 @@ void main() {
       vec3 other_radii = cp_puffs[q].radii.xyz;
       // In the other puff's normalised frame (the puffs share their axes): the light's direction,
       // this puff's centre, and the half-radius steps along each axis, found once for the 7 points.
-      vec3 light_local = puff_direction(u_light_dir, other_radii), centre_local = puff_local(c, other.xyz, other_radii);
+      vec3 light_local = puff_direction(u_light_dir, other_radii),
+           centre_local = puff_local(c, other.xyz, other_radii);
       vec3 step_local = 0.5 * puff.radii.xyz / other_radii;
       tau[0] += other.w * puff_optical_depth(puff_chord_local(centre_local, light_local), 0.0, 3.4e38);
       for (int a = 0; a < 3; ++a)
         for (int side = 0; side < 2; ++side) {
           vec3 x = centre_local;
           x[a] += side == 0 ? step_local[a] : -step_local[a];
-          tau[1 + 2 * a + side] += other.w * puff_optical_depth(puff_chord_local(x, light_local), 0.0, 3.4e38);
+          tau[1 + 2 * a + side] +=
+              other.w * puff_optical_depth(puff_chord_local(x, light_local), 0.0, 3.4e38);
         }
     }
     // Only this stage's fields are written: the other invocations read the centres and radii.

@@ -101,14 +101,16 @@ float clouds_painted_coverage(vec3 x) {
 
 // The weather sample a layer reads at x (its three genus channels and the base's variation).
 vec4 clouds_weather_fetch(CloudLayerGpu L, vec3 x) {
-  return textureLod(cl_weather_noise, L.weather_origin + x * L.weather_per_m, clouds_lod(1.0 / (L.weather_per_m * 64.0)));
+  return textureLod(cl_weather_noise, L.weather_origin + x * L.weather_per_m,
+                    clouds_lod(1.0 / (L.weather_per_m * 64.0)));
 }
 
 // Scales what the weather allows (the billboards' bake windows the field around each cloud it bakes).
 float clouds_weather_scale = 1.0;
 
 // `w4`: the layer's weather sample at x; `follows_map`: the painted map adds to its coverage.
-float clouds_layer_envelope(CloudLayerGpu L, vec4 w4, bool follows_map, vec3 x, float h, out float t, out float d0) {
+float clouds_layer_envelope(CloudLayerGpu L, vec4 w4, bool follows_map, vec3 x, float h, out float t,
+                            out float d0) {
   t = 0.0, d0 = 0.0;
   if (h < L.base_m - L.base_variation_m || h > L.base_m + L.thickness_m + L.base_variation_m) return 0.0;
   float c = clouds_system_coverage(L.coverage, clouds_system_g);
@@ -127,19 +129,24 @@ float clouds_layer_envelope(CloudLayerGpu L, vec4 w4, bool follows_map, vec3 x, 
   // Domes: the top rises with the weather's strength; sheets fill the layer. Flat, soft bases.
   float top = mix(1.0, max(d0, 0.05), L.dome);
   float envelope = smoothstep(0.0, 0.08, t) * (1.0 - smoothstep(top * 0.75, top, t));
-  float profile = clamp(L.profile_exp_term * exp(L.profile_exponent * t) + L.profile_linear_term * t + L.profile_constant_term, 0.0, 1.0);
+  float profile = clamp(
+      L.profile_exp_term * exp(L.profile_exponent * t) + L.profile_linear_term * t + L.profile_constant_term,
+      0.0, 1.0);
   return d0 * envelope * profile;
 }
 
 // The detail noise at xd (what the layers erode with).
 float clouds_detail_fetch(vec3 xd) {
-  return textureLod(cl_detail_noise, cl.detail_origin + xd * cl.detail_per_m, clouds_lod(1.0 / (cl.detail_per_m * 32.0))).r;
+  return textureLod(cl_detail_noise, cl.detail_origin + xd * cl.detail_per_m,
+                    clouds_lod(1.0 / (cl.detail_per_m * 32.0)))
+      .r;
 }
 
 // Extinction (1/m) of one layer at x, from the shape sample already read (clouds_shape_sample);
 // `detail` adds the detail noise's erosion. `envelope` is what the weather allowed before any noise
 // (0: empty space the march may skip).
-float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool detail, vec3 x, float h, out float envelope) {
+float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool detail, vec3 x, float h,
+                           out float envelope) {
   float t, d0;
   envelope = clouds_layer_envelope(L, w4, follows_map, x, h, t, d0);
   if (envelope <= 0.0) return 0.0;
@@ -173,7 +180,8 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
     // The complement of the puffs' fade (clusters_place.comp): in across [near - w/2, near + w/2],
     // out across [far - w, far]; the two paths' densities add up to the field's.
     float r = length(x);
-    d *= 1.0 - smoothstep(L.handover_near_m - 0.5 * L.handover_crossfade_m, L.handover_near_m + 0.5 * L.handover_crossfade_m + 1e-3, r) *
+    d *= 1.0 - smoothstep(L.handover_near_m - 0.5 * L.handover_crossfade_m,
+                          L.handover_near_m + 0.5 * L.handover_crossfade_m + 1e-3, r) *
                    (1.0 - smoothstep(L.handover_far_m - L.handover_crossfade_m - 1e-3, L.handover_far_m, r));
   }
 #endif
@@ -204,7 +212,8 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
 
 // Layer i's value of `fn` at x into arr[i], or layer s's already there when the two read the same
 // weather (s < i); the condition is a compile-time constant, so the unneeded side is not compiled.
-#define CLOUDS_SHARED(arr, fn, i, s) arr[i] = (s) == (i) ? fn(cl_local_layers[i], x) : arr[(s) == (i) ? 0 : (s)];
+#define CLOUDS_SHARED(arr, fn, i, s) \
+  arr[i] = (s) == (i) ? fn(cl_local_layers[i], x) : arr[(s) == (i) ? 0 : (s)];
 #define CLOUDS_FOR_COMPILED_LAYERS(arr, fn)                          \
   arr[0] = fn(cl_local_layers[0], x);                                \
   if (CLOUDS_LAYERS > 1) { CLOUDS_SHARED(arr, fn, 1, CLOUDS_WEATHER_SOURCE_1) } \
@@ -228,7 +237,8 @@ float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
   float h = clouds_altitude(x);
   if (h < cl.lowest_m || h > cl.highest_m) return 0.0;
   // The shape noise is the same for every layer: read once.
-  clouds_shape_sample = textureLod(cl_shape_noise, cl.shape_origin + x * cl.shape_per_m, clouds_lod(1.0 / (cl.shape_per_m * 128.0)));
+  clouds_shape_sample = textureLod(cl_shape_noise, cl.shape_origin + x * cl.shape_per_m,
+                                   clouds_lod(1.0 / (cl.shape_per_m * 128.0)));
   float sum = 0.0, envelope;
 #if CLOUDS_LAYERS > 0
 #if !CLOUDS_TURBULENCE
@@ -271,7 +281,8 @@ vec4 clouds_weather_block(CloudLayerGpu L, vec3 x) {
 // hold cloud anywhere in its block. 0 when one might. `m`: the layer's block maximum.
 float clouds_skip_layer(CloudLayerGpu L, vec4 m, vec3 x, vec3 dir, float h, float skip) {
   float reach = 1.8 * cl.largest_block_m;
-  if (h < L.base_m - L.base_variation_m - reach || h > L.base_m + L.thickness_m + L.base_variation_m + reach) return skip;
+  if (h < L.base_m - L.base_variation_m - reach || h > L.base_m + L.thickness_m + L.base_variation_m + reach)
+    return skip;
   int channel = int(L.weather_channel);
   float w = channel == 0 ? m.r : channel == 1 ? m.g : m.b;
   // The weather systems may raise the coverage anywhere in the block by what their signal changes
@@ -280,7 +291,8 @@ float clouds_skip_layer(CloudLayerGpu L, vec4 m, vec3 x, vec3 dir, float h, floa
   // the map's largest texel makes it.
   float block_m = 1.0 / (16.0 * L.weather_per_m);
   float g = min(clouds_system_g + cl.system_slope_per_m * 1.8 * block_m + 0.03, 1.0);
-  float fw = L.filter_width, c = min(clouds_system_coverage(L.coverage, g) + L.follows_map * max(cl.map_raise, 0.0), 1.0);
+  float fw = L.filter_width,
+        c = min(clouds_system_coverage(L.coverage, g) + L.follows_map * max(cl.map_raise, 0.0), 1.0);
   if (w > (1.0 - c) * (1.0 + fw) - fw) return 0.0;
   // Metres to the block's far side along dir (cells per metre: 16 x the layer's 1 / period).
   vec3 f = fract(fract(L.weather_origin + x * L.weather_per_m) * 16.0);
@@ -315,7 +327,8 @@ vec2 clouds_sphere_from(vec3 origin, vec3 dir, float altitude) {
   float R = cl.planet_radius_m + altitude;
   float r_c = cl.camera_radius_m;
   float b = r_c * dot(cl.up, dir) + dot(origin, dir);
-  float c = (altitude - cl.camera_altitude_m) * (R + r_c) - (2.0 * r_c * dot(cl.up, origin) + dot(origin, origin));
+  float c =
+      (altitude - cl.camera_altitude_m) * (R + r_c) - (2.0 * r_c * dot(cl.up, origin) + dot(origin, origin));
   float disc = b * b + c;
   if (disc < 0.0) return vec2(1.0, -1.0);
   float s = sqrt(disc);

@@ -28,8 +28,8 @@ float clouds_powder(float sigma_t) {
 }
 
 // The diffusion model's source from the two transmittances (see clouds_sample_source).
-vec3 clouds_diffusion_source(float mu, float phase_single, float direct, float diffuse, float sigma_t, float depth_below_m,
-                             vec3 l, vec3 up, vec3 e_light, vec3 e_sky) {
+vec3 clouds_diffusion_source(float mu, float phase_single, float direct, float diffuse, float sigma_t,
+                             float depth_below_m, vec3 l, vec3 up, vec3 e_light, vec3 e_sky) {
   // Single scattering, and the multiple-scattering estimate: the diffuse light a conservative slab
   // lets through beyond the direct beam (its two-stream transmittance toward the light), times what
   // the cloud below sends back up: in a slab the diffuse light falls linearly from the lit top to the
@@ -38,12 +38,14 @@ vec3 clouds_diffusion_source(float mu, float phase_single, float direct, float d
   // (1 + saturation tau_b), tau_b the optical depth below; its coefficients are fitted to the path
   // tracer (light_model_fit.glsl).
   float tau_below = sigma_t * depth_below_m;
-  float below = (CLOUDS_MS_BASE + CLOUDS_MS_BELOW * tau_below) / (1.0 + CLOUDS_MS_BELOW_SATURATION * tau_below);
+  float below =
+      (CLOUDS_MS_BASE + CLOUDS_MS_BELOW * tau_below) / (1.0 + CLOUDS_MS_BELOW_SATURATION * tau_below);
   // Where the cloud is thin around the point (its outskirts, wisps) little light has been scattered
   // toward it from its neighbours: the multiple-scattering estimate fades with the optical depth of
   // the first light step at the local density (the physical side of Schneider's "powder").
   float neighbours = 1.0 - exp(-CLOUDS_MS_POWDER * sigma_t * cl.light_step_m);
-  float scattered = phase_single * direct + max(diffuse - CLOUDS_MS_DIRECT * direct, 0.0) * below * neighbours;
+  float scattered =
+      phase_single * direct + max(diffuse - CLOUDS_MS_DIRECT * direct, 0.0) * below * neighbours;
   scattered *= clouds_powder(sigma_t);
   // Sky from above and the lit ground from below, diffused through the cloud: the two-stream
   // transmittance 1 / (1 + 0.75 (1 - g) tau) with g = 0.8, tau the optical depth toward the light
@@ -54,11 +56,12 @@ vec3 clouds_diffusion_source(float mu, float phase_single, float direct, float d
   return albedo * (e_light * scattered + ambient);
 }
 
-vec3 clouds_sample_source(float mu, float phase_single, float tau, float sigma_t, float depth_below_m, vec3 l, vec3 up,
-                          vec3 e_light, vec3 e_sky) {
+vec3 clouds_sample_source(float mu, float phase_single, float tau, float sigma_t, float depth_below_m, vec3 l,
+                          vec3 up, vec3 e_light, vec3 e_sky) {
   if (clouds_diffusion_model)
-    return clouds_diffusion_source(mu, phase_single, clouds_direct_transmittance(tau), clouds_diffuse_transmittance(tau), sigma_t, depth_below_m, l, up,
-                                   e_light, e_sky);
+    return clouds_diffusion_source(mu, phase_single, clouds_direct_transmittance(tau),
+                                   clouds_diffuse_transmittance(tau), sigma_t, depth_below_m, l, up, e_light,
+                                   e_sky);
   // Wrenninge 2015: octave k scatters b^k of the light, sees a^k of the optical depth, and a
   // phase whose anisotropy is scaled by c^k (a = b = c = 1/2).
   float scattered = 0.0;

@@ -6,7 +6,8 @@
 const int CLOUDS_SHADOW_CASCADES = 4;
 layout(std140, binding = WELKIN_BLOCK_CLOUDS_SHADOW) uniform CloudsShadow {
   vec4 cs_origin[CLOUDS_SHADOW_CASCADES];  // camera-relative centre of each cascade's plane, nearest first
-  vec4 cs_axis_u[CLOUDS_SHADOW_CASCADES];  // xyz: the plane's axis per map unit (uv = 0.5 + dot(p - origin, axis)); w: start distance toward the sun
+  vec4 cs_axis_u[CLOUDS_SHADOW_CASCADES];  // xyz: the plane's axis per map unit (uv = 0.5 + dot(p - origin,
+                                           // axis)); w: start distance toward the sun
   vec4 cs_axis_v[CLOUDS_SHADOW_CASCADES];  // w: side (m)
   vec4 cs_light;   // xyz: direction toward the sun; w: |sun.z| (vertical fraction of a slanted column)
   vec4 cs_up;      // xyz: up at the camera; w: cascade count (0: no shadows)
@@ -37,7 +38,8 @@ float clouds_shadow_optical_depth(vec3 p) {
   // Kept half a texel inside the cascade's square: its neighbour in the texture is another cascade.
   float half_texel = 0.5 / float(textureSize(cs_map, 0).y);
   uv = clamp(uv, vec2(half_texel), vec2(1.0 - half_texel));
-  vec3 m = texture(cs_map, vec2((float(k) + uv.x) / float(max(n, 1)), uv.y)).xyz;  // front, mean extinction, total
+  // front, mean extinction, total
+  vec3 m = texture(cs_map, vec2((float(k) + uv.x) / float(max(n, 1)), uv.y)).xyz;
   float depth = cs_axis_u[k].w - dot(p - cs_origin[k].xyz, cs_light.xyz);
   return found ? min(m.z, m.y * max(depth - m.x, 0.0)) : 0.0;
 }

@@ -16,7 +16,8 @@
 
 in vec2 v_ndc;
 layout(location = 0) out vec4 o_color;
-layout(location = 1) out vec2 o_distance;  // the clouds' opacity-weighted mean distance, and where they turn opaque (m)
+// the clouds' opacity-weighted mean distance, and where they turn opaque (m)
+layout(location = 1) out vec2 o_distance;
 // Temporal upscaling marches one pixel of each N x N block per frame: this fragment stands for
 // march pixel floor(gl_FragCoord) * x + (y, z); without it, x = 1 and the offset is 0.
 uniform ivec3 u_stride_offset;
@@ -48,7 +49,8 @@ float light_optical_depth(vec3 x, vec3 l, float extinction_per_density) {
     s += step_m;
     step_m *= 2.0;
   }
-  if (cl.moon_marched < 0.5) tau += clouds_shadow_optical_depth(x + l * s) / max(extinction_per_density, 1e-9);
+  if (cl.moon_marched < 0.5)
+    tau += clouds_shadow_optical_depth(x + l * s) / max(extinction_per_density, 1e-9);
   return tau;
 }
 
@@ -119,7 +121,8 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
       vec3 up = normalize(mix(up0, up1, along));
       vec3 e_light = mix(e_light0, e_light1, along), e_sky = mix(e_sky0, e_sky1, along);
       float tau = light_optical_depth(x, l, extinction_per_density) * extinction_per_density;
-      vec3 source = clouds_sample_source(mu, phase_single, tau, sigma_t, depth_below_m, l, up, e_light, e_sky);
+      vec3 source =
+          clouds_sample_source(mu, phase_single, tau, sigma_t, depth_below_m, l, up, e_light, e_sky);
       // Energy-conserving step (Hillaire 2015): integrate the source over the step's own attenuation.
       float step_transmittance = exp(-sigma_t * step_m);
       vec3 step_light = source * (1.0 - step_transmittance);
@@ -130,7 +133,8 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
 #else
       acc.color += acc.transmittance * step_light;
 #if CLOUDS_AP_MODE == 2
-      if (!acc.ap_taken) acc.ap_inscattering = welkin_aerial_perspective(x, acc.ap_transmittance), acc.ap_taken = true;
+      if (!acc.ap_taken)
+        acc.ap_inscattering = welkin_aerial_perspective(x, acc.ap_transmittance), acc.ap_taken = true;
 #endif
 #endif
       acc.weighted_depth += opacity * (t + 0.5 * step_m);
@@ -203,5 +207,6 @@ void main() {
   acc.color = acc.color * acc.ap_transmittance + acc.ap_inscattering * (1.0 - acc.transmittance);
 #endif
   o_color = vec4(max(acc.color, vec3(0.0)), acc.transmittance);
-  o_distance = vec2(acc.depth_weight > 0.0 ? acc.weighted_depth / acc.depth_weight : cl.max_distance_m, acc.front);
+  o_distance =
+      vec2(acc.depth_weight > 0.0 ? acc.weighted_depth / acc.depth_weight : cl.max_distance_m, acc.front);
 }

@@ -48,9 +48,10 @@ void main() {
   imageStore(u_out, id, vec4(clouds_worley_fbm(uvw * 4.0, 4, u_seed + 3000u)));
 #elif CLOUDS_NOISE == 3
   const ivec3 ex = ivec3(1, 0, 0), ey = ivec3(0, 1, 0), ez = ivec3(0, 0, 1);
-  vec3 curl = vec3(potential(id + ey, 2) - potential(id - ey, 2) - potential(id + ez, 1) + potential(id - ez, 1),
-                   potential(id + ez, 0) - potential(id - ez, 0) - potential(id + ex, 2) + potential(id - ex, 2),
-                   potential(id + ex, 1) - potential(id - ex, 1) - potential(id + ey, 0) + potential(id - ey, 0));
+  vec3 curl =
+      vec3(potential(id + ey, 2) - potential(id - ey, 2) - potential(id + ez, 1) + potential(id - ez, 1),
+           potential(id + ez, 0) - potential(id - ez, 0) - potential(id + ex, 2) + potential(id - ex, 2),
+           potential(id + ex, 1) - potential(id - ex, 1) - potential(id + ey, 0) + potential(id - ey, 0));
   imageStore(u_out, id, vec4(curl * 0.5, 0.0));
 #elif CLOUDS_NOISE == 4
   imageStore(u_out, id, vec4(clouds_perlin_fbm(uvw * 2.0, 2, u_seed + 8000u, 2)));

@@ -27,7 +27,8 @@ float clouds_perlin(vec3 x, int period, uint seed) {
     vec3 g = normalize(clouds_hash3(i + o, period, seed) * 2.0 - 1.0 + 1e-6);
     n[k] = dot(g, f - vec3(o));
   }
-  return mix(mix(mix(n[0], n[1], u.x), mix(n[2], n[3], u.x), u.y), mix(mix(n[4], n[5], u.x), mix(n[6], n[7], u.x), u.y), u.z);
+  return mix(mix(mix(n[0], n[1], u.x), mix(n[2], n[3], u.x), u.y),
+             mix(mix(n[4], n[5], u.x), mix(n[6], n[7], u.x), u.y), u.z);
 }
 
 // Inverted cellular (Worley) noise in [0, 1]: 1 at a feature point, 0 far from all.

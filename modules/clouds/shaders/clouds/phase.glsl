@@ -10,7 +10,8 @@ float clouds_hg(float mu, float g) {
 // Draine 2003: Henyey-Greenstein times (1 + a mu^2), normalised.
 float clouds_draine(float mu, float g, float a) {
   float d = 1.0 + g * g - 2.0 * g * mu;
-  return (1.0 - g * g) * (1.0 + a * mu * mu) / (4.0 * CLOUDS_PI * d * sqrt(d) * (1.0 + a * (1.0 + 2.0 * g * g) / 3.0));
+  return (1.0 - g * g) * (1.0 + a * mu * mu) /
+         (4.0 * CLOUDS_PI * d * sqrt(d) * (1.0 + a * (1.0 + 2.0 * g * g) / 3.0));
 }
 
 // Jendersie & d'Eon 2023: Mie scattering by droplets of diameter d (5-50 um) as HG + Draine.
@@ -36,5 +37,6 @@ float clouds_phase(float mu, float octave_scale) {
     // The droplet fit has no g to scale: blend it toward isotropic instead.
     return mix(1.0 / (4.0 * CLOUDS_PI), clouds_droplet_mie(mu, cl.droplet_diameter_um), octave_scale);
   }
-  return mix(clouds_hg(mu, cl.g_backward * octave_scale), clouds_hg(mu, cl.g_forward * octave_scale), cl.forward_weight);
+  return mix(clouds_hg(mu, cl.g_backward * octave_scale), clouds_hg(mu, cl.g_forward * octave_scale),
+             cl.forward_weight);
 }

@@ -29,19 +29,23 @@ vec4 random4(ivec2 cell, int index, uint salt) {
   return vec4(pcg4d(uvec4(uvec2(cell), uint(index), u_seed * 4u + salt)) >> 8u) / 16777216.0;
 }
 
-vec2 cell_centre_en(int cell) { return u_first_corner + (vec2(cell % u_grid, cell / u_grid) + 0.5) * u_cell_m; }
+vec2 cell_centre_en(int cell) {
+  return u_first_corner + (vec2(cell % u_grid, cell / u_grid) + 0.5) * u_cell_m;
+}
 
 // What a layer's weather allows (before the noise erodes it) around a cell's centre: summed over
 // five columns at a third of the layer's height, the centre and four at half `radius` (m) from it.
 float weather_score(CloudLayerGpu L, vec2 en, float radius) {
-  const vec2 columns[5] = vec2[5](vec2(0.0), vec2(0.5, 0.0), vec2(-0.5, 0.0), vec2(0.0, 0.5), vec2(0.0, -0.5));
+  const vec2 columns[5] =
+      vec2[5](vec2(0.0), vec2(0.5, 0.0), vec2(-0.5, 0.0), vec2(0.0, 0.5), vec2(0.0, -0.5));
   float score = 0.0;
   for (int c = 0; c < 5; ++c) {
     vec3 x = layer_point(en + columns[c] * radius, L.base_m + L.thickness_m * 0.33);
     clouds_system_g = clouds_weather_system_at(x);
     clouds_painted_sample = 2.0;
     float t, d0;
-    score += clouds_layer_envelope(L, clouds_weather_fetch(L, x), L.follows_map > 0.5, x, clouds_altitude(x), t, d0);
+    score += clouds_layer_envelope(L, clouds_weather_fetch(L, x), L.follows_map > 0.5, x, clouds_altitude(x),
+                                   t, d0);
   }
   return score;
 }

@@ -18,7 +18,8 @@ uniform vec3 u_light_dir;
 in vec3 v_position;
 flat in int v_puff;
 flat in vec4 v_base_plane;  // up at the puff; w: the camera's height above the cluster's base (m)
-flat in vec4 v_light, v_sky, v_ap_inscattering, v_ap_transmittance, v_light_gradient;  // w: the depth toward the light at the centre
+// w: the depth toward the light at the centre
+flat in vec4 v_light, v_sky, v_ap_inscattering, v_ap_transmittance, v_light_gradient;
 layout(location = 0) out vec4 o_color;  // premultiplied: light reaching the camera, opacity
 layout(location = 1) out float o_front;  // where the puff turns opaque (m; blended by minimum)
 
@@ -28,7 +29,8 @@ void main() {
   // The puff's fields are loaded as they are needed: most of a quad's pixels stop at the chord.
   vec4 centre = cp_puffs[v_puff].centre, radii = cp_puffs[v_puff].radii;
   vec3 dir = normalize(v_position);
-  vec3 camera_local = puff_local(vec3(0.0), centre.xyz, radii.xyz), dir_local = puff_direction(dir, radii.xyz);
+  vec3 camera_local = puff_local(vec3(0.0), centre.xyz, radii.xyz),
+       dir_local = puff_direction(dir, radii.xyz);
   vec4 chord = puff_chord_local(camera_local, dir_local);
   if (chord.w <= 0.0) discard;
   // Cut at the cluster's base (a plane across the local vertical): flat bases, as the field's.
@@ -77,11 +79,12 @@ void main() {
     vec4 toward_light = vec4(t_mid, light_a, dot(closest, closest), 0.0);
     toward_light.w = toward_light.z < 1.0 ? sqrt((1.0 - toward_light.z) / light_a) : -1.0;
     // And through the cluster's other puffs: linear across this one, never below zero.
-    float tau = sigma * puff_optical_depth(toward_light, 0.0, 3.4e38) + max(v_light_gradient.w + dot(v_light_gradient.xyz, local), 0.0);
+    float tau = sigma * puff_optical_depth(toward_light, 0.0, 3.4e38) +
+                max(v_light_gradient.w + dot(v_light_gradient.xyz, local), 0.0);
     // The cloud under the sample, from the cluster's base (the march's depth in its layer).
     float depth_below_m = max(v_sky.w + local.z * radii.z, 0.0);
-    source += clouds_sample_source(mu, phase_single, tau, sigma * max(1.0 - q, 0.0), depth_below_m, u_light_dir, up,
-                                   v_light.rgb, v_sky.rgb);
+    source += clouds_sample_source(mu, phase_single, tau, sigma * max(1.0 - q, 0.0), depth_below_m,
+                                   u_light_dir, up, v_light.rgb, v_sky.rgb);
   }
   vec3 light = source * (opacity / float(n));
   o_color = vec4(v_ap_transmittance.rgb * light + v_ap_inscattering.rgb * opacity, opacity);

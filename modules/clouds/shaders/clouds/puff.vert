@@ -11,10 +11,10 @@ layout(std430, binding = 6) readonly buffer PuffProxy { vec4 cp_proxy[]; };
 #endif
 out vec3 v_position;                     // camera-relative m (along the pixel's ray)
 flat out int v_puff;
-flat out vec4 v_base_plane;              // up at the puff; w: the camera's height above the cluster's base (m)
+flat out vec4 v_base_plane;  // up at the puff; w: the camera's height above the cluster's base (m)
 // What the light needs of the puff, loaded here once per vertex rather than by every pixel.
 flat out vec4 v_light, v_sky, v_ap_inscattering, v_ap_transmittance, v_light_gradient;
-uniform vec4 u_up_radius;                // up at the camera; w: the camera's distance from the planet's centre
+uniform vec4 u_up_radius;  // up at the camera; w: the camera's distance from the planet's centre
 
 void main() {
   int puff = int(cp_order[gl_InstanceID].y);

@@ -15,7 +15,8 @@ layout(location = 1) out vec4 o_with_clusters;
 layout(binding = 3) uniform sampler2D u_clusters;  // premultiplied, opacity in alpha
 #endif
 layout(binding = 0) uniform sampler2D u_current;           // one pixel per block: colour, transmittance
-layout(binding = 1) uniform sampler2D u_current_distance;  // one pixel per block: mean and first cloud distance (m)
+// one pixel per block: mean and first cloud distance (m)
+layout(binding = 1) uniform sampler2D u_current_distance;
 layout(binding = 2) uniform sampler2D u_history;           // the last result at the march resolution
 uniform int u_block;               // N
 uniform ivec2 u_offset;            // the position in the block marched this frame
@@ -91,7 +92,8 @@ vec4 resolved(ivec2 pixel) {
     for (int x = 0; x <= 1; ++x) {
       ivec2 q = clamp(corner + ivec2(x, y), ivec2(0), current_size - 1);
       vec2 q_uv = (vec2(q * u_block + u_offset) + 0.5) / frame_size + motion;
-      change = in_view(q_uv) ? max(change, abs(texelFetch(u_current, q, 0) - texture(u_history, q_uv))) : vec4(1e30);
+      change = in_view(q_uv) ? max(change, abs(texelFetch(u_current, q, 0) - texture(u_history, q_uv)))
+                             : vec4(1e30);
     }
 #endif
   // Where the camera did not move, the pixel lands on its own texel's centre up to rounding: that
@@ -109,7 +111,8 @@ vec4 resolved(ivec2 pixel) {
   // clip away its own detail between them (a silhouette's pixels between samples on either side).
   // Where the clouds changed or moved in the image, the history is clipped to the range.
   vec4 range = max(hi - lo, vec4(1e-6));
-  float changed = max(max(change.r / range.r, change.g / range.g), max(change.b / range.b, change.a / range.a));
+  float changed =
+      max(max(change.r / range.r, change.g / range.g), max(change.b / range.b, change.a / range.a));
   history = mix(history, clamp(history, lo, hi), smoothstep(0.1, 0.4, changed));
 #endif
   return history;

@@ -19,9 +19,11 @@ void main() {
   ivec2 size = ivec2(u_region.y);
   if (any(greaterThanEqual(id, size))) return;
   vec2 uv = (vec2(id) + 0.5) / vec2(size);
-  vec3 start = u_centre + ((uv.x - 0.5) * u_axis_u + (uv.y - 0.5) * u_axis_v) * u_extent_m + u_light * u_start_m;
+  vec3 start =
+      u_centre + ((uv.x - 0.5) * u_axis_u + (uv.y - 0.5) * u_axis_v) * u_extent_m + u_light * u_start_m;
   vec3 dir = -u_light;
-  vec2 outer = clouds_sphere_from(start, dir, cl.highest_m), inner = clouds_sphere_from(start, dir, cl.lowest_m);
+  vec2 outer = clouds_sphere_from(start, dir, cl.highest_m),
+       inner = clouds_sphere_from(start, dir, cl.lowest_m);
   // No cloud: the front at the column's end and no optical depth, so that filtering between a cloudy
   // texel and a clear one blends their optical depths instead of jumping at the texel's edge.
   vec4 result = vec4(0.0);
@@ -31,7 +33,8 @@ void main() {
     result.x = seg.y;
     float step_m = (seg.y - seg.x) / float(u_steps);
     float tau = 0.0, front = -1.0, back = 0.0;
-    clouds_system_g = clouds_weather_system_at(start + dir * (0.5 * (seg.x + seg.y)));  // columns are a few km long
+    // columns are a few km long
+    clouds_system_g = clouds_weather_system_at(start + dir * (0.5 * (seg.x + seg.y)));
     for (int i = 0; i < u_steps; ++i) {
       float t = seg.x + (float(i) + 0.5) * step_m;
       float d = clouds_density(start + dir * t, false, true) * (cl.scattering + cl.absorption);

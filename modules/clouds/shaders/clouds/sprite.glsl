@@ -6,7 +6,8 @@ uniform mat4 u_view_projection;  // camera-relative
 uniform mat4 u_inverse_view_projection;
 
 vec3 sprite_corner(vec3 centre, float r, int vertex, out vec4 clip) {
-  const vec2 corners[6] = vec2[6](vec2(-1, -1), vec2(1, -1), vec2(1, 1), vec2(-1, -1), vec2(1, 1), vec2(-1, 1));
+  const vec2 corners[6] =
+      vec2[6](vec2(-1, -1), vec2(1, -1), vec2(1, 1), vec2(-1, -1), vec2(1, 1), vec2(-1, 1));
   vec2 corner = corners[vertex];
   float d = length(centre);
   if (d < 2.0 * r) {
@@ -29,10 +30,13 @@ vec3 sprite_corner(vec3 centre, float r, int vertex, out vec4 clip) {
 // box's edges are clipped where they pass behind the camera; a box wholly behind it or off the
 // screen is moved outside the clip volume.
 vec3 box_screen_corner(vec3 centre, vec3 ax, vec3 ay, vec3 az, int vertex, out vec4 clip) {
-  const vec2 corners[6] = vec2[6](vec2(-1, -1), vec2(1, -1), vec2(1, 1), vec2(-1, -1), vec2(1, 1), vec2(-1, 1));
+  const vec2 corners[6] =
+      vec2[6](vec2(-1, -1), vec2(1, -1), vec2(1, 1), vec2(-1, -1), vec2(1, 1), vec2(-1, 1));
   vec4 q[8];
   for (int k = 0; k < 8; ++k)
-    q[k] = u_view_projection * vec4(centre + ((k & 1) != 0 ? ax : -ax) + ((k & 2) != 0 ? ay : -ay) + ((k & 4) != 0 ? az : -az), 1.0);
+    q[k] =
+        u_view_projection *
+        vec4(centre + ((k & 1) != 0 ? ax : -ax) + ((k & 2) != 0 ? ay : -ay) + ((k & 4) != 0 ? az : -az), 1.0);
   // In front: w above a metre (the camera's near distance is far smaller than a cloud).
   const float near_w = 1.0;
   vec2 lo = vec2(3.4e38), hi = vec2(-3.4e38);
@@ -41,7 +45,8 @@ vec3 box_screen_corner(vec3 centre, vec3 ax, vec3 ay, vec3 az, int vertex, out v
     for (int axis = 1; axis < 8; axis *= 2) {
       int m = k | axis;
       if (m == k || (q[k].w > near_w) == (q[m].w > near_w)) continue;
-      vec4 x = mix(q[k], q[m], (near_w - q[k].w) / (q[m].w - q[k].w));  // the edge where it crosses w = near_w
+      // the edge where it crosses w = near_w
+      vec4 x = mix(q[k], q[m], (near_w - q[k].w) / (q[m].w - q[k].w));
       lo = min(lo, x.xy / near_w), hi = max(hi, x.xy / near_w);
     }
   }

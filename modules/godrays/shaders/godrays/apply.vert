@@ -26,7 +26,8 @@ bool tile_corner(out vec2 uv) {
   // between four texels is their mean, zero only when all four are (clamped at the edges).
   vec3 sum = vec3(0.0);
   for (int y = 0; y <= kTileTexels; y += 2)
-    for (int x = 0; x <= kTileTexels; x += 2) sum += textureLod(u_loss, (first + vec2(x, y)) / vec2(size), 0.0).rgb;
+    for (int x = 0; x <= kTileTexels; x += 2)
+      sum += textureLod(u_loss, (first + vec2(x, y)) / vec2(size), 0.0).rgb;
   return any(greaterThan(sum, vec3(0.0)));
 }
 #endif

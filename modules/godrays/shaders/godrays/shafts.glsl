@@ -61,7 +61,10 @@ vec3 air_light(vec3 dir, float end, int segments, int substeps, float offset, bo
     vec3 k = log(g1 / g0) / length_m;
     vec3 share = g0 * step_integral(k, dt), ratio = exp(k * dt);
     for (int m = 0; m < substeps; ++m) {
-      float shadow = shadowed ? 1.0 - welkin_light_visibility(dir * (float(j) * length_m + (float(m) + offset) * dt), vec3(0.0), 0) : 1.0;
+      float shadow = shadowed
+                         ? 1.0 - welkin_light_visibility(
+                                     dir * (float(j) * length_m + (float(m) + offset) * dt), vec3(0.0), 0)
+                         : 1.0;
       light += shadow * share;
       share *= ratio;
     }
@@ -70,11 +73,13 @@ vec3 air_light(vec3 dir, float end, int segments, int substeps, float offset, bo
   return light;
 }
 
-// The loss of the shafts' texel whose centre is at v_ndc (normalised device coordinates) and `centre` (texels).
+// The loss of the shafts' texel whose centre is at v_ndc (normalised device coordinates) and `centre`
+// (texels).
 vec4 shafts_texel(vec2 v_ndc, vec2 centre) {
   ivec2 size = textureSize(u_depth, 0);
   vec2 uv = v_ndc * 0.5 + 0.5;
-  float end = min(scene_distance_m(u_depth, clamp(ivec2(uv * vec2(size)), ivec2(0), size - 1), v_ndc), u_max_distance_m);
+  float end = min(scene_distance_m(u_depth, clamp(ivec2(uv * vec2(size)), ivec2(0), size - 1), v_ndc),
+                  u_max_distance_m);
   vec3 dir = view_ray_direction(u_inverse_view_projection, v_ndc);
 #if GODRAYS_JITTER
   float offset = pixel_noise(centre);
@@ -91,7 +96,8 @@ vec4 shafts_texel(vec2 v_ndc, vec2 centre) {
     float depth = texelFetch(u_depth, clamp(ivec2(q * vec2(size)), ivec2(0), size - 1), 0).r;
     covered += depth > 0.0 ? 1.0 : 0.0;
   }
-  vec3 loss = (covered / float(GODRAYS_SCREEN_SAMPLES)) * air_light(dir, end, GODRAYS_AIR_STEPS, 1, offset, false);
+  vec3 loss =
+      (covered / float(GODRAYS_SCREEN_SAMPLES)) * air_light(dir, end, GODRAYS_AIR_STEPS, 1, offset, false);
 #endif
   return vec4(loss, end);  // a: where the ray ends, for the filter's edges
 }

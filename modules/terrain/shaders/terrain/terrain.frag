@@ -26,7 +26,8 @@ void main() {
   vec2 uv = (u_uv_transform * vec3(v_uv, 1.0)).xy;
 #if TERRAIN_TEXTURE_TRANSFORMS
   vec2 uv_metallic_roughness = (u_metallic_roughness_transform * vec3(v_uv, 1.0)).xy;
-  vec2 uv_occlusion = (u_occlusion_transform * vec3(v_uv, 1.0)).xy, uv_emissive = (u_emissive_transform * vec3(v_uv, 1.0)).xy;
+  vec2 uv_occlusion = (u_occlusion_transform * vec3(v_uv, 1.0)).xy,
+       uv_emissive = (u_emissive_transform * vec3(v_uv, 1.0)).xy;
 #else
   vec2 uv_metallic_roughness = uv, uv_occlusion = uv, uv_emissive = uv;
 #endif
@@ -38,11 +39,13 @@ void main() {
     roughness *= mr.g;
     metallic *= mr.b;
   }
-  if (u_has_occlusion == 1) occlusion = 1.0 + u_occlusion_strength * (texture(u_occlusion, uv_occlusion).r - 1.0);
+  if (u_has_occlusion == 1)
+    occlusion = 1.0 + u_occlusion_strength * (texture(u_occlusion, uv_occlusion).r - 1.0);
   vec3 n = normalize(v_normal);
   if (!gl_FrontFacing) n = -n;
   vec3 emissive = u_emissive;
   if (u_has_emissive == 1) emissive *= texture(u_emissive_map, uv_emissive).rgb;
   o_emissive = vec4(emissive, 1.0);
-  o_surface = terrain_pack_surface(TerrainSurface(base.rgb, occlusion, n, clamp(roughness, 0.03, 1.0), metallic));
+  o_surface =
+      terrain_pack_surface(TerrainSurface(base.rgb, occlusion, n, clamp(roughness, 0.03, 1.0), metallic));
 }

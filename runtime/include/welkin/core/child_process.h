@@ -11,7 +11,8 @@ namespace welkin {
 
 struct ChildLimits {
   double seconds = 2.0;       // CPU time, rounded up to whole seconds (RLIMIT_CPU)
-  double wall_seconds = 0.0;  // a child that blocks is killed after this (0: 4 x seconds + 1, room for a loaded machine)
+  // a child that blocks is killed after this (0: 4 x seconds + 1, room for a loaded machine)
+  double wall_seconds = 0.0;
   uint64_t memory_bytes = 256 << 20;  // address space the child may add to what it inherits
   uint64_t max_result_bytes = 1 << 20;
 };

@@ -8,7 +8,8 @@
 
 namespace welkin {
 
-std::vector<std::string> module_search_dirs(const std::string& relative_to_executable, const std::string& build_tree_dir,
+std::vector<std::string> module_search_dirs(const std::string& relative_to_executable,
+                                            const std::string& build_tree_dir,
                                             const std::string& build_bin_dir);
 
 }  // namespace welkin

@@ -21,7 +21,21 @@
 
 namespace welkin {
 
-enum class FieldKind { boolean, integer, f32, f64, vec2, vec3, vec4, dvec3, color, enumeration, string, array, object };
+enum class FieldKind {
+  boolean,
+  integer,
+  f32,
+  f64,
+  vec2,
+  vec3,
+  vec4,
+  dvec3,
+  color,
+  enumeration,
+  string,
+  array,
+  object
+};
 const char* field_kind_name(FieldKind kind);
 // Number of scalar components for vector-like kinds (1 for scalars).
 int field_kind_arity(FieldKind kind);

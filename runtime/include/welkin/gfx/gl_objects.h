@@ -70,7 +70,9 @@ class Texture {
   explicit Texture(const TextureDesc& desc);
   const TextureDesc& desc() const { return desc_; }
   GLuint id() const { return name_.id(); }
-  GLenum target() const { return desc_.depth > 1 ? (desc_.array ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_3D) : GL_TEXTURE_2D; }
+  GLenum target() const {
+    return desc_.depth > 1 ? (desc_.array ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_3D) : GL_TEXTURE_2D;
+  }
   bool is_3d() const { return desc_.depth > 1; }  // layered: a 3D texture or a 2D array
   explicit operator bool() const { return bool(name_); }
 

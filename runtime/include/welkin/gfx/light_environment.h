@@ -104,7 +104,8 @@ class LightEnvironment {
   void bind() const;
   // For a term's bind: uploads `bytes` of a std140 block into `buffer` (made on first use) and binds it
   // at the block's binding.
-  void bind_block(std::string_view block_name, std::unique_ptr<Buffer>& buffer, const void* data, size_t bytes) const;
+  void bind_block(std::string_view block_name, std::unique_ptr<Buffer>& buffer, const void* data,
+                  size_t bytes) const;
   // Installs the composed file and the binding defines into a shader library (cheap when unchanged).
   void install(ShaderLibrary& shaders) const;
 

@@ -45,7 +45,9 @@ struct RenderContext {
   // Measurement (Renderer::set_full_precision): the frame's colour and the radiance that modules
   // keep between passes (sky tables, froxels) in 32-bit floats.
   bool full_precision = false;
-  TextureFormat radiance_format() const { return full_precision ? TextureFormat::rgba32f : TextureFormat::rgba16f; }
+  TextureFormat radiance_format() const {
+    return full_precision ? TextureFormat::rgba32f : TextureFormat::rgba16f;
+  }
   // The last frame's pass timings (what a system that keeps to a frame budget reads).
   std::vector<PassTiming> last_timings;
   // The form of each full-screen pass (fragment or compute), measured for the device at start-up.
@@ -64,7 +66,8 @@ struct FrameResult {
   // Milliseconds the CPU spent on the frame (systems, graph, recording GL calls), without the time it
   // waited for the GPU to finish passes or report their timestamps.
   double cpu_ms = 0.0;
-  int rendered_width = 0, rendered_height = 0;  // smaller than the output while the view moves (Camera::moving_render_scale)
+  // Smaller than the output while the view moves (Camera::moving_render_scale).
+  int rendered_width = 0, rendered_height = 0;
 };
 
 class Renderer {
@@ -73,7 +76,8 @@ class Renderer {
   explicit Renderer(World& world);
   // Runs the world's update, pre-render and render systems and the frame graph. `view_camera`, when
   // given, replaces the scene's camera for this frame (the editor's fly camera) without touching it.
-  FrameResult render_frame(const FrameInfo& frame, int width, int height, const Camera* view_camera = nullptr);
+  FrameResult render_frame(const FrameInfo& frame, int width, int height,
+                           const Camera* view_camera = nullptr);
   // The last frame's tone-mapped output, and its linear HDR colour at the size it was rendered (smaller
   // than the output while the view moved: Camera::moving_render_scale).
   ImageU8 read_output() const;

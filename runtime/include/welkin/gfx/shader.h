@@ -1,8 +1,8 @@
 #pragma once
 // Shader programs loaded from .glsl files with `#include "file"` (resolved along the search path,
 // then beside the including file) and per-permutation defines. Module folders are searched before
-// the runtime's, so a module overrides a shared include such as welkin/lighting.glsl. The `#version` line is prepended at load;
-// compile errors are reported with the real file and line.
+// the runtime's, so a module overrides a shared include such as welkin/lighting.glsl. The `#version` line is
+// prepended at load; compile errors are reported with the real file and line.
 #include <filesystem>
 #include <glm/glm.hpp>
 #include <cstdint>

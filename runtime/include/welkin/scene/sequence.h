@@ -1,12 +1,15 @@
 #pragma once
-// Keyframed sequences (time-of-day scripts, camera flights, preset blends): tracks that target any reflected field by path
-// ("timeofday.TimeOfDay/local_time_h", "core.Camera/position_m", "clouds.VolumetricClouds/layers/0/coverage"),
-// with step, linear, smooth or cubic Hermite interpolation, per-key easing and wrapping for angles
-// and clock times. Evaluation is a pure function of time, so scrubbing equals playing.
+// Keyframed sequences (time-of-day scripts, camera flights, preset blends): tracks that target any reflected
+// field by path
+// ("timeofday.TimeOfDay/local_time_h", "core.Camera/position_m",
+// "clouds.VolumetricClouds/layers/0/coverage"), with step, linear, smooth or cubic Hermite interpolation,
+// per-key easing and wrapping for angles and clock times. Evaluation is a pure function of time, so scrubbing
+// equals playing.
 //
 // { "welkin_sequence": 1, "duration_s": 20,
 //   "tracks": [ { "target": "timeofday.TimeOfDay/local_time_h", "interpolation": "smooth", "wrap": 24,
-//                 "keys": [ { "t": 0, "value": 23.5 }, { "t": 10, "value": 0.5, "easing": "ease_in_out" } ] } ] }
+//                 "keys": [ { "t": 0, "value": 23.5 }, { "t": 10, "value": 0.5, "easing": "ease_in_out" } ] }
+//                 ] }
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>

@@ -38,14 +38,16 @@ inline RadiusMu transmittance_texel_r_mu(int x, int y, int width, int height, do
 struct TextureUv {
   double u, v;
 };
-inline TextureUv transmittance_uv(double r_km, double mu, int width, int height, double bottom_km, double top_km) {
+inline TextureUv transmittance_uv(double r_km, double mu, int width, int height, double bottom_km,
+                                  double top_km) {
   const double H = std::sqrt(top_km * top_km - bottom_km * bottom_km);
   const double rho = std::sqrt(std::max(0.0, (r_km - bottom_km) * (r_km + bottom_km)));
   const double disc = r_km * r_km * (mu * mu - 1.0) + top_km * top_km;
   const double d = std::max(0.0, -r_km * mu + std::sqrt(std::max(0.0, disc)));
   const double d_min = top_km - r_km, d_max = rho + H;
   const double x_mu = d_max > d_min ? (d - d_min) / (d_max - d_min) : 0.0;
-  return {unit_to_sub_uv(std::clamp(x_mu, 0.0, 1.0), width), unit_to_sub_uv(std::clamp(rho / H, 0.0, 1.0), height)};
+  return {unit_to_sub_uv(std::clamp(x_mu, 0.0, 1.0), width),
+          unit_to_sub_uv(std::clamp(rho / H, 0.0, 1.0), height)};
 }
 
 // The sky-view LUT's horizon seen from radius r: beta is its angle from the nadir, zenith_horizon

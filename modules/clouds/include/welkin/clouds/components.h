@@ -40,14 +40,16 @@ struct CloudLayer {
   float detail_amount = 1.0f;       // erosion by the Worley detail noise at the edges
   float coverage_filter_width = 0.6f;  // 0: hard edge at the weather signal, 1: a linear ramp
   float base_variation_m = 150.0f;     // the base rises and falls with the weather (bases do not line up)
-  // Density over the height fraction h in [0, 1]: exp_term * exp(exponent * h) + linear_term * h + constant_term.
+  // Density over the height fraction h in [0, 1]: exp_term * exp(exponent * h) + linear_term * h +
+  // constant_term.
   float profile_exp_term = 0.0f;
   float profile_exponent = 0.0f;
   float profile_linear_term = 0.75f;
   float profile_constant_term = 0.25f;
   glm::vec2 wind_mps{0.0f, 0.0f};  // drift of this layer's weather (east, north)
   bool casts_shadow = true;
-  bool follows_coverage_map = true;  // the painted coverage map (VolumetricClouds::coverage_map) adds to its coverage
+  // the painted coverage map (VolumetricClouds::coverage_map) adds to its coverage
+  bool follows_coverage_map = true;
   // Drawn or not, as in a mixer: while any layer is soloed, only soloed layers are drawn. A layer
   // looks the same alone as among the others (it keeps its place in the weather).
   bool visible = true;
@@ -158,7 +160,7 @@ struct CloudClusters {
   int layer = 0;                 // index in clouds.VolumetricClouds/layers
   int clusters = 40;             // at most this many, nearest first, where the layer's weather holds cloud
   int puffs_per_cluster = 25;
-  float cell_m = 4000.0f;        // at most one cluster per cell of this side (cells drift with the layer's wind)
+  float cell_m = 4000.0f;  // at most one cluster per cell of this side (cells drift with the layer's wind)
   float near_m = 8000.0f;        // the volumetric path draws the layer nearer than this
   float crossfade_m = 2000.0f;   // over which the two paths hand over
   float far_m = 25000.0f;        // and beyond this
@@ -193,7 +195,8 @@ struct CloudBillboards {
   float cell_m = 8000.0f;         // one billboard per cell of this side; the archetypes' box is as wide
   float near_m = 25000.0f;        // without clusters on the layer: the raymarch draws it nearer than this
   float crossfade_m = 3000.0f;
-  float far_m = 50000.0f;         // the raymarch draws the layer again beyond this (64 billboards of 8 km reach about 50 km)
+  // the raymarch draws the layer again beyond this (64 billboards of 8 km reach about 50 km)
+  float far_m = 50000.0f;
   float density_scale = 1.0f;     // scales the archetypes' optical depth
   int archetypes = 4;
   int atlas_resolution = 32;      // texels per side of a view (and voxels across an archetype's volume)
