@@ -69,7 +69,7 @@ extern "C" __attribute__((visibility("default"))) const welkin::ModuleDefinition
   if(EXISTS ${dir}/include)
     install(DIRECTORY ${dir}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
   endif()
-  foreach(sub shaders presets editor)
+  foreach(sub shaders presets editor data)
     if(EXISTS ${dir}/${sub})
       install(DIRECTORY ${dir}/${sub} DESTINATION ${CMAKE_INSTALL_DATADIR}/welkin/modules/${M_NAME})
     endif()

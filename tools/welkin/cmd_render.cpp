@@ -1,4 +1,5 @@
 // welkin render SCENE [--out file.png|.exr] [--size WxH] [--frames N] [--timings] [--json] [--window]
+//               [--metar REPORT]
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -14,7 +15,9 @@
 #include "welkin/gfx/gl_context.h"
 #include "welkin/gfx/image.h"
 #include "welkin/gfx/renderer.h"
+#include "welkin/scene/field_path.h"
 #include "welkin/scene/scene_file.h"
+#include "welkin/weather/components.h"
 
 namespace welkin::cli {
 
@@ -30,6 +33,7 @@ struct RenderOptions {
   bool json = false;
   bool window = false;
   std::vector<std::string> sets;
+  std::string metar;
 };
 
 void print_timings(const std::vector<PassTiming>& avg, int frames) {
@@ -41,6 +45,24 @@ void print_timings(const std::vector<PassTiming>& avg, int frames) {
     c += t.cpu_ms;
   }
   std::fprintf(stdout, "%-36s %10.3f %10.3f\n", "total", g, c);
+}
+
+// --metar: the scene's weather.Report (added when it has none) takes the report; the weather module
+// sets the sky from it on the first update.
+void set_metar(World& world, const std::string& report) {
+  const ComponentInfo& info = world.modules().require_component(weather::Report::kTypeName);
+  Registry& reg = world.registry();
+  Entity target = reg.first<weather::Report>();
+  if (target.is_null()) {
+    target = reg.create();
+    reg.emplace(target, *info.type);
+  }
+  try {
+    resolve_field(*info.type, reg.get(target, info.type->id), "metar").set_json(report);
+  } catch (const Error& e) {
+    throw Error(ErrorInfo{
+        .path = "--metar", .expected = e.info().expected, .found = e.info().found, .message = e.info().message});
+  }
 }
 
 int run_render(const RenderOptions& o) {
@@ -57,6 +79,7 @@ int run_render(const RenderOptions& o) {
   std::unique_ptr<WindowContext> window;
   auto world = make_world();
   load_scene_file(*world, o.scene);  // before any GL work: bad input fails fast
+  if (!o.metar.empty()) set_metar(*world, o.metar);
   for (const auto& s : o.sets) apply_assignment(*world, s);
 
   bool windowed = o.window && display_available();
@@ -137,6 +160,8 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--json", opts->json, "Print a machine-readable summary");
   cmd->add_flag("-w,--window", opts->window, "Show the frames in a window when a display is available");
   cmd->add_option("--set", opts->sets, "Override a field: component/path=value (repeatable)")->allow_extra_args(false)->take_all();
+  cmd->add_option("--metar", opts->metar,
+                  "Set the sky from a METAR report (weather.Report/metar; see `welkin metar`)");
   cmd->callback([opts, &exit_code] { exit_code = run_render(*opts); });
 }
 

@@ -16,6 +16,8 @@ void add_probe_command(CLI::App& app, int& exit_code);
 void add_accuracy_command(CLI::App& app, int& exit_code);
 // `welkin farm slurm` (batch scripts for a Slurm cluster) and `welkin farm status` (a frames folder's progress).
 void add_farm_command(CLI::App& app, int& exit_code);
+// `welkin metar`: decodes a METAR report (and the sky the weather module makes of it).
+void add_metar_command(CLI::App& app, int& exit_code);
 // The options that decide a sequence run's frames (--fps, --size, --from, --to, --exr), shared by
 // `welkin sequence` and `welkin farm slurm` so both take them alike.
 void add_run_options(CLI::App& cmd, RunSettings& run);

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   welkin::cli::add_probe_command(app, exit_code);
   welkin::cli::add_accuracy_command(app, exit_code);
   welkin::cli::add_farm_command(app, exit_code);
+  welkin::cli::add_metar_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
