@@ -68,7 +68,7 @@ void set_clock_and_place(World& world, Entity owner, const Report& report, const
                           .path = "/metar",
                           .expected = "a station of the table (or weather.Report place 'scene' and a "
                                       "timeofday.TimeOfDay with the scene's place)",
-                          .found = "station " + station + ", which it has not"});
+                          .found = "station " + station + ", which it does not list"});
   tod.latitude_deg = found->latitude_deg;
   tod.longitude_deg = found->longitude_deg;
   check_object(registered_type<timeofday::TimeOfDay>(world), &tod);

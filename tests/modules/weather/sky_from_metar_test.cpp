@@ -18,11 +18,11 @@ TEST(SkyFromMetar, IssueExampleLayers) {
   ASSERT_EQ(sky.layers.size(), 3u);
   EXPECT_EQ(sky.layers[0].genus, Genus::cumulus);
   EXPECT_FLOAT_EQ(sky.layers[0].base_altitude_m, 800 * 0.3048f);
-  EXPECT_FLOAT_EQ(sky.layers[0].coverage, 1.5f / 8);
+  EXPECT_FLOAT_EQ(sky.layers[0].coverage, coverage_parameter_for(1.5f / 8));
   EXPECT_EQ(sky.layers[1].genus, Genus::cumulus);
-  EXPECT_FLOAT_EQ(sky.layers[1].coverage, 3.5f / 8);
+  EXPECT_FLOAT_EQ(sky.layers[1].coverage, coverage_parameter_for(3.5f / 8));
   EXPECT_EQ(sky.layers[2].genus, Genus::cirrus) << "BKN at 25 000 ft is a high cloud";
-  EXPECT_FLOAT_EQ(sky.layers[2].coverage, 6.0f / 8);
+  EXPECT_FLOAT_EQ(sky.layers[2].coverage, coverage_parameter_for(6.0f / 8));
   EXPECT_FALSE(sky.layers[2].casts_shadow);
   EXPECT_FALSE(sky.visibility_m) << "10 miles is clear air: the scene's haze stays";
   EXPECT_EQ(sky.day, 27);
@@ -34,6 +34,31 @@ TEST(SkyFromMetar, IssueExampleLayers) {
   EXPECT_GT(sky.wind_mps.x, 6.0f);
   EXPECT_LT(sky.wind_mps.y, -1.0f);
   for (const auto& l : sky.layers) EXPECT_EQ(l.wind_mps, sky.wind_mps);
+}
+
+TEST(SkyFromMetar, CoverageFromOktasThroughTheMeasuredCurve) {
+  // The oktas' middles: FEW 1-2, SCT 3-4, BKN 5-7, OVC 8.
+  auto fraction = [](const char* group) {
+    return sky_fraction_of(
+        parse_metar(std::string("KXYZ 010000Z 00000KT 9999 ") + group + " 10/05 Q1013").clouds.at(0));
+  };
+  EXPECT_FLOAT_EQ(fraction("FEW030"), 1.5f / 8);
+  EXPECT_FLOAT_EQ(fraction("SCT030"), 3.5f / 8);
+  EXPECT_FLOAT_EQ(fraction("BKN030"), 6.0f / 8);
+  EXPECT_FLOAT_EQ(fraction("OVC030"), 1.0f);
+  EXPECT_FLOAT_EQ(fraction("VV003"), 1.0f);
+  // Points of the measured curve come back exactly; between them it is linear and increasing.
+  EXPECT_NEAR(coverage_parameter_for(0.353f), 0.45f, 1e-6);
+  EXPECT_NEAR(coverage_parameter_for(0.834f), 0.75f, 1e-6);
+  EXPECT_NEAR(coverage_parameter_for(1.5f / 8), 0.35f + 0.1f * (0.1875f - 0.171f) / (0.353f - 0.171f), 1e-6);
+  EXPECT_EQ(coverage_parameter_for(0.0f), 0.0f);
+  EXPECT_EQ(coverage_parameter_for(1.0f), 1.0f);
+  float last = 0.0f;
+  for (float f = 0.01f; f < 1.0f; f += 0.01f) {
+    float c = coverage_parameter_for(f);
+    EXPECT_GT(c, last) << f;
+    last = c;
+  }
 }
 
 TEST(SkyFromMetar, GenusByHeightAmountAndType) {

@@ -22,7 +22,14 @@ inline constexpr int kHighCloudsFromFt = 20000;
 // (OVC cirrostratus). VV (sky obscured) is stratus from the ground.
 clouds::Genus genus_of(const MetarCloud& cloud, const MetarReport& report);
 
-// The middle of the group's oktas over eight: FEW 1.5/8, SCT 3.5/8, BKN 6/8, OVC and VV 8/8.
+// The fraction of the sky the group covers: the middle of its oktas over eight (FEW 1.5/8,
+// SCT 3.5/8, BKN 6/8, OVC and VV 8/8).
+float sky_fraction_of(const MetarCloud& cloud);
+// The clouds' coverage parameter whose layer covers `sky_fraction` of the sky as seen from above:
+// the noise erodes thin coverage, so the parameter is not the fraction (0.45 covers 35%). Inverts
+// a measured curve (kSeenFraction in the source; docs/weather.md says how it was measured).
+float coverage_parameter_for(float sky_fraction);
+// Both together: the layer's coverage for a cloud group.
 float coverage_of(const MetarCloud& cloud);
 
 // Drift of the clouds, toward where the wind blows (east, north), m/s; a variable wind (VRB) has no
