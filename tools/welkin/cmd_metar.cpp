@@ -1,5 +1,5 @@
 // welkin metar REPORT | --file FILE [--json]: decodes a METAR report and prints what it says and the
-// cloud layers, haze and drift the weather module makes of it.
+// cloud layers, haze and drift the weather module makes of it (a summary, or everything as JSON).
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -82,8 +82,35 @@ nlohmann::json sky_json(const weather::SkyFromReport& sky) {
                    {"day", sky.day},
                    {"visibility_m", optional_json(sky.visibility_m)}};
   if (sky.visibility_m)
-    j["haze_extinction_per_km"] = weather::haze_extinction_per_km(*sky.visibility_m, 13.558e-3);
+    j["haze_extinction_per_km"] =
+        weather::haze_extinction_per_km(*sky.visibility_m, weather::kEarthRayleighPerKmGreen);
   return j;
+}
+
+void print_summary(const weather::MetarReport& r, const weather::SkyFromReport& sky) {
+  std::fprintf(stdout, "%s %s, day %d, %02d:%02d UTC\n", r.type.c_str(), r.station.c_str(), r.day, r.hour,
+               r.minute);
+  if (r.wind)
+    std::fprintf(
+        stdout, "wind: %s at %.1f m/s; the clouds drift %.2f m/s east, %.2f m/s north\n",
+        r.wind->direction_deg ? (std::to_string(*r.wind->direction_deg) + " deg").c_str() : "variable",
+        r.wind->speed_mps, sky.wind_mps.x, sky.wind_mps.y);
+  if (sky.visibility_m)
+    std::fprintf(stdout, "visibility: %.0f m; haze: aerosol extinction %.4f /km at the ground\n",
+                 *sky.visibility_m,
+                 weather::haze_extinction_per_km(*sky.visibility_m, weather::kEarthRayleighPerKmGreen));
+  else if (r.visibility)
+    std::fprintf(stdout, "visibility: 10 km or more (the scene's air is kept)\n");
+  else
+    std::fprintf(stdout, "visibility: not reported (the scene's air is kept)\n");
+  for (size_t i = 0; i < sky.layers.size(); ++i) {
+    const auto& l = sky.layers[i];
+    const auto& c = r.clouds[i];
+    std::fprintf(stdout, "layer %zu: %s%03d%s -> %s, base %.0f m, %.0f m thick, coverage %.3f\n", i,
+                 weather::cover_code(c.cover), c.base_ft / 100, c.type.c_str(), clouds::genus_name(l.genus),
+                 l.base_altitude_m, l.thickness_m, l.coverage);
+  }
+  if (sky.layers.empty()) std::fprintf(stdout, "no cloud layers\n");
 }
 
 int run_metar(const MetarOptions& o) {
@@ -100,9 +127,13 @@ int run_metar(const MetarOptions& o) {
     throw o.file.empty() ? e.with_path_prefix("metar") : e.with_file(o.file);
   }
   weather::SkyFromReport sky = weather::sky_from_metar(r);
-  nlohmann::json j = decoded_json(r);
-  j["sky"] = sky_json(sky);
-  std::fprintf(stdout, "%s\n", j.dump(o.json ? 2 : 1).c_str());
+  if (o.json) {
+    nlohmann::json j = decoded_json(r);
+    j["sky"] = sky_json(sky);
+    std::fprintf(stdout, "%s\n", j.dump(2).c_str());
+  } else {
+    print_summary(r, sky);
+  }
   return kOk;
 }
 
@@ -115,7 +146,7 @@ void add_metar_command(CLI::App& app, int& exit_code) {
   cmd->add_option("report", opts->report,
                   "The report, in quotes: \"KSFO 271756Z 28012KT 10SM FEW008 18/12 A3001\"");
   cmd->add_option("-f,--file", opts->file, "Read the report from a file");
-  cmd->add_flag("--json", opts->json, "Indented JSON (the default is one compact line)");
+  cmd->add_flag("--json", opts->json, "Print the decoded report and its sky as JSON");
   cmd->callback([opts, &exit_code] { exit_code = run_metar(*opts); });
 }
 

@@ -40,6 +40,9 @@ glm::vec2 drift_of(const MetarWind& wind);
 // range: Koschmieder's contrast law at WMO's 5% threshold, extinction = ln(20) / MOR, less what the
 // air itself (Rayleigh, at 550 nm) takes out.
 double haze_extinction_per_km(double visibility_m, double rayleigh_per_km_550nm);
+// Earth's Rayleigh scattering at sea level in the green (the atmosphere's default, Hillaire 2020),
+// for showing a report's haze without a scene.
+inline constexpr double kEarthRayleighPerKmGreen = 13.558e-3;
 
 struct SkyFromReport {
   std::vector<clouds::CloudLayer> layers;  // lowest first, one per cloud group
