@@ -60,7 +60,8 @@ FrameView make_frame_view(const Camera& c, int width, int height) {
 }
 
 FrameView make_frame_view(const glm::dvec3& position_m, const glm::vec3& right, const glm::vec3& up,
-                          const glm::vec3& forward, float vertical_fov_rad, float near_m, int width, int height) {
+                          const glm::vec3& forward, float vertical_fov_rad, float near_m, int width,
+                          int height) {
   FrameView v;
   v.width = width;
   v.height = height;

@@ -5,7 +5,7 @@ in vec2 v_ndc;
 out vec4 o_color;
 layout(binding = 0) uniform sampler2D u_host_color;
 layout(binding = 1) uniform sampler2D u_host_depth;
-uniform int u_forward;        // 1: forward depth (ndc = 2 depth - 1, far = 1); 0: reversed (ndc = depth, far = 0)
+uniform int u_forward;        // 1: forward (ndc = 2 depth - 1, far = 1); 0: reversed (ndc = depth, far = 0)
 uniform vec2 u_depth_terms;   // distance = y / (ndc + x), from the host's projection
 uniform float u_near;         // Welkin's near plane
 void main() {

@@ -34,7 +34,8 @@ class World;
 // Sets `path` of `component` (its registered name, e.g. "timeofday.TimeOfDay") on the first entity
 // that has it, loading its module and giving it to a new entity when none has; throws Error naming
 // the component and the path. What `--set` and a host program's Sky::set do.
-void set_scene_field(World& world, std::string_view component, std::string_view path, const nlohmann::json& value);
+void set_scene_field(World& world, std::string_view component, std::string_view path,
+                     const nlohmann::json& value);
 // The value at `path` of the first entity that has `component`; throws Error when none has it.
 nlohmann::json get_scene_field(World& world, std::string_view component, std::string_view path);
 
