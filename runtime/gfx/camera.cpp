@@ -45,10 +45,6 @@ void describe(TypeBuilder<Camera>& t) {
 float exposure_from_ev100(float ev100) { return 1.0f / (1.2f * std::exp2(ev100)); }
 
 FrameView make_frame_view(const Camera& c, int width, int height) {
-  FrameView v;
-  v.width = width;
-  v.height = height;
-  v.camera_position_m = c.position_m;
   double h = glm::radians(double(c.heading_deg)), p = glm::radians(double(c.pitch_deg)),
          r = glm::radians(double(c.roll_deg));
   glm::dvec3 fwd(std::sin(h) * std::cos(p), std::cos(h) * std::cos(p), std::sin(p));
@@ -56,16 +52,30 @@ FrameView make_frame_view(const Camera& c, int width, int height) {
   glm::dvec3 up0 = glm::cross(right0, fwd);
   glm::dvec3 right = std::cos(r) * right0 + std::sin(r) * up0;
   glm::dvec3 up = glm::cross(right, fwd);
-  v.forward = glm::vec3(fwd);
-  v.right = glm::vec3(right);
-  v.up = glm::vec3(up);
+  FrameView v = make_frame_view(c.position_m, glm::vec3(right), glm::vec3(up), glm::vec3(fwd),
+                                glm::radians(c.vertical_fov_deg), c.near_m, width, height);
+  v.exposure = c.exposure_mode == ExposureMode::ev100 ? exposure_from_ev100(c.ev100) : c.exposure;
+  v.tonemapper = c.tonemapper;
+  return v;
+}
+
+FrameView make_frame_view(const glm::dvec3& position_m, const glm::vec3& right, const glm::vec3& up,
+                          const glm::vec3& forward, float vertical_fov_rad, float near_m, int width,
+                          int height) {
+  FrameView v;
+  v.width = width;
+  v.height = height;
+  v.camera_position_m = position_m;
+  v.forward = forward;
+  v.right = right;
+  v.up = up;
   glm::mat4 view(1.0f);
   view[0] = glm::vec4(v.right.x, v.up.x, -v.forward.x, 0);
   view[1] = glm::vec4(v.right.y, v.up.y, -v.forward.y, 0);
   view[2] = glm::vec4(v.right.z, v.up.z, -v.forward.z, 0);
   v.view = view;
-  v.vertical_fov_rad = glm::radians(c.vertical_fov_deg);
-  v.near_m = c.near_m;
+  v.vertical_fov_rad = vertical_fov_rad;
+  v.near_m = near_m;
   // Reversed-Z infinite projection with [0,1] clip depth (glClipControl ZERO_TO_ONE): z_ndc = near / -z_view.
   float f = 1.0f / std::tan(v.vertical_fov_rad * 0.5f);
   float aspect = float(width) / float(height);
@@ -73,12 +83,10 @@ FrameView make_frame_view(const Camera& c, int width, int height) {
   proj[0][0] = f / aspect;
   proj[1][1] = f;
   proj[2][3] = -1.0f;
-  proj[3][2] = c.near_m;
+  proj[3][2] = near_m;
   v.projection = proj;
   v.view_projection = proj * view;
   v.inverse_view_projection = glm::inverse(v.view_projection);
-  v.exposure = c.exposure_mode == ExposureMode::ev100 ? exposure_from_ev100(c.ev100) : c.exposure;
-  v.tonemapper = c.tonemapper;
   return v;
 }
 

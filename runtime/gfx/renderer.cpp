@@ -50,20 +50,48 @@ Renderer::Renderer(World& world) : world_(world), ctx_(world.resource<RenderCont
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
 }
 
-FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height, const Camera* view_camera) {
-  const auto started = std::chrono::steady_clock::now();
+namespace {
+
+void check_frame_size(int width, int height) {
   if (width < 1 || height < 1 || width > 16384 || height > 16384)
     throw Error(ErrorInfo{.expected = "a frame size between 1x1 and 16384x16384",
                           .found = std::to_string(width) + "x" + std::to_string(height)});
+}
+
+}  // namespace
+
+void Renderer::prepare_shaders() {
   // Every loaded module's shader folder, before the runtime's (also modules loaded after construction).
   for (const auto& name : world_.modules().loaded()) {
     const ModuleManifest* m = world_.modules().manifest(name);
     if (m && !m->data_dir.empty()) ctx_.shaders.add_search_dir(m->data_dir / "shaders", /*front=*/true);
   }
-  FrameResult result;
-  result.systems_run = world_.update(frame);
   // The composed material lighting of whatever terms the loaded modules declared.
   world_.resource<LightEnvironment>().install(ctx_.shaders);
+}
+
+FrameResult Renderer::update(const FrameInfo& frame) {
+  FrameResult result;
+  result.systems_run = world_.update(frame);
+  prepare_shaders();
+  return result;
+}
+
+FrameResult Renderer::render_view(const FrameInfo& frame, const FrameView& view) {
+  const auto started = std::chrono::steady_clock::now();
+  check_frame_size(view.width, view.height);
+  FrameResult result = update(frame);
+  ctx_.view = view;
+  last_view_ = view;
+  result.rendered_width = view.width, result.rendered_height = view.height;
+  draw(frame, view.width, view.height, started, result);
+  return result;
+}
+
+FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height, const Camera* view_camera) {
+  const auto started = std::chrono::steady_clock::now();
+  check_frame_size(width, height);
+  FrameResult result = update(frame);
 
   Registry& reg = world_.registry();
   Entity cam = reg.first<Camera>();
@@ -86,7 +114,13 @@ FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height
                   ? whole
                   : make_frame_view(camera, rendered_width, rendered_height);
   result.rendered_width = rendered_width, result.rendered_height = rendered_height;
+  draw(frame, width, height, started, result);
+  return result;
+}
 
+void Renderer::draw(const FrameInfo& frame, int width, int height,
+                    std::chrono::steady_clock::time_point started, FrameResult& result) {
+  const int rendered_width = ctx_.view.width, rendered_height = ctx_.view.height;
   const TextureFormat hdr_format = ctx_.radiance_format();
   if (!hdr_ || hdr_->desc().width != rendered_width || hdr_->desc().height != rendered_height ||
       hdr_->desc().format != hdr_format)
@@ -148,7 +182,6 @@ FrameResult Renderer::render_frame(const FrameInfo& frame, int width, int height
   result.cpu_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count() -
       ctx_.backend.waited_ms();
-  return result;
 }
 
 ImageU8 Renderer::read_output() const { return read_texture_rgba8(*ldr_); }

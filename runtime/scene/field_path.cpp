@@ -177,4 +177,35 @@ json FieldRef::get_json() const {
   return component >= 0 ? j[component] : j;
 }
 
+void set_scene_field(World& world, std::string_view component, std::string_view path, const json& value) {
+  const ComponentInfo& info = world.modules().require_component(component);
+  Registry& reg = world.registry();
+  Entity target;
+  if (const ComponentPool* pool = reg.pool(info.type->id); pool && !pool->empty())
+    target = pool->entities()[0];
+  if (target.is_null()) {
+    target = reg.create();
+    reg.emplace(target, *info.type);
+  }
+  try {
+    resolve_field(*info.type, reg.get(target, info.type->id), path).set_json(value);
+  } catch (const Error& e) {
+    throw e.with_path_prefix(std::string(component));
+  }
+}
+
+json get_scene_field(World& world, std::string_view component, std::string_view path) {
+  const ComponentInfo& info = world.modules().require_component(component);
+  Registry& reg = world.registry();
+  const ComponentPool* pool = reg.pool(info.type->id);
+  if (!pool || pool->empty())
+    throw Error(ErrorInfo{
+        .path = std::string(component), .expected = "an entity with the component", .found = "none"});
+  try {
+    return resolve_field(*info.type, reg.get(pool->entities()[0], info.type->id), path).get_json();
+  } catch (const Error& e) {
+    throw e.with_path_prefix(std::string(component));
+  }
+}
+
 }  // namespace welkin

@@ -41,14 +41,7 @@ void apply_assignment(World& world, const std::string& assignment) {
   std::string component = assignment.substr(0, slash);
   std::string path = assignment.substr(slash + 1, eq - slash - 1);
   std::string text = assignment.substr(eq + 1);
-  const ComponentInfo& info = world.modules().require_component(component);
-  Registry& reg = world.registry();
-  Entity target;
-  if (const ComponentPool* pool = reg.pool(info.type->id); pool && !pool->empty()) target = pool->entities()[0];
-  if (target.is_null()) {
-    target = reg.create();
-    reg.emplace(target, *info.type);
-  }
+  world.modules().require_component(component);  // an unknown component's error names it alone
   nlohmann::json value;
   try {
     value = nlohmann::json::parse(text);
@@ -56,9 +49,9 @@ void apply_assignment(World& world, const std::string& assignment) {
     value = text;  // bare words are strings (enum names)
   }
   try {
-    resolve_field(*info.type, reg.get(target, info.type->id), path).set_json(value);
+    set_scene_field(world, component, path, value);
   } catch (const Error& e) {
-    throw e.with_path_prefix("--set " + component);
+    throw e.with_path_prefix("--set ");
   }
 }
 

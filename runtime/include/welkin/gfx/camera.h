@@ -48,6 +48,11 @@ struct FrameView {
 };
 
 FrameView make_frame_view(const Camera& camera, int width, int height);
+// A view from an orthonormal basis (right, up, forward in the scene frame), with the projection above;
+// exposure and tone mapping left at their defaults.
+FrameView make_frame_view(const glm::dvec3& position_m, const glm::vec3& right, const glm::vec3& up,
+                          const glm::vec3& forward, float vertical_fov_rad, float near_m, int width,
+                          int height);
 // Lagarde & de Rousiers: exposure = 1 / (1.2 * 2^EV100) for a saturation-based sensor.
 float exposure_from_ev100(float ev100);
 // World-space (camera-relative) direction of a pixel centre; y grows downwards in images.

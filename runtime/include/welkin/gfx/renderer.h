@@ -1,6 +1,7 @@
 #pragma once
 // Renders a world's frame: finds the camera, builds the frame graph (clear, the passes render
 // systems add, tone mapping to an sRGB 8-bit target), runs it and keeps the per-pass timings.
+#include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
@@ -78,6 +79,9 @@ class Renderer {
   // given, replaces the scene's camera for this frame (the editor's fly camera) without touching it.
   FrameResult render_frame(const FrameInfo& frame, int width, int height,
                            const Camera* view_camera = nullptr);
+  // The same frame seen through a view the caller made (a host program's matrices: welkin/host/sky.h),
+  // at the view's size, always whole.
+  FrameResult render_view(const FrameInfo& frame, const FrameView& view);
   // The last frame's tone-mapped output, and its linear HDR colour at the size it was rendered (smaller
   // than the output while the view moved: Camera::moving_render_scale).
   ImageU8 read_output() const;
@@ -85,12 +89,21 @@ class Renderer {
   const Texture& output_texture() const { return *ldr_; }
   const Texture& hdr_texture() const { return *hdr_; }
   RenderContext& context() { return ctx_; }
+  // The loaded modules' shader folders and the composed lighting installed in the shader library
+  // (every frame does it; a host compiling materials before its first frame calls it).
+  void prepare_shaders();
   // The HDR colour, and what modules keep of radiance between passes, in 32-bit floats instead of 16
   // (measurement: a twilight sky's radiance per lux of sun sits in half floats' subnormal range,
   // where their steps are 6e-8). From the next frame on.
   void set_full_precision(bool full) { ctx_.full_precision = full; }
 
  private:
+  // The update and pre-render systems, the modules' shader folders and the composed lighting.
+  FrameResult update(const FrameInfo& frame);
+  // The frame graph over ctx_.view (whose size is the rendered size) into a `width` x `height` output.
+  void draw(const FrameInfo& frame, int width, int height, std::chrono::steady_clock::time_point started,
+            FrameResult& result);
+
   World& world_;
   RenderContext& ctx_;
   std::unique_ptr<Texture> hdr_, ldr_;

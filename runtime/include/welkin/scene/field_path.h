@@ -30,4 +30,13 @@ struct FieldRef {
 // Resolves `path` inside `object` of `type`; throws Error naming the first bad segment.
 FieldRef resolve_field(const TypeDesc& type, void* object, std::string_view path);
 
+class World;
+// Sets `path` of `component` (its registered name, e.g. "timeofday.TimeOfDay") on the first entity
+// that has it, loading its module and giving it to a new entity when none has; throws Error naming
+// the component and the path. What `--set` and a host program's Sky::set do.
+void set_scene_field(World& world, std::string_view component, std::string_view path,
+                     const nlohmann::json& value);
+// The value at `path` of the first entity that has `component`; throws Error when none has it.
+nlohmann::json get_scene_field(World& world, std::string_view component, std::string_view path);
+
 }  // namespace welkin
