@@ -188,7 +188,7 @@ void shafts_system(SystemContext& sc) {
 
   const FrameTargets t = *sc.targets;
   RenderGraph& g = *sc.graph;
-  auto loss = std::make_shared<ResourceHandle>();
+  ResourceHandle loss;
   glm::ivec2 loss_size(1);
   if (shafts) {
     const int d = std::max(rays->resolution_divisor, 1);
@@ -208,34 +208,34 @@ void shafts_system(SystemContext& sc) {
     const glm::vec2 sun_at = sun_uv.value_or(glm::vec2(0.5f));
     // The jitter moves with the frame, and a frame of a sequence draws the same noise when scrubbed.
     const float jitter = float(std::fmod(double(sc.frame.index) * 0.6180339887498949, 1.0));
+    loss = g.create("godrays.loss", TextureDesc{.width = w, .height = h, .format = rc.radiance_format()});
     g.add_pass(
         "godrays.shafts",
         [&](PassBuilder& b) {
           b.read(t.depth);
-          *loss =
-              b.create("godrays.loss", TextureDesc{.width = w, .height = h, .format = rc.radiance_format()});
+          b.write(loss);
         },
         [&rc, &world, t, loss, defines, max_distance, reach, sun_at, jitter, set_common](PassContext& pc) {
           const ShaftsDraw draw{defines, max_distance, reach, sun_at, jitter};
-          run_shafts(rc, world, pc.texture(*loss), pc.texture(t.depth), draw, set_common);
+          run_shafts(rc, world, pc.texture(loss), pc.texture(t.depth), draw, set_common);
         });
     // The marched shafts' jitter is filtered out at their resolution; the screen-space path stays
     // unfiltered to stay cheap (its taps' jitter shows as fine noise).
     if (rays->jitter && rays->method == ShaftMethod::marched) {
-      auto filtered = std::make_shared<ResourceHandle>();
+      const ResourceHandle filtered = g.create(
+          "godrays.loss_filtered", TextureDesc{.width = w, .height = h, .format = rc.radiance_format()});
       g.add_pass(
           "godrays.filter",
           [&](PassBuilder& b) {
-            b.read(*loss);
-            *filtered = b.create("godrays.loss_filtered",
-                                 TextureDesc{.width = w, .height = h, .format = rc.radiance_format()});
+            b.read(loss);
+            b.write(filtered);
           },
           [&rc, loss, filtered](PassContext& pc) {
-            Framebuffer fb(&pc.texture(*filtered), nullptr);
+            Framebuffer fb(&pc.texture(filtered), nullptr);
             fb.bind();
             glDisable(GL_DEPTH_TEST);
             glDisable(GL_BLEND);
-            glBindTextureUnit(0, pc.texture(*loss).id());
+            glBindTextureUnit(0, pc.texture(loss).id());
             rc.shaders.graphics("fullscreen.vert", "godrays/filter.frag").use();
             rc.draw_fullscreen_triangle();
           });
@@ -253,7 +253,7 @@ void shafts_system(SystemContext& sc) {
   g.add_pass(
       "godrays.apply",
       [&](PassBuilder& b) {
-        if (shafts) b.read(*loss);
+        if (shafts) b.read(loss);
         if (haze) b.read(t.depth);
         b.read(t.color);
         b.write(t.color);
@@ -261,7 +261,7 @@ void shafts_system(SystemContext& sc) {
       [&rc, &world, t, loss, set_common,
        draw = ApplyDraw{shafts, haze != nullptr, tiles, loss_size, apply_defines,
                         sun.value_or(glm::vec3(0.0f, 0.0f, 1.0f))}](PassContext& pc) {
-        run_apply(rc, world, pc.texture(t.color), draw.shafts ? &pc.texture(*loss) : nullptr,
+        run_apply(rc, world, pc.texture(t.color), draw.shafts ? &pc.texture(loss) : nullptr,
                   draw.haze ? &pc.texture(t.depth) : nullptr, draw, set_common);
       });
 }
