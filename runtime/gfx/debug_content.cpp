@@ -236,13 +236,13 @@ void register_debug_content(ModuleContext& ctx) {
   ctx.component<Backdrop>();
   ctx.component<DirectionalLight>();
   ctx.component<DebugShape>();
-  ctx.system({.name = "core.directional_light", .phase = Phase::update, .order = kCompleteSharedState,
+  ctx.system({.name = "core.directional_light", .stage = Stage::complete_shared_state,
               .writes = {type_id<DirectionalLight>()}, .run = directional_light_system});
   ctx.system({.name = "core.backdrop",
-              .phase = Phase::render,
+              .stage = Stage::geometry,
               .reads = {type_id<Backdrop>()},
               .run = backdrop_system});
-  ctx.system({.name = "core.debug_shapes", .phase = Phase::render, .reads = {type_id<DebugShape>()},
+  ctx.system({.name = "core.debug_shapes", .stage = Stage::geometry, .reads = {type_id<DebugShape>()},
               .optional_reads = {type_id<DirectionalLight>()}, .run = debug_shape_system});
 }
 

@@ -7,11 +7,7 @@
 namespace welkin {
 
 ResourceHandle PassBuilder::create(const std::string& name, const TextureDesc& desc) {
-  graph_.resources_.push_back({.name = name, .desc = desc});
-  uint32_t i = uint32_t(graph_.resources_.size() - 1);
-  graph_.passes_[pass_].creates.push_back(i);
-  graph_.passes_[pass_].writes.push_back(i);
-  return ResourceHandle{i};
+  return write(graph_.create(name, desc));
 }
 
 ResourceHandle PassBuilder::read(ResourceHandle h) {
@@ -40,6 +36,22 @@ Texture& PassContext::texture(ResourceHandle h) const {
 ResourceHandle RenderGraph::import(const std::string& name, Texture& texture) {
   resources_.push_back({.name = name, .desc = texture.desc(), .texture = &texture, .imported = true});
   return ResourceHandle{uint32_t(resources_.size() - 1)};
+}
+
+ResourceHandle RenderGraph::create(const std::string& name, const TextureDesc& desc) {
+  resources_.push_back({.name = name, .desc = desc});
+  return ResourceHandle{uint32_t(resources_.size() - 1)};
+}
+
+void RenderGraph::publish(GraphKey key, ResourceHandle h) {
+  if (!h.valid() || h.index >= resources_.size())
+    throw Error("render graph: publishing an invalid resource as '" + std::string(key.name) + "'");
+  blackboard_.insert_or_assign(std::string(key.name), h);
+}
+
+ResourceHandle RenderGraph::published(GraphKey key) const {
+  auto it = blackboard_.find(key.name);
+  return it == blackboard_.end() ? ResourceHandle{} : it->second;
 }
 
 void RenderGraph::add_pass(const std::string& name, const SetupFn& setup, ExecuteFn execute) {
@@ -100,10 +112,11 @@ void RenderGraph::execute(GraphBackend& backend) {
     if (!pass.alive) continue;
     // Transients are acquired just before their first use and returned right after their last,
     // so later passes can reuse the same memory.
-    for (uint32_t i : pass.creates) {
-      auto& r = resources_[i];
-      if (!r.texture && r.first_use == p) r.texture = backend.acquire(r.desc);
-    }
+    for (const std::vector<uint32_t>* used : {&pass.reads, &pass.writes})
+      for (uint32_t i : *used) {
+        auto& r = resources_[i];
+        if (!r.imported && !r.texture && r.first_use == p) r.texture = backend.acquire(r.desc);
+      }
     auto t0 = std::chrono::steady_clock::now();
     backend.begin_pass(pass.name);
     PassContext ctx(*this, pass.name);

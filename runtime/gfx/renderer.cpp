@@ -132,11 +132,11 @@ void Renderer::draw(const FrameInfo& frame, int width, int height,
 
   RenderGraph graph;
   FrameTargets targets;
-  targets.color = graph.import("scene_color", *hdr_);
+  targets.color = graph.import(std::string(kSceneColor.name), *hdr_);
   ResourceHandle output = graph.import("output", *ldr_);
   graph.add_pass("clear", [&](PassBuilder& b) {
     b.write(targets.color);
-    targets.depth = b.create("scene_depth", TextureDesc{.width = rendered_width,
+    targets.depth = b.create(std::string(kSceneDepth.name), TextureDesc{.width = rendered_width,
                                                         .height = rendered_height,
                                                         .format = TextureFormat::depth32f,
                                                         .linear_filter = false});
@@ -148,8 +148,8 @@ void Renderer::draw(const FrameInfo& frame, int width, int height,
     glClearDepth(0.0);
     glClear(targets_copy->color_covered ? GL_DEPTH_BUFFER_BIT : GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   });
-  graph.blackboard["scene_color"] = targets.color;
-  graph.blackboard["scene_depth"] = targets.depth;
+  graph.publish(kSceneColor, targets.color);
+  graph.publish(kSceneDepth, targets.depth);
 
   SystemContext sctx{.world = world_, .frame = frame, .graph = &graph, .targets = &targets,
                      .entering_system = [&graph](const std::string& name) { graph.set_system(name); }};

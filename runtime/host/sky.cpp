@@ -181,7 +181,7 @@ Sky::Sky(World& world) : world_(world) {
   glCreateSamplers(1, &sampler_);
   glSamplerParameteri(sampler_, GL_TEXTURE_COMPARE_MODE, GL_NONE);
   world.scheduler().add(
-      SystemDesc{.name = "host.geometry", .phase = Phase::render, .order = 0, .run = host_geometry_system});
+      SystemDesc{.name = "host.geometry", .stage = Stage::geometry, .run = host_geometry_system});
 }
 
 Sky::~Sky() {

@@ -27,10 +27,11 @@ struct DepthReadback {
   }
 };
 
+// Add it after the scene is loaded: it runs after the geometry of the modules registered before it.
 inline std::shared_ptr<DepthReadback> read_depth_after_geometry(World& world) {
   auto out = std::make_shared<DepthReadback>();
   world.scheduler().add(SystemDesc{
-      .name = "test.read_depth", .phase = Phase::render, .order = 50, .run = [out](SystemContext& sc) {
+      .name = "test.read_depth", .stage = Stage::geometry, .run = [out](SystemContext& sc) {
         const FrameTargets t = *sc.targets;
         sc.graph->add_pass("test.read_depth", [&](PassBuilder& b) { b.read(t.depth); b.write(t.color); },
                            [t, out](PassContext& pc) {

@@ -6,6 +6,7 @@
 #include "permutations.h"
 #include "welkin/atmosphere/ground_region.h"
 #include "welkin/atmosphere/gpu.h"
+#include "graph_keys.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/compute.h"
 #include "welkin/gfx/light_environment.h"
@@ -74,9 +75,9 @@ struct AfterLuts {
   static AfterLuts of(SystemContext& sc) {
     AtmosphereGpu& gpu = sc.world.resource<AtmosphereGpu>();
     return {&sc.world.resource<RenderContext>(), &gpu, sc.graph, *sc.targets,
-            sc.graph->blackboard.at("atmosphere.transmittance"), in_space(gpu.uniforms)};
+            sc.graph->published(kTransmittanceLut), in_space(gpu.uniforms)};
   }
-  ResourceHandle published(const char* name) const { return graph->blackboard.at(name); }
+  ResourceHandle published(GraphKey key) const { return graph->published(key); }
 };
 
 // The sky's shader: its mode (the sky-view LUT, the march from space, or method raymarch), and whether
@@ -126,8 +127,8 @@ void background_system(SystemContext& sc) {
   RenderContext* rcp = f.rc;
   RenderGraph& g = *sc.graph;
   const FrameTargets t = f.targets;
-  const ResourceHandle trans = f.trans, ms = f.published("atmosphere.multiscattering"),
-                       sky_view = f.published("atmosphere.sky_view");
+  const ResourceHandle trans = f.trans, ms = f.published(kMultiscatteringLut),
+                       sky_view = f.published(kSkyViewLut);
   const GpuUniforms& u = gpu.uniforms;
   const bool space = f.space;
   // The discs are hidden behind the geometry for free.
@@ -248,8 +249,8 @@ void ground_light_pass(SystemContext& sc, const AfterLuts& f) {
   ground_only["ATM_SKY_GROUND_ONLY"] = "1";
   const bool compute = f.rc->forms.compute("atmosphere.ground_light");
   const FrameTargets t = f.targets;
-  const ResourceHandle trans = f.trans, ms = f.published("atmosphere.multiscattering"),
-                       sky_view = f.published("atmosphere.sky_view");
+  const ResourceHandle trans = f.trans, ms = f.published(kMultiscatteringLut),
+                       sky_view = f.published(kSkyViewLut);
   sc.graph->add_pass(
       "atmosphere.ground_light",
       [&](PassBuilder& b) {
@@ -288,8 +289,8 @@ void sky_system(SystemContext& sc) {
   AtmosphereGpu* gp = f.gpu;
   RenderContext* rcp = f.rc;
   const FrameTargets t = f.targets;
-  const ResourceHandle trans = f.trans, ap_s = f.published("atmosphere.aerial_inscattering"),
-                       ap_t = f.published("atmosphere.aerial_transmittance");
+  const ResourceHandle trans = f.trans, ap_s = f.published(kAerialInscattering),
+                       ap_t = f.published(kAerialTransmittance);
   const GpuUniforms& u = gp->uniforms;
   const bool space = f.space;
   ShaderDefines ap = moon_defines(u);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "welkin/atmosphere/gpu.h"
+#include "graph_keys.h"
 #include "permutations.h"
 #include "welkin/core/disk_cache.h"
 #include "welkin/core/error.h"
@@ -335,19 +336,17 @@ void lut_system(SystemContext& sc) {
 
   RenderGraph& g = *sc.graph;
   LutFrame f{.gpu = &gpu, .rc = &rc, .q = q, .u = u, .moon_defs = moon_defs};
-  f.trans = g.import("atmosphere.transmittance", *gpu.transmittance);
-  f.ms = g.import("atmosphere.multiscattering", *gpu.multiscattering);
-  f.sky_view = g.import("atmosphere.sky_view", *gpu.sky_view);
-  f.ap_s = g.import("atmosphere.aerial_inscattering", *gpu.aerial_inscattering);
-  f.ap_t = g.import("atmosphere.aerial_transmittance", *gpu.aerial_transmittance);
-  f.irradiance = g.import("atmosphere.sky_irradiance", *gpu.sky_irradiance);
-  for (auto [name, h] : {std::pair{"atmosphere.transmittance", f.trans},
-                         {"atmosphere.multiscattering", f.ms},
-                         {"atmosphere.sky_view", f.sky_view},
-                         {"atmosphere.aerial_inscattering", f.ap_s},
-                         {"atmosphere.aerial_transmittance", f.ap_t},
-                         {"atmosphere.sky_irradiance", f.irradiance}})
-    g.blackboard[name] = h;
+  auto publish = [&g](GraphKey key, Texture& texture) {
+    const ResourceHandle h = g.import(std::string(key.name), texture);
+    g.publish(key, h);
+    return h;
+  };
+  f.trans = publish(kTransmittanceLut, *gpu.transmittance);
+  f.ms = publish(kMultiscatteringLut, *gpu.multiscattering);
+  f.sky_view = publish(kSkyViewLut, *gpu.sky_view);
+  f.ap_s = publish(kAerialInscattering, *gpu.aerial_inscattering);
+  f.ap_t = publish(kAerialTransmittance, *gpu.aerial_transmittance);
+  f.irradiance = publish(kSkyIrradiance, *gpu.sky_irradiance);
 
   if (rebuild) add_persistent_lut_passes(g, f);
   // The sky-view LUT serves the LUT method inside the atmosphere only; from space, and with method

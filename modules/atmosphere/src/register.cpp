@@ -18,28 +18,24 @@ void register_atmosphere(ModuleContext& ctx) {
   add_light_term(ctx.world());
   // After the time of day has written the ephemeris and the clock, before anything renders.
   ctx.system({.name = "atmosphere.shared_state",
-              .phase = Phase::update,
-              .order = kCompleteSharedState,
+              .stage = Stage::complete_shared_state,
               .optional_reads = {type_id<Atmosphere>(), type_id<Sun>(), type_id<Moon>(), type_id<Stars>()},
               .run = shared_state_system});
   // LUTs and the sky first, so every material drawn this frame reads this frame's tables and covers
-  // the sky; the aerial perspective over the depth buffer last, once the geometry is in.
+  // the sky; the aerial perspective over the depth buffer once the geometry is in.
   ctx.system({.name = "atmosphere.luts",
-              .phase = Phase::render,
-              .order = -100,
+              .stage = Stage::tables,
               .reads = {type_id<Atmosphere>()},
               .optional_reads = {type_id<Sun>(), type_id<Moon>(), type_id<Stars>()},
               .run = lut_system});
-  // The sky behind the geometry, after what the light environment reads is made (cloud shadows at -50).
+  // The sky behind the geometry, after what the light environment reads is made (the light maps).
   ctx.system({.name = "atmosphere.sky_background",
-              .phase = Phase::render,
-              .order = -10,
+              .stage = Stage::background,
               .reads = {type_id<Atmosphere>()},
               .optional_reads = {type_id<Stars>()},
               .run = background_system});
   ctx.system({.name = "atmosphere.sky",
-              .phase = Phase::render,
-              .order = 100,
+              .stage = Stage::aerial_perspective,
               .reads = {type_id<Atmosphere>()},
               .run = sky_system});
 }

@@ -209,16 +209,16 @@ void billboards_system(SystemContext& sc) {
   const int width = std::max(1, int(std::ceil(view.width * billboards.resolution_scale)));
   const int height = std::max(1, int(std::ceil(view.height * billboards.resolution_scale)));
   const bool volume = billboards.render == BillboardRender::volume;
-  auto targets = std::make_shared<FarCloudTargets>();
+  const FarCloudTargets targets = far_cloud_targets(g, width, height);
   g.add_pass(
       "clouds.billboards_draw",
       [&](PassBuilder& b) {
         b.read(t.depth);
-        *targets = far_cloud_targets(g, b, width, height);
+        write_far_cloud_targets(b, targets);
       },
       [gp, &rc, t, targets, count, grid, light_dir, billboards, box, volume](PassContext& pc) {
         BillboardsGpu& bb = gp->billboards;
-        const Framebuffer fb = begin_far_cloud_draw(pc, *targets);
+        const Framebuffer fb = begin_far_cloud_draw(pc, targets);
         if (!bb.vao) glCreateVertexArrays(1, &bb.vao);
         glBindVertexArray(bb.vao);
         glBindBufferBase(GL_UNIFORM_BUFFER, 0, gp->frame_buffer->id());
@@ -234,7 +234,7 @@ void billboards_system(SystemContext& sc) {
         set_atlas_uniforms(p, billboards, box);
         p.set("u_view_projection", rc.view.view_projection);
         p.set("u_inverse_view_projection", rc.view.inverse_view_projection);
-        p.set("u_viewport", glm::vec2(targets->width, targets->height));
+        p.set("u_viewport", glm::vec2(targets.width, targets.height));
         p.set("u_light_dir", light_dir);
         p.set("u_up_radius", glm::vec4(glm::vec3(gp->block.up), gp->block.camera_radius_m));
         p.set("u_axis_wind", grid.axis_wind);

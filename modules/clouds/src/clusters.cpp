@@ -186,16 +186,16 @@ void clusters_system(SystemContext& sc) {
 
   const FrameTargets t = *sc.targets;
   const int samples = clusters->samples;
-  auto targets = std::make_shared<FarCloudTargets>();
+  const FarCloudTargets targets = far_cloud_targets(g, width, height);
   g.add_pass(
       "clouds.clusters_draw",
       [&](PassBuilder& b) {
         b.read(t.depth);
-        *targets = far_cloud_targets(g, b, width, height);
+        write_far_cloud_targets(b, targets);
       },
       [gp, &rc, t, targets, count, grid, light_dir, samples, mesh](PassContext& pc) {
         ClustersGpu& c = gp->clusters;
-        const Framebuffer fb = begin_far_cloud_draw(pc, *targets);
+        const Framebuffer fb = begin_far_cloud_draw(pc, targets);
         if (mesh) {
           glEnable(GL_CULL_FACE);
           glCullFace(GL_FRONT);  // the far side: one fragment per pixel per puff, also from inside
@@ -216,7 +216,7 @@ void clusters_system(SystemContext& sc) {
         p.use();
         p.set("u_view_projection", rc.view.view_projection);
         p.set("u_inverse_view_projection", rc.view.inverse_view_projection);
-        p.set("u_viewport", glm::vec2(targets->width, targets->height));
+        p.set("u_viewport", glm::vec2(targets.width, targets.height));
         p.set("u_light_dir", light_dir);
         p.set("u_up_radius", glm::vec4(glm::vec3(gp->block.up), gp->block.camera_radius_m));
         p.set("u_axis_wind", grid.axis_wind);

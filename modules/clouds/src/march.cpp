@@ -10,6 +10,7 @@
 
 #include "density_field.h"
 #include "frame_upload.h"
+#include "placement.h"
 #include "temporal_resolve.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/compute.h"
@@ -19,12 +20,6 @@
 namespace welkin::clouds {
 
 namespace {
-
-// A handle another pass published on the graph's blackboard this frame (invalid: none).
-ResourceHandle published(const RenderGraph& g, const char* name) {
-  auto it = g.blackboard.find(name);
-  return it == g.blackboard.end() ? ResourceHandle{} : it->second;
-}
 
 // What the march and the resolve read, the frame's index aside (it only turns the jitter): the
 // block and layers, the field's noise and map, the shaders, the light environment's state, the
@@ -65,22 +60,25 @@ MarchOutput add_march_pass(SystemContext& sc, CloudsGpu& gpu, const ShaderDefine
   auto& rc = world.resource<RenderContext>();
   const FrameTargets t = *sc.targets;
   const bool cluster_front = front.valid();
-  auto current = std::make_shared<std::array<ResourceHandle, 2>>();
+  const MarchOutput current{
+      .color = sc.graph->create("clouds.march",
+                                TextureDesc{.width = qw, .height = qh, .format = TextureFormat::rgba16f}),
+      .distance = sc.graph->create("clouds.march_distance", TextureDesc{.width = qw,
+                                                                         .height = qh,
+                                                                         .format = TextureFormat::rg32f,
+                                                                         .linear_filter = false})};
   CloudsGpu* gp = &gpu;
   sc.graph->add_pass(
       "clouds.march",
       [&](PassBuilder& b) {
         b.read(t.depth);
         if (cluster_front) b.read(front);
-        (*current)[0] = b.create("clouds.march",
-                                 TextureDesc{.width = qw, .height = qh, .format = TextureFormat::rgba16f});
-        (*current)[1] = b.create(
-            "clouds.march_distance",
-            TextureDesc{.width = qw, .height = qh, .format = TextureFormat::rg32f, .linear_filter = false});
+        b.write(current.color);
+        b.write(current.distance);
       },
       [gp, &rc, &world, t, current, defines, stride_offset, cluster_front, front,
        front_unit](PassContext& pc) {
-        Framebuffer fb({&pc.texture((*current)[0]), &pc.texture((*current)[1])}, nullptr);
+        Framebuffer fb({&pc.texture(current.color), &pc.texture(current.distance)}, nullptr);
         fb.bind();
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_BLEND);
@@ -121,8 +119,8 @@ void clouds_system(SystemContext& sc) {
   defines.merge(light_model_defines(gpu));
   defines["CLOUDS_AP_MODE"] = ap_mode;
   // The mesh clusters drawn just before: the march ends where they turn opaque.
-  // (published on the graph's blackboard by clouds.clusters when it drew this frame).
-  const ResourceHandle front = published(*sc.graph, "clouds.cluster_front");
+  // (published on the graph by the billboards or the clusters when they drew this frame).
+  const ResourceHandle front = sc.graph->published(kFarCloudsFront);
   const bool cluster_front = front.valid();
   const GLuint front_unit = world.resource<LightEnvironment>().free_unit();
   if (cluster_front) {
@@ -147,7 +145,7 @@ void clouds_system(SystemContext& sc) {
   const int n = partial ? resolve_quality(*clouds).temporal_block : 1;
   const FrameTargets t = *sc.targets;
   RenderGraph& g = *sc.graph;
-  ResourceHandle clusters = published(g, "clouds.clusters");
+  ResourceHandle clusters = g.published(kFarCloudsColor);
 
   // A still view keeps its clouds (march_state). Clusters and billboards drawn before the march are
   // not followed: with them it marches.
@@ -174,7 +172,7 @@ void clouds_system(SystemContext& sc) {
   const glm::ivec2 offset = block_offset(gpu, partial, n);
   const glm::ivec3 stride_offset(n, offset.x, offset.y);
   const MarchOutput current = add_march_pass(sc, gpu, defines, stride_offset, qw, qh, front, front_unit);
-  ResourceHandle result = (*current)[0];
+  ResourceHandle result = current.color;
   if (temporal) {
     result = add_resolve_pass(g, rc, gpu, *clouds, current, offset, partial, n, w, h, clusters);
   } else {

@@ -179,26 +179,27 @@ void sort_far_to_near(ShaderLibrary& shaders, int size) {
   }
 }
 
-FarCloudTargets far_cloud_targets(RenderGraph& graph, PassBuilder& b, int width, int height) {
-  FarCloudTargets t;
-  auto color = graph.blackboard.find("clouds.clusters"),
-       front = graph.blackboard.find("clouds.cluster_front");
-  if (color != graph.blackboard.end() && front != graph.blackboard.end()) {
-    t.color = b.write(color->second);
-    t.front = b.write(front->second);
+FarCloudTargets far_cloud_targets(RenderGraph& graph, int width, int height) {
+  FarCloudTargets t{.color = graph.published(kFarCloudsColor), .front = graph.published(kFarCloudsFront)};
+  if (t.color.valid() && t.front.valid()) {
     t.width = graph.resource_desc(t.color).width;
     t.height = graph.resource_desc(t.color).height;
-  } else {
-    t.color = b.create("clouds.clusters",
-                       TextureDesc{.width = width, .height = height, .format = TextureFormat::rgba16f});
-    t.front = b.create(
-        "clouds.cluster_front",
-        TextureDesc{.width = width, .height = height, .format = TextureFormat::r32f, .linear_filter = false});
-    t.width = width, t.height = height, t.created = true;
+    return t;
   }
-  graph.blackboard["clouds.clusters"] = t.color;
-  graph.blackboard["clouds.cluster_front"] = t.front;
+  t.color = graph.create(std::string(kFarCloudsColor.name),
+                         TextureDesc{.width = width, .height = height, .format = TextureFormat::rgba16f});
+  t.front = graph.create(
+      std::string(kFarCloudsFront.name),
+      TextureDesc{.width = width, .height = height, .format = TextureFormat::r32f, .linear_filter = false});
+  t.width = width, t.height = height, t.created = true;
+  graph.publish(kFarCloudsColor, t.color);
+  graph.publish(kFarCloudsFront, t.front);
   return t;
+}
+
+void write_far_cloud_targets(PassBuilder& b, const FarCloudTargets& t) {
+  b.write(t.color);
+  b.write(t.front);
 }
 
 Framebuffer begin_far_cloud_draw(PassContext& pc, const FarCloudTargets& t) {

@@ -49,15 +49,18 @@ struct PlacementBuffers {
 void ensure_buffer(std::unique_ptr<Buffer>& buffer, size_t& capacity, size_t bytes);
 int next_power_of_two(int n);
 // The targets the mid- and far-range clouds (billboards, then clusters) draw into at a fraction of
-// the frame's size, published on the graph's blackboard for the march: premultiplied colour and
-// where they turn opaque. The first path to draw in a frame creates them (cleared), the next draws
-// over them. Call from a pass's setup.
+// the frame's size, published on the graph for the march: premultiplied colour and where they turn
+// opaque. The first path to draw in a frame creates them (its pass clears them), the next draws over
+// them. Call before adding the pass that draws them; its setup writes them (write_far_cloud_targets).
+inline constexpr GraphKey kFarCloudsColor{"clouds.clusters"};
+inline constexpr GraphKey kFarCloudsFront{"clouds.cluster_front"};
 struct FarCloudTargets {
   ResourceHandle color, front;
   int width = 0, height = 0;
   bool created = false;  // this pass must clear them
 };
-FarCloudTargets far_cloud_targets(RenderGraph& graph, PassBuilder& b, int width, int height);
+FarCloudTargets far_cloud_targets(RenderGraph& graph, int width, int height);
+void write_far_cloud_targets(PassBuilder& b, const FarCloudTargets& t);
 // Clears new targets, binds them (the framebuffer returned, kept while drawing) with the blending
 // both paths use, and the viewport; restored by end_far_cloud_draw.
 Framebuffer begin_far_cloud_draw(PassContext& pc, const FarCloudTargets& t);

@@ -17,27 +17,30 @@ void register_clouds(ModuleContext& ctx) {
   ctx.component<CloudBillboards>();
   ctx.component<CloudLod>();
   add_light_term(ctx.world());
-  // The shadow map before any material draws; the march after the geometry and the atmosphere's
-  // aerial perspective on it (order 100), so clouds cover both and carry the air in front of them.
-  ctx.system({.name = "clouds.shadows", .phase = Phase::render, .order = -50,
-              .reads = {type_id<VolumetricClouds>()}, .run = shadow_system});
-  // The billboards before the mesh clusters, which draw over them (the billboards lie beyond).
+  // The shadow map before any material draws (a light map); the clouds after the geometry, the
+  // atmosphere's aerial perspective on it and the god rays (their stages come before the clouds'), so
+  // clouds cover them and carry the air in front of them.
+  ctx.system({.name = "clouds.shadows", .stage = Stage::light_maps, .reads = {type_id<VolumetricClouds>()},
+              .run = shadow_system});
+  // The billboards first: the mesh clusters draw over them (the billboards lie beyond).
   ctx.system({.name = "clouds.billboards",
-              .phase = Phase::render,
-              .order = 144,
+              .stage = Stage::clouds,
               .reads = {type_id<CloudBillboards>()},
               .optional_reads = {type_id<VolumetricClouds>()},
               .run = billboards_system});
-  // The mesh clusters after the god rays (140) and before the march, which stops where they turn
-  // opaque and composites the nearer volumetric clouds over them.
+  // The mesh clusters before the march, which stops where they turn opaque and composites the nearer
+  // volumetric clouds over them.
   ctx.system({.name = "clouds.clusters",
-              .phase = Phase::render,
-              .order = 145,
+              .stage = Stage::clouds,
+              .after = {"clouds.billboards"},
               .reads = {type_id<CloudClusters>()},
               .optional_reads = {type_id<VolumetricClouds>()},
               .run = clusters_system});
-  ctx.system({.name = "clouds.march", .phase = Phase::render, .order = 150,
-              .reads = {type_id<VolumetricClouds>()}, .run = clouds_system});
+  ctx.system({.name = "clouds.march",
+              .stage = Stage::clouds,
+              .after = {"clouds.clusters"},
+              .reads = {type_id<VolumetricClouds>()},
+              .run = clouds_system});
 }
 
 }  // namespace welkin::modules

@@ -23,30 +23,32 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
   const float inside_cloud_m = 2.0f * gpu.block.min_step_m;  // two of the shortest march steps
   const ShaderDefines resolve_defines = {{"CLOUDS_CLIP", clouds.temporal_clipping ? "1" : "0"},
                                          {"CLOUDS_WITH_CLUSTERS", merge_clusters ? "1" : "0"}};
-  auto merged = std::make_shared<ResourceHandle>();
+  const ResourceHandle merged =
+      merge_clusters ? g.create("clouds.with_clusters",
+                                TextureDesc{.width = w, .height = h, .format = TextureFormat::rgba16f})
+                     : ResourceHandle{};
   g.add_pass(
       "clouds.resolve",
       [&](PassBuilder& b) {
-        b.read((*current)[0]);
-        b.read((*current)[1]);
+        b.read(current.color);
+        b.read(current.distance);
         b.read(history);
         b.write(out_color);
         if (merge_clusters) {
           b.read(clusters);
-          *merged = b.create("clouds.with_clusters",
-                             TextureDesc{.width = w, .height = h, .format = TextureFormat::rgba16f});
+          b.write(merged);
         }
       },
       [&rc, current, out_color, history, offset, moved, previous_vp, inverse_vp, valid, resolve_defines,
        inside_cloud_m, partial, n, merge_clusters, clusters, merged](PassContext& pc) {
-        Framebuffer fb = merge_clusters ? Framebuffer({&pc.texture(out_color), &pc.texture(*merged)}, nullptr)
+        Framebuffer fb = merge_clusters ? Framebuffer({&pc.texture(out_color), &pc.texture(merged)}, nullptr)
                                         : Framebuffer(&pc.texture(out_color), nullptr);
         fb.bind();
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_ZERO);  // no second source colour while several buffers are drawn
-        glBindTextureUnit(0, pc.texture((*current)[0]).id());
-        glBindTextureUnit(1, pc.texture((*current)[1]).id());
+        glBindTextureUnit(0, pc.texture(current.color).id());
+        glBindTextureUnit(1, pc.texture(current.distance).id());
         glBindTextureUnit(2, pc.texture(history).id());
         if (merge_clusters) glBindTextureUnit(3, pc.texture(clusters).id());
         const Program& p = rc.shaders.graphics("fullscreen.vert", "clouds/resolve.frag", resolve_defines);
@@ -61,7 +63,7 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
         p.set("u_inside_cloud_m", inside_cloud_m);
         rc.draw_fullscreen_triangle();
       });
-  const ResourceHandle result = merge_clusters ? *merged : out_color;
+  const ResourceHandle result = merge_clusters ? merged : out_color;
   if (merge_clusters) clusters = {};
   gpu.history_index = read;
   gpu.history_valid = true;

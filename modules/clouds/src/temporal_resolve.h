@@ -9,8 +9,10 @@
 
 namespace welkin::clouds {
 
-// What the march wrote this frame: its colour and its distances, at the march's resolution.
-using MarchOutput = std::shared_ptr<std::array<ResourceHandle, 2>>;
+// What the march writes this frame: its colour and its distances, at the march's resolution.
+struct MarchOutput {
+  ResourceHandle color, distance;
+};
 
 // The resolve into the history (gpu.history_color) at the march's size w x h, the march having
 // written pixel `offset` of each block of n x n (every pixel when not `partial`). Returns what to

@@ -6,9 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <memory>
 
+#include "frame_block.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/light_environment.h"
 #include "welkin/gfx/compute.h"
@@ -59,30 +59,18 @@ bool sun_lights_air(const MapFrame& planet, const glm::vec3& sun, const glm::dve
   return elevation > -dip;
 }
 
-// Sets the uniforms both passes share: the view ray, the planet, the haze (and the shafts' reach).
-using SetCommon = std::function<void(const Program&, float max_distance)>;
-
-struct ShaftsDraw {
-  ShaderDefines defines;
-  float max_distance = 0.0f, reach = 0.0f;
-  glm::vec2 sun_at{0.5f};
-  float jitter = 0.0f;
-};
-
-// The shafts' loss at its resolution, in the pass's form (welkin/gfx/screen_pass.h).
+// The shafts' loss at its resolution, in the pass's form (welkin/gfx/screen_pass.h); `frame`: the
+// frame's block (frame_block.h).
 void run_shafts(RenderContext& rc, World& world, const Texture& target, const Texture& depth,
-                const ShaftsDraw& s, const SetCommon& set_common) {
+                const ShaderDefines& defines, const Buffer& frame) {
   const bool compute = rc.forms.compute("godrays.shafts");
   world.resource<LightEnvironment>().bind();
   glBindTextureUnit(0, depth.id());
-  ShaderDefines d = s.defines;
+  ShaderDefines d = defines;
   if (compute) d["GODRAYS_LOSS_FORMAT"] = image_format_qualifier(target.desc().format);
   const Program& p = compute ? rc.shaders.compute("godrays/shafts.comp", d)
                              : rc.shaders.graphics("fullscreen.vert", "godrays/shafts.frag", d);
-  set_common(p, s.max_distance);
-  p.set("u_sun_uv", s.sun_at);
-  p.set("u_reach", s.reach);
-  p.set("u_jitter", s.jitter);
+  glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBlockBinding, frame.id());
   if (compute) {
     bind_image_for_write(0, target);
     dispatch_screen(p, PixelRect{0, 0, target.desc().width, target.desc().height});
@@ -100,13 +88,12 @@ struct ApplyDraw {
   bool shafts = false, haze = false, tiles = false;
   glm::ivec2 loss_size{1};
   ShaderDefines defines;
-  glm::vec3 sun_direction{0.0f, 0.0f, 1.0f};
 };
 
 // The shafts and the haze applied to the frame, in the pass's form: blending over a triangle (or the
 // tiles the shafts touch), or a compute pass loading and storing the frame in place.
 void run_apply(RenderContext& rc, World& world, const Texture& color, const Texture* loss,
-               const Texture* depth, const ApplyDraw& a, const SetCommon& set_common) {
+               const Texture* depth, const ApplyDraw& a, const Buffer& frame) {
   const bool compute = rc.forms.compute("godrays.apply");
   if (loss) glBindTextureUnit(0, loss->id());
   if (depth) {
@@ -117,10 +104,7 @@ void run_apply(RenderContext& rc, World& world, const Texture& color, const Text
   if (compute) d["GODRAYS_COLOR_FORMAT"] = image_format_qualifier(color.desc().format);
   const Program& p = compute ? rc.shaders.compute("godrays/apply.comp", d)
                              : rc.shaders.graphics("godrays/apply.vert", "godrays/apply.frag", d);
-  if (a.haze) {
-    set_common(p, 0.0f);
-    p.set("u_sun_direction", a.sun_direction);
-  }
+  if (a.haze) glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBlockBinding, frame.id());
   if (compute) {
     bind_image_read_write(0, color);
     dispatch_screen(p, PixelRect{0, 0, color.desc().width, color.desc().height});
@@ -170,25 +154,37 @@ void shafts_system(SystemContext& sc) {
     shafts = sun_uv.has_value() && sun_lights_air(planet, *sun, view.camera_position_m, 0.0f);
   }
   if (!shafts && !haze) return;
-  const glm::vec4 haze_block =
-      haze ? glm::vec4(haze->density_per_m, 1.0f / haze->scale_height_m, haze->scattering, haze->absorption)
-           : glm::vec4(0.0f);
-  const float haze_g = haze ? haze->phase_g : 0.0f;
   const char* with_haze = haze ? "1" : "0";
-  // Uniforms both passes share: the view ray, the planet, the haze.
-  auto set_common = [inverse_vp = view.inverse_view_projection, ground, haze_block, haze_g](
-                        const Program& p, float max_distance) {
-    p.set("u_inverse_view_projection", inverse_vp);
-    p.set("u_max_distance_m", max_distance);
-    p.set("u_up", ground.up);
-    p.set("u_planet", ground.radius_altitude);
-    p.set("u_haze", haze_block);
-    p.set("u_haze_g", haze_g);
-  };
+  // The block both passes read: the view ray, the planet, the haze, the sun (and the shafts' own).
+  FrameBlock block{};
+  block.inverse_view_projection = view.inverse_view_projection;
+  block.up = ground.up;
+  block.planet_radius_m = ground.radius_altitude.x;
+  block.camera_altitude_m = ground.radius_altitude.y;
+  if (haze) {
+    block.haze_density_per_m = haze->density_per_m;
+    block.haze_inverse_height_per_m = 1.0f / haze->scale_height_m;
+    block.haze_scattering = haze->scattering;
+    block.haze_absorption = haze->absorption;
+    block.haze_g = haze->phase_g;
+  }
+  block.sun_direction = sun.value_or(glm::vec3(0.0f, 0.0f, 1.0f));
+  if (shafts) {
+    const glm::vec2 sun_at = sun_uv.value_or(glm::vec2(0.5f));
+    block.max_distance_m = rays->max_distance_m;
+    block.reach = rays->screen_reach;
+    block.sun_u = sun_at.x, block.sun_v = sun_at.y;
+    // The jitter moves with the frame, and a frame of a sequence draws the same noise when scrubbed.
+    block.jitter = float(std::fmod(double(sc.frame.index) * 0.6180339887498949, 1.0));
+  }
+  std::unique_ptr<Buffer>& frame_buffer = world.resource<GodRaysGpu>().frame;
+  if (!frame_buffer) frame_buffer = std::make_unique<Buffer>(sizeof(FrameBlock));
+  frame_buffer->upload(&block, sizeof(block));
+  const Buffer* frame = frame_buffer.get();
 
   const FrameTargets t = *sc.targets;
   RenderGraph& g = *sc.graph;
-  auto loss = std::make_shared<ResourceHandle>();
+  ResourceHandle loss;
   glm::ivec2 loss_size(1);
   if (shafts) {
     const int d = std::max(rays->resolution_divisor, 1);
@@ -204,38 +200,33 @@ void shafts_system(SystemContext& sc) {
         {"GODRAYS_AIR_STEPS", std::to_string(std::clamp(rays->air_steps, 1, kMaxStepsPerRay))},
         {"GODRAYS_JITTER", rays->jitter ? "1" : "0"},
         {"GODRAYS_HAZE", with_haze}};
-    const float max_distance = rays->max_distance_m, reach = rays->screen_reach;
-    const glm::vec2 sun_at = sun_uv.value_or(glm::vec2(0.5f));
-    // The jitter moves with the frame, and a frame of a sequence draws the same noise when scrubbed.
-    const float jitter = float(std::fmod(double(sc.frame.index) * 0.6180339887498949, 1.0));
+    loss = g.create("godrays.loss", TextureDesc{.width = w, .height = h, .format = rc.radiance_format()});
     g.add_pass(
         "godrays.shafts",
         [&](PassBuilder& b) {
           b.read(t.depth);
-          *loss =
-              b.create("godrays.loss", TextureDesc{.width = w, .height = h, .format = rc.radiance_format()});
+          b.write(loss);
         },
-        [&rc, &world, t, loss, defines, max_distance, reach, sun_at, jitter, set_common](PassContext& pc) {
-          const ShaftsDraw draw{defines, max_distance, reach, sun_at, jitter};
-          run_shafts(rc, world, pc.texture(*loss), pc.texture(t.depth), draw, set_common);
+        [&rc, &world, t, loss, defines, frame](PassContext& pc) {
+          run_shafts(rc, world, pc.texture(loss), pc.texture(t.depth), defines, *frame);
         });
     // The marched shafts' jitter is filtered out at their resolution; the screen-space path stays
     // unfiltered to stay cheap (its taps' jitter shows as fine noise).
     if (rays->jitter && rays->method == ShaftMethod::marched) {
-      auto filtered = std::make_shared<ResourceHandle>();
+      const ResourceHandle filtered = g.create(
+          "godrays.loss_filtered", TextureDesc{.width = w, .height = h, .format = rc.radiance_format()});
       g.add_pass(
           "godrays.filter",
           [&](PassBuilder& b) {
-            b.read(*loss);
-            *filtered = b.create("godrays.loss_filtered",
-                                 TextureDesc{.width = w, .height = h, .format = rc.radiance_format()});
+            b.read(loss);
+            b.write(filtered);
           },
           [&rc, loss, filtered](PassContext& pc) {
-            Framebuffer fb(&pc.texture(*filtered), nullptr);
+            Framebuffer fb(&pc.texture(filtered), nullptr);
             fb.bind();
             glDisable(GL_DEPTH_TEST);
             glDisable(GL_BLEND);
-            glBindTextureUnit(0, pc.texture(*loss).id());
+            glBindTextureUnit(0, pc.texture(loss).id());
             rc.shaders.graphics("fullscreen.vert", "godrays/filter.frag").use();
             rc.draw_fullscreen_triangle();
           });
@@ -253,16 +244,15 @@ void shafts_system(SystemContext& sc) {
   g.add_pass(
       "godrays.apply",
       [&](PassBuilder& b) {
-        if (shafts) b.read(*loss);
+        if (shafts) b.read(loss);
         if (haze) b.read(t.depth);
         b.read(t.color);
         b.write(t.color);
       },
-      [&rc, &world, t, loss, set_common,
-       draw = ApplyDraw{shafts, haze != nullptr, tiles, loss_size, apply_defines,
-                        sun.value_or(glm::vec3(0.0f, 0.0f, 1.0f))}](PassContext& pc) {
-        run_apply(rc, world, pc.texture(t.color), draw.shafts ? &pc.texture(*loss) : nullptr,
-                  draw.haze ? &pc.texture(t.depth) : nullptr, draw, set_common);
+      [&rc, &world, t, loss, frame,
+       draw = ApplyDraw{shafts, haze != nullptr, tiles, loss_size, apply_defines}](PassContext& pc) {
+        run_apply(rc, world, pc.texture(t.color), draw.shafts ? &pc.texture(loss) : nullptr,
+                  draw.haze ? &pc.texture(t.depth) : nullptr, draw, *frame);
       });
 }
 

@@ -40,7 +40,9 @@ namespace welkin::modules {
 void register_terrain(ModuleContext& ctx) {
   ctx.component<welkin::terrain::Terrain>();
   welkin::terrain::add_light_term(ctx.world());
-  ctx.system({.name = "terrain.draw", .phase = Phase::render, .reads = {type_id<welkin::terrain::Terrain>()},
+  ctx.system({.name = "terrain.draw",
+              .stage = Stage::geometry,
+              .reads = {type_id<welkin::terrain::Terrain>()},
               .run = welkin::terrain::terrain_system});
 }
 }  // namespace welkin::modules

@@ -350,7 +350,11 @@ void terrain_system(SystemContext& sc) {
       surface_draw.emissive = surface_draw.emissive || m.emissive != glm::vec3(0.0f);
       surface_draw.own_transforms = surface_draw.own_transforms || m.own_transforms();
     }
-  auto surface = std::make_shared<ResourceHandle>();
+  const ResourceHandle surface =
+      sc.graph->create("terrain.surface", TextureDesc{.width = view.width,
+                                                      .height = view.height,
+                                                      .format = TextureFormat::rgba32ui,
+                                                      .linear_filter = false});
   sc.graph->add_pass(
       "terrain",
       [&](PassBuilder& b) {
@@ -358,14 +362,11 @@ void terrain_system(SystemContext& sc) {
         b.write(targets.color);
         b.read(targets.depth);
         b.write(targets.depth);
-        *surface = b.create("terrain.surface", TextureDesc{.width = view.width,
-                                                          .height = view.height,
-                                                          .format = TextureFormat::rgba32ui,
-                                                          .linear_filter = false});
+        b.write(surface);
       },
       [placed, targets, surface_draw, &rc, &cache, surface](PassContext& pc) {
         ++cache.view_draws;
-        draw_surface(pc.texture(targets.color), pc.texture(*surface), pc.texture(targets.depth), *placed,
+        draw_surface(pc.texture(targets.color), pc.texture(surface), pc.texture(targets.depth), *placed,
                      surface_draw, rc);
       });
   sc.graph->add_pass(
@@ -374,11 +375,11 @@ void terrain_system(SystemContext& sc) {
         b.read(targets.color);
         b.write(targets.color);
         b.read(targets.depth);
-        b.read(*surface);
+        b.read(surface);
         if (shadow_handle.valid()) b.read(shadow_handle);
       },
       [targets, surface, surface_draw, &rc, &world, &cache, inputs](PassContext& pc) {
-        draw_surface_light(pc.texture(targets.color), pc.texture(targets.depth), pc.texture(*surface),
+        draw_surface_light(pc.texture(targets.color), pc.texture(targets.depth), pc.texture(surface),
                            surface_draw, inputs, rc, world, cache);
       });
 }

@@ -46,9 +46,14 @@ void register_timeofday(ModuleContext& ctx) {
   ctx.component<TimeOfDay>();
   ctx.component<SequencePlayer>();
   // The sequence runs first so the clock it sets is what the sun is computed from.
-  ctx.system({.name = "timeofday.sequence", .phase = Phase::update, .writes = {type_id<SequencePlayer>()},
+  ctx.system({.name = "timeofday.sequence",
+              .stage = Stage::simulate,
+              .writes = {type_id<SequencePlayer>()},
               .run = sequence_player_system});
-  ctx.system({.name = "timeofday.sun_and_moon", .phase = Phase::update, .writes = {type_id<TimeOfDay>()},
+  ctx.system({.name = "timeofday.sun_and_moon",
+              .stage = Stage::simulate,
+              .after = {"timeofday.sequence"},
+              .writes = {type_id<TimeOfDay>()},
               .run = time_of_day_system});
 }
 }  // namespace welkin::modules

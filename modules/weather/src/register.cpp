@@ -34,10 +34,10 @@ void register_weather(ModuleContext& ctx) {
   using namespace welkin::weather;
   ctx.component<Report>();
   std::filesystem::path table = ctx.manifest().data_dir / "data" / "stations.csv";
-  // Before the time of day (order 0) computes the sun from the clock the report sets.
+  // Before the time of day computes the sun from the clock the report sets.
   ctx.system({.name = "weather.apply_report",
-              .phase = Phase::update,
-              .order = -50,
+              .stage = Stage::simulate,
+              .before = {"timeofday.sun_and_moon"},
               .writes = {type_id<Report>()},
               .run = [table](SystemContext& sc) { apply_report_system(sc, table); }});
 }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
@@ -11,10 +12,13 @@
 #include <nlohmann/json.hpp>
 
 #include "reference/single_scattering.h"
+#include "frame_block.h"
+#include "gpu_block_readback.h"
 #include "shafts.h"
 #include "validation/reference_model.h"
 #include "welkin/atmosphere/components.h"
 #include "welkin/atmosphere/gpu.h"
+#include "welkin/core/files.h"
 #include "welkin/core/module.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/gl_context.h"
@@ -381,6 +385,22 @@ TEST(GodRaysHaze, ExtremeHazeStaysFiniteAndNonNegative) {
         ASSERT_GE(value, -1e-3f) << haze.dump() << " at " << altitude;
       }
     }
+}
+
+// The frame block, declared once for C++ and GLSL (shaders/godrays/blocks.glsl.h): every 32-bit word
+// written from C++ (each a distinct float) comes back from a std140 uniform block where C++ put it.
+TEST(GodRaysGpuBlocks, EveryFieldOfTheFrameBlockReadsBackFromAStd140UniformBlock) {
+  gl_context().make_current();
+  const std::string header =
+      read_file_text(WELKIN_SOURCE_DIR "/modules/godrays/shaders/godrays/blocks.glsl.h", 1u << 20);
+  FrameBlock block{};
+  std::vector<uint32_t> words(sizeof(FrameBlock) / 4);
+  for (size_t i = 0; i < words.size(); ++i) {
+    const float v = 1.5f * float(i + 1);
+    std::memcpy(&words[i], &v, 4);
+  }
+  std::memcpy(static_cast<void*>(&block), words.data(), sizeof(FrameBlock));
+  EXPECT_EQ(welkin::test::read_back_block(header, "GodRaysFrameGpu", &block, sizeof(FrameBlock), 1, true), words);
 }
 
 }  // namespace

@@ -592,7 +592,7 @@ TEST_F(TerrainRender, StillViewTakesTheTerrainDrawnLast) {
   // What is drawn before the terrain and changes while the terrain does not (a sky, say) stays where
   // there is no terrain: the kept colour goes only where the kept depth holds terrain.
   auto paint = std::make_shared<float>(0.0f);
-  world.scheduler().add(SystemDesc{.name = "test.paint", .phase = Phase::render, .order = -50, .run = [paint](SystemContext& sc) {
+  world.scheduler().add(SystemDesc{.name = "test.paint", .stage = Stage::light_maps, .run = [paint](SystemContext& sc) {
     const FrameTargets t = *sc.targets;
     sc.graph->add_pass("test.paint", [&](PassBuilder& b) { b.read(t.color); b.write(t.color); }, [t, paint](PassContext& pc) {
       Framebuffer fb(&pc.texture(t.color), nullptr);

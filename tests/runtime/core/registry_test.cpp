@@ -117,10 +117,10 @@ TEST(TypeIds, StableAcrossLibrariesBecauseDerivedFromNames) {
 TEST(Scheduler, SkipsSystemsWhoseQueryMatchesNothing) {
   welkin::World world;
   int moved = 0, lonely = 0;
-  world.scheduler().add({.name = "move", .phase = welkin::Phase::update,
+  world.scheduler().add({.name = "move", .stage = welkin::Stage::simulate,
                          .reads = {welkin::type_id<Velocity>()}, .writes = {welkin::type_id<Position>()},
                          .run = [&](welkin::SystemContext&) { ++moved; }});
-  world.scheduler().add({.name = "lonely", .phase = welkin::Phase::update, .reads = {welkin::type_id<Velocity>()},
+  world.scheduler().add({.name = "lonely", .stage = welkin::Stage::simulate, .reads = {welkin::type_id<Velocity>()},
                          .run = [&](welkin::SystemContext&) { ++lonely; }});
   Registry& r = world.registry();
   Entity a = r.create();

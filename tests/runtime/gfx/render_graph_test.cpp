@@ -133,4 +133,42 @@ TEST(RenderGraph, UndeclaredAccessIsAnError) {
   EXPECT_THROW(g.execute(be), std::exception);
 }
 
+// A transient made on the graph before its passes: each pass takes its handle by value. It is
+// allocated for its first user and returned after its last, like one a pass creates; one that only
+// culled passes touch is never allocated.
+TEST(RenderGraph, TransientsMadeBeforeTheirPassesAreAllocatedForTheirUsers) {
+  RenderGraph g;
+  Texture out_tex;
+  const ResourceHandle out = g.import("out", out_tex);
+  const ResourceHandle made = g.create("made", kSmall), unused = g.create("unused", kSmall);
+  const Texture *written = nullptr, *read = nullptr;
+  g.add_pass("culled", [unused](PassBuilder& b) { b.write(unused); }, [](PassContext&) {});
+  g.add_pass("write", [made](PassBuilder& b) { b.write(made); },
+             [made, &written](PassContext& pc) { written = &pc.texture(made); });
+  g.add_pass("read", [made, out](PassBuilder& b) { b.read(made); b.write(out); },
+             [made, &read](PassContext& pc) { read = &pc.texture(made); });
+  g.present(out);
+  FakeBackend be;
+  g.execute(be);
+  EXPECT_EQ(g.culled_passes(), std::vector<std::string>{"culled"});
+  EXPECT_EQ(be.allocations, 1);
+  ASSERT_NE(written, nullptr);
+  EXPECT_EQ(written, read);
+  EXPECT_FALSE(be.slots.front().used) << "returned after its last use";
+}
+
+TEST(RenderGraph, ResourcesArePublishedUnderTypedKeys) {
+  static constexpr GraphKey kFront{"test.front"}, kOther{"test.other"};
+  RenderGraph g;
+  Texture t;
+  EXPECT_FALSE(g.published(kFront).valid()) << "nothing published yet";
+  const ResourceHandle a = g.import("a", t), b = g.create("b", kSmall);
+  g.publish(kFront, a);
+  EXPECT_EQ(g.published(kFront), a);
+  EXPECT_FALSE(g.published(kOther).valid());
+  g.publish(kFront, b);
+  EXPECT_EQ(g.published(kFront), b) << "a second publication replaces the first";
+  EXPECT_THROW(g.publish(kOther, ResourceHandle{}), std::exception);
+}
+
 }  // namespace

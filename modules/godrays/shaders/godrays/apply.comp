@@ -14,7 +14,7 @@ void main() {
 #if GODRAYS_HAZE
   if (gl_LocalInvocationIndex == 0u) {
     v_sun_irradiance = welkin_sun_irradiance(vec3(0.0));
-    v_sky_radiance = (welkin_sky_irradiance(u_up) + welkin_sky_irradiance(-u_up)) / 12.5663706143592;
+    v_sky_radiance = (welkin_sky_irradiance(gr.up) + welkin_sky_irradiance(-gr.up)) / 12.5663706143592;
   }
   barrier();
 #endif

@@ -16,7 +16,6 @@ shared vec3 v_sky_radiance;
 flat in vec3 v_sun_irradiance;  // at the camera (apply.vert)
 flat in vec3 v_sky_radiance;
 #endif
-uniform vec3 u_sun_direction;
 #endif
 
 // rgb: the light to add (the haze's, less the shafts'), a: the haze's transmittance.
@@ -24,11 +23,11 @@ vec4 haze_and_shafts(vec2 ndc, ivec2 pixel) {
   vec3 light = vec3(0.0);
   float transmittance = 1.0;
 #if GODRAYS_HAZE
-  vec3 dir = view_ray_direction(u_inverse_view_projection, ndc);
+  vec3 dir = view_ray_direction(gr.inverse_view_projection, ndc);
   float tau = haze_optical_depth(dir, scene_distance_m(u_depth, pixel, ndc));
   transmittance = exp(-tau);
-  vec3 source = v_sun_irradiance * haze_phase(dot(dir, u_sun_direction)) + v_sky_radiance;
-  light = source * (u_haze.z / haze_extinction_per_density()) * (1.0 - transmittance);
+  vec3 source = v_sun_irradiance * haze_phase(dot(dir, gr.sun_direction)) + v_sky_radiance;
+  light = source * (gr.haze_scattering / haze_extinction_per_density()) * (1.0 - transmittance);
 #endif
 #if GODRAYS_SHAFTS
   light -= textureLod(u_loss, ndc * 0.5 + 0.5, 0.0).rgb;

@@ -44,7 +44,7 @@ void main() {
   v_ndc = p;
 #if GODRAYS_HAZE
   v_sun_irradiance = welkin_sun_irradiance(vec3(0.0));
-  v_sky_radiance = (welkin_sky_irradiance(u_up) + welkin_sky_irradiance(-u_up)) / 12.5663706143592;
+  v_sky_radiance = (welkin_sky_irradiance(gr.up) + welkin_sky_irradiance(-gr.up)) / 12.5663706143592;
 #endif
   gl_Position = vec4(p, 0.0, 1.0);
 #endif

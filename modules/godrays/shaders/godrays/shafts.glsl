@@ -12,15 +12,12 @@
 
 #include "godrays/haze.glsl"
 
-uniform vec2 u_sun_uv;  // the sun's image (screen space)
-uniform float u_reach;  // fraction of the way to it the taps cover
-uniform float u_jitter; // this frame's offset of the per-pixel noise
 layout(binding = 0) uniform sampler2D u_depth;  // the frame's (reversed Z)
 
 // Interleaved gradient noise (Jimenez 2014): a per-pixel offset in [0, 1) whose neighbours differ,
 // so the samples' banding becomes fine noise that the upsampling and the eye average.
 float pixel_noise(vec2 pixel) {
-  return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))) + u_jitter);
+  return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))) + gr.jitter);
 }
 
 // Sunlight the air (and the haze) at p scatters toward the camera per metre, and their extinction.
@@ -29,7 +26,7 @@ vec3 medium_source(vec3 p, vec3 dir, out vec3 extinction) {
 #if GODRAYS_HAZE
   float density = haze_density(p);
   extinction += density * haze_extinction_per_density();
-  scattering += density * u_haze.z * haze_phase(dot(dir, welkin_sun_direction()));
+  scattering += density * gr.haze_scattering * haze_phase(dot(dir, welkin_sun_direction()));
 #endif
   return scattering * welkin_sun_irradiance(p);
 }
@@ -79,8 +76,8 @@ vec4 shafts_texel(vec2 v_ndc, vec2 centre) {
   ivec2 size = textureSize(u_depth, 0);
   vec2 uv = v_ndc * 0.5 + 0.5;
   float end = min(scene_distance_m(u_depth, clamp(ivec2(uv * vec2(size)), ivec2(0), size - 1), v_ndc),
-                  u_max_distance_m);
-  vec3 dir = view_ray_direction(u_inverse_view_projection, v_ndc);
+                  gr.max_distance_m);
+  vec3 dir = view_ray_direction(gr.inverse_view_projection, v_ndc);
 #if GODRAYS_JITTER
   float offset = pixel_noise(centre);
 #else
@@ -90,7 +87,7 @@ vec4 shafts_texel(vec2 v_ndc, vec2 centre) {
   vec3 loss = air_light(dir, end, GODRAYS_SEGMENTS, GODRAYS_SUBSTEPS, offset, true);
 #else
   float covered = 0.0;
-  vec2 to_sun = (u_sun_uv - uv) * u_reach;
+  vec2 to_sun = (vec2(gr.sun_u, gr.sun_v) - uv) * gr.reach;
   for (int i = 0; i < GODRAYS_SCREEN_SAMPLES; ++i) {
     vec2 q = uv + to_sun * ((float(i) + offset) / float(GODRAYS_SCREEN_SAMPLES));
     float depth = texelFetch(u_depth, clamp(ivec2(q * vec2(size)), ivec2(0), size - 1), 0).r;

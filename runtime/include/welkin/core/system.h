@@ -1,5 +1,5 @@
 #pragma once
-// Systems declare what they read and write and the phase they run in; the scheduler skips a
+// Systems declare what they read and write and the stage they run in; the scheduler skips a
 // system whose required components match no entity, so a scene pays only for what it contains.
 #include <functional>
 #include <string>
@@ -26,10 +26,31 @@ struct FrameInfo {
   bool alone = false;
 };
 
+// The named stages of a frame, in the order they run (Bevy's system sets). A system names its stage;
+// within a stage, `SystemDesc::after` orders it after other systems of the same stage, by name, and
+// systems nothing orders keep the order they were registered in.
+enum class Stage {
+  // Phase::update
+  simulate,               // what moves the scene on: the clock, sequences, the sun and moon's places
+  complete_shared_state,  // what completes the shared state the first stage wrote (scene/shared_state.h)
+  // Phase::pre_render
+  prepare,
+  // Phase::render
+  tables,              // per-frame tables every material of the frame reads (the atmosphere's LUTs)
+  light_maps,          // maps the light environment reads (the clouds' shadows)
+  background,          // what lies behind all geometry (the sky)
+  geometry,            // surfaces that write the depth (terrain, backdrops, debug shapes)
+  aerial_perspective,  // the air between the camera and the geometry, laid over it
+  light_shafts,        // the air's light darkened where the sun is hidden (god rays)
+  clouds,              // the clouds, far ones first, composited over everything before
+};
+const char* stage_name(Stage s);
+Phase phase_of(Stage s);
+
 struct SystemContext {
   World& world;
   FrameInfo frame;
-  RenderGraph* graph = nullptr;         // render phase only
+  RenderGraph* graph = nullptr;     // render phase only
   FrameTargets* targets = nullptr;  // render phase only: the frame's colour/depth handles
   // Called with each system's name before it runs (the renderer tells its graph whose passes follow).
   std::function<void(const std::string&)> entering_system;
@@ -37,12 +58,12 @@ struct SystemContext {
 
 struct SystemDesc {
   std::string name;
-  Phase phase = Phase::update;
-  // Within a phase, lower runs first (ties keep registration order): producers of per-frame inputs
-  // (LUTs) negative, geometry 0, full-screen composites over the depth buffer positive.
-  int order = 0;
-  std::vector<TypeId> reads;   // required, read-only
-  std::vector<TypeId> writes;  // required, written
+  Stage stage = Stage::simulate;
+  // Systems of the same stage this one runs after (their names: "clouds.billboards"). A name no
+  // system of the stage has is an error when the order is resolved, as is a cycle.
+  std::vector<std::string> after;
+  std::vector<TypeId> reads;           // required, read-only
+  std::vector<TypeId> writes;          // required, written
   std::vector<TypeId> optional_reads;  // read if present; do not gate the system
   std::function<void(SystemContext&)> run;
 };
@@ -50,12 +71,20 @@ struct SystemDesc {
 class Scheduler {
  public:
   void add(SystemDesc system);
-  // Runs the systems of a phase in registration order; returns the names of those that ran.
+  // Runs the systems of a phase in their order (order()); returns the names of those that ran.
   std::vector<std::string> run(Phase phase, SystemContext& ctx);
+  // The names of a phase's systems in the order they run: by stage, then each after those it names
+  // (a topological sort that keeps registration order where nothing constrains it). Throws Error on
+  // a name that no system of the stage has, or on a cycle (naming the systems in it).
+  std::vector<std::string> ordered_names(Phase phase);
+  // The systems as registered.
   const std::vector<SystemDesc>& systems() const { return systems_; }
 
  private:
+  const std::vector<size_t>& order();
   std::vector<SystemDesc> systems_;
+  std::vector<size_t> order_;  // indices into systems_, once resolved
+  bool resolved_ = false;
 };
 
 }  // namespace welkin

@@ -9,6 +9,7 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "welkin/gfx/gl_objects.h"
@@ -19,6 +20,13 @@ struct ResourceHandle {
   uint32_t index = 0xffffffffu;
   bool valid() const { return index != 0xffffffffu; }
   friend bool operator==(ResourceHandle, ResourceHandle) = default;
+};
+
+// The name under which one system's passes publish a resource for the passes of later systems
+// (Filament's blackboard), declared once as a constant that the publisher and its readers share:
+//   inline constexpr GraphKey kSceneDepth{"scene_depth"};
+struct GraphKey {
+  std::string_view name;
 };
 
 class RenderGraph;
@@ -76,6 +84,10 @@ class RenderGraph {
   using ExecuteFn = std::function<void(PassContext&)>;
 
   ResourceHandle import(const std::string& name, Texture& texture);
+  // A transient texture of this frame, made before the passes that use it: its handle goes into each
+  // pass's setup (which reads or writes it) and execute by value. Allocated before the first pass that
+  // uses it runs, returned after the last.
+  ResourceHandle create(const std::string& name, const TextureDesc& desc);
   void add_pass(const std::string& name, const SetupFn& setup, ExecuteFn execute);
   // The system whose passes follow (timings name it: the cost of each path); "" for the renderer's.
   void set_system(std::string name) { system_ = std::move(name); }
@@ -90,8 +102,10 @@ class RenderGraph {
   std::string resource_name(ResourceHandle h) const { return resources_.at(h.index).name; }
   const TextureDesc& resource_desc(ResourceHandle h) const { return resources_.at(h.index).desc; }
 
-  // Named handles shared between systems of one frame (e.g. "scene_color", "atmosphere.transmittance").
-  std::map<std::string, ResourceHandle> blackboard;
+  // Resources shared between the systems of one frame: `publish` replaces what the key held;
+  // `published` is invalid when nothing was published under it this frame.
+  void publish(GraphKey key, ResourceHandle h);
+  ResourceHandle published(GraphKey key) const;
 
  private:
   friend class PassBuilder;
@@ -105,7 +119,7 @@ class RenderGraph {
   };
   struct Pass {
     std::string name, system;
-    std::vector<uint32_t> reads, writes, creates;
+    std::vector<uint32_t> reads, writes;
     ExecuteFn execute;
     bool side_effect = false;
     bool alive = false;
@@ -113,6 +127,7 @@ class RenderGraph {
   std::vector<Resource> resources_;
   std::vector<Pass> passes_;
   std::vector<uint32_t> presented_;
+  std::map<std::string, ResourceHandle, std::less<>> blackboard_;
   std::vector<PassTiming> timings_;
   std::string system_;
   bool compiled_ = false;

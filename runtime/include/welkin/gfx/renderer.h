@@ -17,6 +17,10 @@
 
 namespace welkin {
 
+// The frame's colour and depth as the renderer publishes them on the graph (FrameTargets holds the same).
+inline constexpr GraphKey kSceneColor{"scene_color"};
+inline constexpr GraphKey kSceneDepth{"scene_depth"};
+
 struct FrameTargets {
   ResourceHandle color;  // RGBA16F linear radiance (scene-referred)
   ResourceHandle depth;  // depth32f, reversed Z (1 = near, 0 = infinity)

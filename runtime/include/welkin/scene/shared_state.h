@@ -2,8 +2,8 @@
 // What several modules share about a scene, as typed world resources (Bevy's plugin resources):
 // the planet and the scene's place on it, the sun and the moon, the clock. The runtime declares
 // them and clears them at the start of every update; during the update phase their owners write
-// them (the time of day first, then the modules that complete them, ordered by
-// kCompleteSharedState), and everything after reads them. No module names another's components.
+// them (the time of day first, in Stage::simulate, then the modules that complete them, in
+// Stage::complete_shared_state), and everything after reads them. No module names another's components.
 //
 //   resource      written by                      read by
 //   PlanetFrame   atmosphere (the planet),        runtime (painted maps), clouds, terrain, god rays
@@ -21,10 +21,6 @@
 namespace welkin {
 
 class World;
-
-// Within the update phase: the order of the systems that complete the shared state from what its
-// first writers (the time of day, at the default order 0) put there.
-inline constexpr int kCompleteSharedState = 100;
 
 // The scene origin's place on Earth.
 struct GeodeticPlace {

@@ -16,7 +16,7 @@ void describe(welkin::TypeBuilder<Counter>& t) {
 namespace welkin::modules {
 void register_testbase(ModuleContext& ctx) {
   ctx.component<testbase::Counter>();
-  ctx.system({.name = "testbase.tick", .phase = Phase::update, .writes = {type_id<testbase::Counter>()},
+  ctx.system({.name = "testbase.tick", .stage = Stage::simulate, .writes = {type_id<testbase::Counter>()},
               .run = [](SystemContext& sc) {
                 sc.world.registry().each<testbase::Counter>([](Entity, testbase::Counter& c) { ++c.ticks; });
               }});
