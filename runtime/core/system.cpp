@@ -61,28 +61,31 @@ void Scheduler::add(SystemDesc s) {
 namespace {
 
 // The systems of one stage (indices into `all`, in registration order) sorted so that each comes
-// after those it names: Kahn's algorithm, always taking the earliest registered of those ready.
+// after those it names in `after` and before those in `before`: Kahn's algorithm, always taking the earliest registered of those ready.
 std::vector<size_t> sort_stage(const std::vector<SystemDesc>& all, const std::vector<size_t>& stage) {
   const size_t n = stage.size();
   std::vector<std::vector<size_t>> followers(n);  // positions in `stage`
   std::vector<size_t> waiting(n, 0);
+  // The position in the stage of a system named in `s`'s `list` ("after" or "before").
+  auto locate = [&](const SystemDesc& s, const std::string& name, const char* list) {
+    auto at = std::find_if(stage.begin(), stage.end(), [&](size_t k) { return all[k].name == name; });
+    if (at != stage.end()) return size_t(at - stage.begin());
+    auto elsewhere = std::find_if(all.begin(), all.end(), [&](const SystemDesc& d) { return d.name == name; });
+    throw Error(ErrorInfo{.path = "system " + s.name + "/" + list,
+                          .expected = std::string("a system of its stage, ") + stage_name(s.stage),
+                          .found = elsewhere == all.end()
+                                       ? "'" + name + "', which no system is named"
+                                       : "'" + name + "', of stage " + stage_name(elsewhere->stage) +
+                                             " (the stages' own order holds across stages)"});
+  };
+  auto precede = [&](size_t first, size_t then) {
+    followers[first].push_back(then);
+    ++waiting[then];
+  };
   for (size_t i = 0; i < n; ++i) {
     const SystemDesc& s = all[stage[i]];
-    for (const std::string& name : s.after) {
-      auto at = std::find_if(stage.begin(), stage.end(), [&](size_t k) { return all[k].name == name; });
-      if (at == stage.end()) {
-        auto elsewhere =
-            std::find_if(all.begin(), all.end(), [&](const SystemDesc& d) { return d.name == name; });
-        throw Error(ErrorInfo{.path = "system " + s.name + "/after",
-                              .expected = std::string("a system of its stage, ") + stage_name(s.stage),
-                              .found = elsewhere == all.end()
-                                           ? "'" + name + "', which no system is named"
-                                           : "'" + name + "', of stage " + stage_name(elsewhere->stage) +
-                                                 " (the stages' own order holds across stages)"});
-      }
-      followers[size_t(at - stage.begin())].push_back(i);
-      ++waiting[i];
-    }
+    for (const std::string& name : s.after) precede(locate(s, name, "after"), i);
+    for (const std::string& name : s.before) precede(i, locate(s, name, "before"));
   }
   std::vector<size_t> out;
   std::vector<bool> done(n, false);
@@ -95,7 +98,7 @@ std::vector<size_t> sort_stage(const std::vector<SystemDesc>& all, const std::ve
       for (size_t i = 0; i < n; ++i)
         if (!done[i]) cycle += (cycle.empty() ? "" : ", ") + all[stage[i]].name;
       throw Error(std::string("systems of stage ") + stage_name(all[stage[0]].stage) +
-                  " each wait for another (a cycle of `after` among " + cycle + ")");
+                  " each wait for another (a cycle of `after`/`before` among " + cycle + ")");
     }
     done[next] = true;
     out.push_back(stage[next]);

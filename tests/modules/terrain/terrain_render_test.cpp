@@ -1,5 +1,7 @@
 // Rendering with the atmosphere: every material the engine draws gets aerial perspective, and the
 // sample terrain renders with the module's PBR material.
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -353,7 +355,9 @@ TEST_F(TerrainRender, CpuCopiesOfTheMeshAreReleasedOnceUploaded) {
 // decoding and building them, and draws the same frame, bit for bit; other build settings miss the
 // mesh but not the images.
 TEST_F(TerrainRender, MeshReadFromTheDiskCacheBitForBit) {
-  const std::filesystem::path folder = std::filesystem::path(::testing::TempDir()) / "welkin-terrain-cache";
+  // Per process: other checkouts on the machine may run the same test at the same time.
+  const std::filesystem::path folder =
+      std::filesystem::path(::testing::TempDir()) / ("welkin-terrain-cache-" + std::to_string(::getpid()));
   std::filesystem::remove_all(folder);
   const welkin::testing::CacheFolder cache(folder.string());
   size_t image_reads = 0;

@@ -70,6 +70,26 @@ TEST(Scheduler, RunsTheSystemsOfAPhaseInTheResolvedOrder) {
   EXPECT_EQ(std::vector<std::string>(ran.end() - 3, ran.end()), expected);
 }
 
+// `before` is how a module orders itself ahead of one it depends on (registered earlier, and which
+// cannot name it): the weather's report before the time of day's sun.
+TEST(Scheduler, BeforePutsASystemAheadOfOneRegisteredEarlier) {
+  Scheduler s;
+  s.add(system("timeofday.sequence", Stage::simulate));
+  s.add(system("timeofday.sun_and_moon", Stage::simulate, {"timeofday.sequence"}));
+  SystemDesc report = system("weather.apply_report", Stage::simulate);
+  report.before = {"timeofday.sun_and_moon"};
+  s.add(report);
+  const std::vector<std::string> expected = {"timeofday.sequence", "weather.apply_report", "timeofday.sun_and_moon"};
+  EXPECT_EQ(s.ordered_names(Phase::update), expected);
+  Scheduler t;
+  SystemDesc lost = system("weather.apply_report", Stage::simulate);
+  lost.before = {"timeofday.sun"};
+  t.add(lost);
+  const std::string e = order_error(t, Phase::update);
+  EXPECT_NE(e.find("weather.apply_report/before"), std::string::npos) << e;
+  EXPECT_NE(e.find("'timeofday.sun', which no system is named"), std::string::npos) << e;
+}
+
 TEST(Scheduler, AnUnknownNameIsAnErrorNamingBothSystems) {
   Scheduler s;
   s.add(system("clouds.billboards", Stage::clouds));
@@ -95,7 +115,7 @@ TEST(Scheduler, ACycleIsAnErrorNamingTheSystemsInIt) {
   s.add(system("b", Stage::geometry, {"a"}));
   s.add(system("c", Stage::geometry, {"b"}));
   const std::string e = order_error(s, Phase::render);
-  EXPECT_NE(e.find("cycle of `after` among a, b, c"), std::string::npos) << e;
+  EXPECT_NE(e.find("cycle of `after`/`before` among a, b, c"), std::string::npos) << e;
   EXPECT_EQ(e.find("free"), std::string::npos) << e;
   // A system after itself is the smallest cycle.
   Scheduler t;

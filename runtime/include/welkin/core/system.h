@@ -62,6 +62,9 @@ struct SystemDesc {
   // Systems of the same stage this one runs after (their names: "clouds.billboards"). A name no
   // system of the stage has is an error when the order is resolved, as is a cycle.
   std::vector<std::string> after;
+  // Systems of the same stage this one runs before: how a module orders itself ahead of a module it
+  // depends on, which cannot name it (weather.apply_report before timeofday's clock). Same errors.
+  std::vector<std::string> before;
   std::vector<TypeId> reads;           // required, read-only
   std::vector<TypeId> writes;          // required, written
   std::vector<TypeId> optional_reads;  // read if present; do not gate the system

@@ -1,6 +1,8 @@
 // The clouds module on llvmpipe: only what a scene needs runs and compiles, the noise is
 // deterministic, tileable and made once, coverage means the fraction of sky covered, clouds darken
 // the materials under them through the light environment, and the march converges as steps grow.
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
 #include <filesystem>
@@ -85,7 +87,9 @@ TEST(CloudsGpu, NoiseIsMadeOnceDeterministicFromTheSeedAndTileable) {
 // A start that finds the noise in the disk cache reads it instead of generating it, and gets the
 // same volumes bit for bit, so the same frame; another seed is another key.
 TEST(CloudsGpu, NoiseReadFromTheDiskCacheBitForBit) {
-  const std::filesystem::path folder = std::filesystem::path(::testing::TempDir()) / "welkin-noise-cache";
+  // Per process: other checkouts on the machine may run the same test at the same time.
+  const std::filesystem::path folder =
+      std::filesystem::path(::testing::TempDir()) / ("welkin-noise-cache-" + std::to_string(::getpid()));
   std::filesystem::remove_all(folder);
   const welkin::testing::CacheFolder cache(folder.string());
   test::Rendered built = render(noon());
