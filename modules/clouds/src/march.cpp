@@ -15,6 +15,7 @@
 #include "welkin/gfx/compute.h"
 #include "welkin/gfx/light_environment.h"
 #include "welkin/gfx/renderer.h"
+#include "welkin/gfx/screen_pass.h"
 
 namespace welkin::clouds {
 
@@ -57,7 +58,8 @@ glm::ivec2 block_offset(CloudsGpu& gpu, bool partial, int n) {
 }
 
 // The march at qw x qh (the frame's size over the block's), stopping where the mesh clusters turn
-// opaque (`front`, when valid, bound at `front_unit`).
+// opaque (`front`, when valid, bound at `front_unit`); a fragment or a compute pass
+// (welkin/gfx/screen_pass.h), one body (clouds/march_pixel.glsl).
 MarchOutput add_march_pass(SystemContext& sc, CloudsGpu& gpu, const ShaderDefines& defines,
                            glm::ivec3 stride_offset, int qw, int qh, ResourceHandle front,
                            GLuint front_unit) {
@@ -67,6 +69,7 @@ MarchOutput add_march_pass(SystemContext& sc, CloudsGpu& gpu, const ShaderDefine
   const bool cluster_front = front.valid();
   auto current = std::make_shared<std::array<ResourceHandle, 2>>();
   CloudsGpu* gp = &gpu;
+  const bool compute = rc.forms.compute("clouds.march");
   sc.graph->add_pass(
       "clouds.march",
       [&](PassBuilder& b) {
@@ -78,8 +81,23 @@ MarchOutput add_march_pass(SystemContext& sc, CloudsGpu& gpu, const ShaderDefine
             "clouds.march_distance",
             TextureDesc{.width = qw, .height = qh, .format = TextureFormat::rg32f, .linear_filter = false});
       },
-      [gp, &rc, &world, t, current, defines, stride_offset, cluster_front, front,
-       front_unit](PassContext& pc) {
+      [gp, &rc, &world, t, current, defines, stride_offset, cluster_front, front, front_unit, compute, qw,
+       qh](PassContext& pc) {
+        world.resource<LightEnvironment>().bind();
+        bind_field(*gp);
+        glBindTextureUnit(3, pc.texture(t.depth).id());
+        glBindTextureUnit(4, gp->blue_noise->id());
+        if (cluster_front) glBindTextureUnit(front_unit, pc.texture(front).id());
+        const Program& p = compute ? rc.shaders.compute("clouds/march.comp", defines)
+                                   : rc.shaders.graphics("fullscreen.vert", "clouds/march.frag", defines);
+        glProgramUniform3i(p.id(), p.location("u_stride_offset"), stride_offset.x, stride_offset.y,
+                           stride_offset.z);
+        if (compute) {
+          bind_image_for_write(0, pc.texture((*current)[0]));
+          bind_image_for_write(1, pc.texture((*current)[1]));
+          dispatch_screen(p, PixelRect{0, 0, qw, qh});
+          return;
+        }
         Framebuffer fb({&pc.texture((*current)[0]), &pc.texture((*current)[1])}, nullptr);
         fb.bind();
         glDisable(GL_DEPTH_TEST);
@@ -87,15 +105,7 @@ MarchOutput add_march_pass(SystemContext& sc, CloudsGpu& gpu, const ShaderDefine
         // GL forbids several draw buffers while the blend function names a second source colour
         // (the atmosphere's aerial perspective leaves one), even with blending off.
         glBlendFunc(GL_ONE, GL_ZERO);
-        world.resource<LightEnvironment>().bind();
-        bind_field(*gp);
-        glBindTextureUnit(3, pc.texture(t.depth).id());
-        glBindTextureUnit(4, gp->blue_noise->id());
-        if (cluster_front) glBindTextureUnit(front_unit, pc.texture(front).id());
-        const Program& p = rc.shaders.graphics("fullscreen.vert", "clouds/march.frag", defines);
         p.use();
-        glProgramUniform3i(p.id(), p.location("u_stride_offset"), stride_offset.x, stride_offset.y,
-                           stride_offset.z);
         rc.draw_fullscreen_triangle();
       });
   return current;

@@ -3,6 +3,9 @@
 
 #include <memory>
 
+#include "welkin/gfx/compute.h"
+#include "welkin/gfx/screen_pass.h"
+
 namespace welkin::clouds {
 
 ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gpu,
@@ -24,6 +27,7 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
   const ShaderDefines resolve_defines = {{"CLOUDS_CLIP", clouds.temporal_clipping ? "1" : "0"},
                                          {"CLOUDS_WITH_CLUSTERS", merge_clusters ? "1" : "0"}};
   auto merged = std::make_shared<ResourceHandle>();
+  const bool compute = rc.forms.compute("clouds.resolve");
   g.add_pass(
       "clouds.resolve",
       [&](PassBuilder& b) {
@@ -38,19 +42,13 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
         }
       },
       [&rc, current, out_color, history, offset, moved, previous_vp, inverse_vp, valid, resolve_defines,
-       inside_cloud_m, partial, n, merge_clusters, clusters, merged](PassContext& pc) {
-        Framebuffer fb = merge_clusters ? Framebuffer({&pc.texture(out_color), &pc.texture(*merged)}, nullptr)
-                                        : Framebuffer(&pc.texture(out_color), nullptr);
-        fb.bind();
-        glDisable(GL_DEPTH_TEST);
-        glDisable(GL_BLEND);
-        glBlendFunc(GL_ONE, GL_ZERO);  // no second source colour while several buffers are drawn
+       inside_cloud_m, partial, n, merge_clusters, clusters, merged, compute, w, h](PassContext& pc) {
         glBindTextureUnit(0, pc.texture((*current)[0]).id());
         glBindTextureUnit(1, pc.texture((*current)[1]).id());
         glBindTextureUnit(2, pc.texture(history).id());
         if (merge_clusters) glBindTextureUnit(3, pc.texture(clusters).id());
-        const Program& p = rc.shaders.graphics("fullscreen.vert", "clouds/resolve.frag", resolve_defines);
-        p.use();
+        const Program& p = compute ? rc.shaders.compute("clouds/resolve.comp", resolve_defines)
+                                   : rc.shaders.graphics("fullscreen.vert", "clouds/resolve.frag", resolve_defines);
         glProgramUniform2i(p.id(), p.location("u_offset"), offset.x, offset.y);
         glProgramUniform1i(p.id(), p.location("u_block"), n);
         p.set("u_inverse_view_projection", inverse_vp);
@@ -59,6 +57,19 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
         p.set("u_history_valid", valid ? 1 : 0);
         p.set("u_full_frame", partial ? 0 : 1);
         p.set("u_inside_cloud_m", inside_cloud_m);
+        if (compute) {
+          bind_image_for_write(0, pc.texture(out_color));
+          if (merge_clusters) bind_image_for_write(1, pc.texture(*merged));
+          dispatch_screen(p, PixelRect{0, 0, w, h});
+          return;
+        }
+        Framebuffer fb = merge_clusters ? Framebuffer({&pc.texture(out_color), &pc.texture(*merged)}, nullptr)
+                                        : Framebuffer(&pc.texture(out_color), nullptr);
+        fb.bind();
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ZERO);  // no second source colour while several buffers are drawn
+        p.use();
         rc.draw_fullscreen_triangle();
       });
   const ResourceHandle result = merge_clusters ? *merged : out_color;
@@ -70,6 +81,7 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
 
 void composite_clouds(RenderGraph& g, RenderContext& rc, const FrameTargets& t, ResourceHandle result,
                       ResourceHandle clusters) {
+  const bool compute = rc.forms.compute("clouds.composite");
   g.add_pass(
       "clouds.composite",
       [&](PassBuilder& b) {
@@ -78,16 +90,24 @@ void composite_clouds(RenderGraph& g, RenderContext& rc, const FrameTargets& t, 
         b.read(t.color);
         b.write(t.color);
       },
-      [&rc, t, result, clusters](PassContext& pc) {
-        Framebuffer fb(&pc.texture(t.color), nullptr);
+      [&rc, t, result, clusters, compute](PassContext& pc) {
+        const Texture& color = pc.texture(t.color);
+        glBindTextureUnit(0, pc.texture(result).id());
+        if (clusters.valid()) glBindTextureUnit(1, pc.texture(clusters).id());
+        ShaderDefines defines = {{"CLOUDS_WITH_CLUSTERS", clusters.valid() ? "1" : "0"}};
+        if (compute) {
+          defines["CLOUDS_RADIANCE_FORMAT"] = image_format_qualifier(color.desc().format);
+          const Program& p = rc.shaders.compute("clouds/composite.comp", defines);
+          bind_image_read_write(0, color);
+          dispatch_screen(p, PixelRect{0, 0, color.desc().width, color.desc().height});
+          return;
+        }
+        Framebuffer fb(&color, nullptr);
         fb.bind();
         glDisable(GL_DEPTH_TEST);
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_SRC_ALPHA);  // clouds + transmittance x what lies behind
-        glBindTextureUnit(0, pc.texture(result).id());
-        if (clusters.valid()) glBindTextureUnit(1, pc.texture(clusters).id());
-        const Program& p = rc.shaders.graphics("fullscreen.vert", "clouds/composite.frag",
-                                               {{"CLOUDS_WITH_CLUSTERS", clusters.valid() ? "1" : "0"}});
+        const Program& p = rc.shaders.graphics("fullscreen.vert", "clouds/composite.frag", defines);
         p.use();
         rc.draw_fullscreen_triangle();
         glDisable(GL_BLEND);

@@ -1,0 +1,17 @@
+// The clouds' temporal resolve as a compute pass (clouds/resolve_pixel.glsl), in tiles of
+// welkin/screen_pass.glsl.
+#include "welkin/screen_pass.glsl"
+#include "clouds/resolve_pixel.glsl"
+layout(rgba16f, binding = 0) uniform writeonly image2D o_color;
+#if CLOUDS_WITH_CLUSTERS
+layout(rgba16f, binding = 1) uniform writeonly image2D o_with_clusters;
+#endif
+void main() {
+  ivec2 pixel;
+  if (!screen_pixel(pixel)) return;
+  vec4 color = resolved(pixel, screen_ndc(pixel, imageSize(o_color)));
+  imageStore(o_color, pixel, color);
+#if CLOUDS_WITH_CLUSTERS
+  imageStore(o_with_clusters, pixel, with_clusters(pixel, color));
+#endif
+}
