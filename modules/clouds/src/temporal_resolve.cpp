@@ -10,7 +10,7 @@ namespace welkin::clouds {
 
 ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gpu,
                                 const VolumetricClouds& clouds, const MarchOutput& current, glm::ivec2 offset,
-                                bool partial, int n, int w, int h, ResourceHandle& clusters) {
+                                bool partial, int n, int w, int h, ResourceHandle& clusters, bool clear) {
   const FrameView& view = rc.view;
   // The mesh clusters (and billboards) drawn before the march lie behind it. At the march's resolution
   // the resolve lays them in as it writes (a read at a quarter of the frame's pixels); otherwise the
@@ -25,7 +25,10 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
   const bool valid = gpu.history_valid;
   const float inside_cloud_m = 2.0f * gpu.block.min_step_m;  // two of the shortest march steps
   const ShaderDefines resolve_defines = {{"CLOUDS_CLIP", clouds.temporal_clipping ? "1" : "0"},
-                                         {"CLOUDS_WITH_CLUSTERS", merge_clusters ? "1" : "0"}};
+                                         {"CLOUDS_WITH_CLUSTERS", merge_clusters ? "1" : "0"},
+                                         {"CLOUDS_CLEAR", clear ? "1" : "0"}};
+  const ResourceHandle out_clear =
+      clear ? g.import("clouds.first_hit_clear", *gpu.first_hit.clear[write]) : ResourceHandle{};
   auto merged = std::make_shared<ResourceHandle>();
   const bool compute = rc.forms.compute("clouds.resolve");
   g.add_pass(
@@ -35,6 +38,7 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
         b.read((*current)[1]);
         b.read(history);
         b.write(out_color);
+        if (clear) b.write(out_clear);
         if (merge_clusters) {
           b.read(clusters);
           *merged = b.create("clouds.with_clusters",
@@ -42,13 +46,15 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
         }
       },
       [&rc, current, out_color, history, offset, moved, previous_vp, inverse_vp, valid, resolve_defines,
-       inside_cloud_m, partial, n, merge_clusters, clusters, merged, compute, w, h](PassContext& pc) {
+       inside_cloud_m, partial, n, merge_clusters, clusters, merged, compute, w, h, clear,
+       out_clear](PassContext& pc) {
         glBindTextureUnit(0, pc.texture((*current)[0]).id());
         glBindTextureUnit(1, pc.texture((*current)[1]).id());
         glBindTextureUnit(2, pc.texture(history).id());
         if (merge_clusters) glBindTextureUnit(3, pc.texture(clusters).id());
-        const Program& p = compute ? rc.shaders.compute("clouds/resolve.comp", resolve_defines)
-                                   : rc.shaders.graphics("fullscreen.vert", "clouds/resolve.frag", resolve_defines);
+        const Program& p =
+            compute ? rc.shaders.compute("clouds/resolve.comp", resolve_defines)
+                    : rc.shaders.graphics("fullscreen.vert", "clouds/resolve.frag", resolve_defines);
         glProgramUniform2i(p.id(), p.location("u_offset"), offset.x, offset.y);
         glProgramUniform1i(p.id(), p.location("u_block"), n);
         p.set("u_inverse_view_projection", inverse_vp);
@@ -60,11 +66,18 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
         if (compute) {
           bind_image_for_write(0, pc.texture(out_color));
           if (merge_clusters) bind_image_for_write(1, pc.texture(*merged));
+          if (clear) bind_image_for_write(2, pc.texture(out_clear));
           dispatch_screen(p, PixelRect{0, 0, w, h});
           return;
         }
-        Framebuffer fb = merge_clusters ? Framebuffer({&pc.texture(out_color), &pc.texture(*merged)}, nullptr)
-                                        : Framebuffer(&pc.texture(out_color), nullptr);
+        // Drawn in this order: colour, the clusters laid in, the clear distances (resolve.frag).
+        const Texture* color = &pc.texture(out_color);
+        const Texture* laid_in = merge_clusters ? &pc.texture(*merged) : nullptr;
+        const Texture* clear_distances = clear ? &pc.texture(out_clear) : nullptr;
+        Framebuffer fb = laid_in && clear_distances ? Framebuffer({color, laid_in, clear_distances}, nullptr)
+                         : laid_in                  ? Framebuffer({color, laid_in}, nullptr)
+                         : clear_distances          ? Framebuffer({color, clear_distances}, nullptr)
+                                                    : Framebuffer(color, nullptr);
         fb.bind();
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_BLEND);

@@ -2,8 +2,10 @@
 #include "clouds/march_pixel.glsl"
 in vec2 v_ndc;
 layout(location = 0) out vec4 o_color;
-layout(location = 1) out vec2 o_distance;
+layout(location = 1) out vec4 o_distance;
 void main() {
   clouds_load();
-  clouds_march_pixel(ivec2(gl_FragCoord.xy) * u_stride_offset.x + u_stride_offset.yz, o_color, o_distance);
+  vec3 distances;
+  clouds_march_pixel(ivec2(gl_FragCoord.xy) * u_stride_offset.x + u_stride_offset.yz, o_color, distances);
+  o_distance = vec4(distances, 0.0);
 }

@@ -27,6 +27,43 @@ layout(binding = 4) uniform sampler2D u_blue_noise;  // 64 x 64, void-and-cluste
 layout(binding = CLOUDS_UNIT_CLUSTER_FRONT) uniform sampler2D u_cluster_front;
 #endif
 
+#if CLOUDS_SKIP
+// The empty-space skipping from the last frame (src/first_hit_skip.h): where its rays met no cloud.
+layout(binding = CLOUDS_UNIT_FIRST_HIT) uniform sampler2D u_first_hit;  // its view, the march's size (m)
+uniform mat4 u_skip_previous_view_projection;
+uniform vec3 u_skip_camera_moved_m;  // this frame's camera minus the last one's
+uniform float u_skip_margin_m;       // how far the camera and the field moved since, at most
+uniform int u_skip_round;            // the blocks with (x + 3 y + round) % 8 == 0 are marched whole
+
+// Where this pixel's ray may start: a cloud at distance t along it lay, last frame, at least
+// t - margin from that camera, along a ray that projects, for the points from the start on, within
+// half a texel of the direction's own image (a move of the camera spreads them along a line): the
+// 3 x 3 texels around hold the rays around all of them, and none met a cloud before its distance.
+// One block in eight is marched whole each frame, in turn: every 3 x 3 blocks hold one (x + 3 y takes
+// nine successive values there), whose distances the resolve's and the next march's neighbourhoods
+// carry to the others.
+float clouds_skip_start(ivec2 pixel, vec3 dir) {
+  ivec2 block = pixel / u_stride_offset.x;
+  if (((block.x + 3 * block.y + u_skip_round) & 7) == 0) return 0.0;
+  ivec2 size = textureSize(u_first_hit, 0);
+  vec4 far = u_skip_previous_view_projection * vec4(dir, 0.0);
+  if (far.w <= 0.0) return 0.0;
+  vec2 texel = (far.xy / far.w * 0.5 + 0.5) * vec2(size) - 0.5;
+  ivec2 centre = ivec2(round(texel));
+  // Rays at the last view's border had no neighbours beyond it: marched whole.
+  if (any(lessThan(centre, ivec2(1))) || any(greaterThan(centre, size - 2))) return 0.0;
+  float clear = 3.4e38;
+  for (int y = -1; y <= 1; ++y)
+    for (int x = -1; x <= 1; ++x) clear = min(clear, texelFetch(u_first_hit, centre + ivec2(x, y), 0).r);
+  float start = clear - u_skip_margin_m;
+  if (start <= 0.0) return 0.0;
+  vec4 near = u_skip_previous_view_projection * vec4(dir * start + u_skip_camera_moved_m, 1.0);
+  if (near.w <= 0.0) return 0.0;
+  vec2 near_texel = (near.xy / near.w * 0.5 + 0.5) * vec2(size) - 0.5;
+  return all(lessThanEqual(abs(near_texel - texel), vec2(0.5))) ? start : 0.0;
+}
+#endif
+
 // Distance to the scene's geometry along this pixel's ray (infinite where there is none).
 float scene_distance(vec2 ndc) {
   float depth = textureLod(u_depth, ndc * 0.5 + 0.5, 0.0).r;
@@ -47,7 +84,8 @@ float light_optical_depth(vec3 x, vec3 l, float extinction_per_density) {
     s += step_m;
     step_m *= 2.0;
   }
-  if (cl.moon_marched < 0.5) tau += clouds_shadow_optical_depth(x + l * s) / max(extinction_per_density, 1e-9);
+  if (cl.moon_marched < 0.5)
+    tau += clouds_shadow_optical_depth(x + l * s) / max(extinction_per_density, 1e-9);
   return tau;
 }
 
@@ -59,14 +97,17 @@ struct Accumulated {
   bool ap_taken;                       // CLOUDS_AP_MODE 2: the air's terms at the first cloud
   vec3 ap_inscattering, ap_transmittance;
   int steps;
+  float clear_m;  // up to here the ray met no cloud (its last empty sample before the first cloud)
 };
 
-void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) {
+// The march through one stretch of the ray from `start` on (the light and the air are interpolated
+// between the stretch's ends whatever the start).
+void march_segment(vec3 dir, vec2 segment, float start, float jitter, inout Accumulated acc) {
   bool detail = true;  // for the layers that use it (density.glsl)
   vec3 l = cl.moon_marched > 0.5 ? welkin_moon_direction() : welkin_sun_direction();
   float mu = dot(dir, l);
   float extinction_per_density = cl.scattering + cl.absorption;
-  float t = segment.x;
+  float t = max(segment.x, start);
   bool first = true;
   // The light reaching the clouds and the air in front of them change over kilometres, not metres:
   // they are looked up at both ends of the segment and interpolated along it. (A software rasteriser
@@ -98,6 +139,7 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
     // Whole blocks of empty weather are skipped without reading the noise.
     float skip = clouds_empty_skip(x, dir);
     if (skip > 0.0) {
+      if (acc.depth_weight == 0.0) acc.clear_m = t + 0.5 * step_m;
       t += 0.5 * step_m + skip;  // from the sample to past the block's side
       continue;
     }
@@ -106,6 +148,7 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
     float density = clouds_density(x, detail, false, empty);
     clouds_view_sample = false;
     if (density <= 0.0) {
+      if (acc.depth_weight == 0.0) acc.clear_m = t + 0.5 * step_m;
       // Empty space: skip ahead by up to a quarter of the weather's texel (the weather cannot rise
       // from nothing to cloud much faster); where the noise eroded the cloud, the usual step.
       t += empty ? max(step_m, min(cl.max_step_m, cl.empty_step_m)) : step_m;
@@ -118,7 +161,8 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
       vec3 up = normalize(mix(up0, up1, along));
       vec3 e_light = mix(e_light0, e_light1, along), e_sky = mix(e_sky0, e_sky1, along);
       float tau = light_optical_depth(x, l, extinction_per_density) * extinction_per_density;
-      vec3 source = clouds_sample_source(mu, phase_single, tau, sigma_t, depth_below_m, l, up, e_light, e_sky);
+      vec3 source =
+          clouds_sample_source(mu, phase_single, tau, sigma_t, depth_below_m, l, up, e_light, e_sky);
       // Energy-conserving step (Hillaire 2015): integrate the source over the step's own attenuation.
       float step_transmittance = exp(-sigma_t * step_m);
       vec3 step_light = source * (1.0 - step_transmittance);
@@ -129,7 +173,8 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
 #else
       acc.color += acc.transmittance * step_light;
 #if CLOUDS_AP_MODE == 2
-      if (!acc.ap_taken) acc.ap_inscattering = welkin_aerial_perspective(x, acc.ap_transmittance), acc.ap_taken = true;
+      if (!acc.ap_taken)
+        acc.ap_inscattering = welkin_aerial_perspective(x, acc.ap_transmittance), acc.ap_taken = true;
 #endif
 #endif
       acc.weighted_depth += opacity * (t + 0.5 * step_m);
@@ -143,8 +188,9 @@ void march_segment(vec3 dir, vec2 segment, float jitter, inout Accumulated acc) 
 }
 
 // The march through march pixel `pixel` (clouds_load() called first): colour and transmittance, and
-// the clouds' opacity-weighted mean distance and where they turn opaque (m).
-void clouds_march_pixel(ivec2 pixel, out vec4 color, out vec2 distances) {
+// the clouds' opacity-weighted mean distance, where they turn opaque and up to where the ray met no
+// cloud (m).
+void clouds_march_pixel(ivec2 pixel, out vec4 color, out vec3 distances) {
   vec2 ndc = (vec2(pixel) + 0.5) / vec2(cl.march_width, cl.march_height) * 2.0 - 1.0;
   vec3 dir = view_ray_direction(cl.inverse_view_projection, ndc);
   float t_max = scene_distance(ndc);
@@ -156,7 +202,8 @@ void clouds_march_pixel(ivec2 pixel, out vec4 color, out vec2 distances) {
 #endif
   vec2 ground = clouds_sphere(dir, 0.0);
   if (ground.x <= ground.y && ground.x > 0.0) t_max = min(t_max, ground.x);
-  Accumulated acc = Accumulated(vec3(0.0), 1.0, 0.0, 0.0, cl.max_distance_m, false, vec3(0.0), vec3(1.0), 0);
+  Accumulated acc =
+      Accumulated(vec3(0.0), 1.0, 0.0, 0.0, cl.max_distance_m, false, vec3(0.0), vec3(1.0), 0, 0.0);
   float jitter = fract(texelFetch(u_blue_noise, pixel % 64, 0).r + cl.frame_index * 0.618034);
   jitter = 0.25 + 0.75 * jitter;  // the first step: never so short that it wastes a sample
   // The ray's stretches through each altitude band that holds layers (two per band at most: in
@@ -188,9 +235,15 @@ void clouds_march_pixel(ivec2 pixel, out vec4 color, out vec2 distances) {
       vec2 swap = segments[j];
       segments[j] = segments[j - 1], segments[j - 1] = swap;
     }
+  float start = 0.0;
+#if CLOUDS_SKIP
+  start = clouds_skip_start(pixel, dir);
+#endif
+  // No cloud lies outside the bands, nor (last frame's rays tell) before the start.
+  acc.clear_m = min(max(start, first), 1e9);
   for (int i = 0; i < count; ++i) {
     vec2 segment = vec2(segments[i].x, min(segments[i].y, t_max));
-    if (segment.x < segment.y) march_segment(dir, segment, jitter, acc);
+    if (segment.x < segment.y && start < segment.y) march_segment(dir, segment, start, jitter, acc);
   }
 #if CLOUDS_AP_MODE == 1
   if (acc.depth_weight > 0.0) {
@@ -202,5 +255,6 @@ void clouds_march_pixel(ivec2 pixel, out vec4 color, out vec2 distances) {
   acc.color = acc.color * acc.ap_transmittance + acc.ap_inscattering * (1.0 - acc.transmittance);
 #endif
   color = vec4(max(acc.color, vec3(0.0)), acc.transmittance);
-  distances = vec2(acc.depth_weight > 0.0 ? acc.weighted_depth / acc.depth_weight : cl.max_distance_m, acc.front);
+  float mean_m = acc.depth_weight > 0.0 ? acc.weighted_depth / acc.depth_weight : cl.max_distance_m;
+  distances = vec3(mean_m, acc.front, acc.clear_m);
 }

@@ -6,6 +6,9 @@ layout(rgba16f, binding = 0) uniform writeonly image2D o_color;
 #if CLOUDS_WITH_CLUSTERS
 layout(rgba16f, binding = 1) uniform writeonly image2D o_with_clusters;
 #endif
+#if CLOUDS_CLEAR
+layout(r32f, binding = 2) uniform writeonly image2D o_clear;
+#endif
 void main() {
   ivec2 pixel;
   if (!screen_pixel(pixel)) return;
@@ -13,5 +16,8 @@ void main() {
   imageStore(o_color, pixel, color);
 #if CLOUDS_WITH_CLUSTERS
   imageStore(o_with_clusters, pixel, with_clusters(pixel, color));
+#endif
+#if CLOUDS_CLEAR
+  imageStore(o_clear, pixel, vec4(resolved_clear(pixel)));
 #endif
 }

@@ -5,10 +5,16 @@ layout(location = 0) out vec4 o_color;
 #if CLOUDS_WITH_CLUSTERS
 layout(location = 1) out vec4 o_with_clusters;
 #endif
+#if CLOUDS_CLEAR
+layout(location = 1 + CLOUDS_WITH_CLUSTERS) out float o_clear;
+#endif
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   o_color = resolved(pixel, v_ndc);
 #if CLOUDS_WITH_CLUSTERS
   o_with_clusters = with_clusters(pixel, o_color);
+#endif
+#if CLOUDS_CLEAR
+  o_clear = resolved_clear(pixel);
 #endif
 }

@@ -14,7 +14,8 @@
 layout(binding = 3) uniform sampler2D u_clusters;  // premultiplied, opacity in alpha
 #endif
 layout(binding = 0) uniform sampler2D u_current;           // one pixel per block: colour, transmittance
-layout(binding = 1) uniform sampler2D u_current_distance;  // one pixel per block: mean and first cloud distance (m)
+// one pixel per block: the clouds' mean distance, where they turn opaque, up to where none (m)
+layout(binding = 1) uniform sampler2D u_current_distance;
 layout(binding = 2) uniform sampler2D u_history;           // the last result at the march resolution
 uniform int u_block;               // N
 uniform ivec2 u_offset;            // the position in the block marched this frame
@@ -91,7 +92,8 @@ vec4 resolved(ivec2 pixel, vec2 ndc) {
     for (int x = 0; x <= 1; ++x) {
       ivec2 q = clamp(corner + ivec2(x, y), ivec2(0), current_size - 1);
       vec2 q_uv = (vec2(q * u_block + u_offset) + 0.5) / frame_size + motion;
-      change = in_view(q_uv) ? max(change, abs(texelFetch(u_current, q, 0) - texture(u_history, q_uv))) : vec4(1e30);
+      change = in_view(q_uv) ? max(change, abs(texelFetch(u_current, q, 0) - texture(u_history, q_uv)))
+                             : vec4(1e30);
     }
 #endif
   // Where the camera did not move, the pixel lands on its own texel's centre up to rounding: that
@@ -109,11 +111,29 @@ vec4 resolved(ivec2 pixel, vec2 ndc) {
   // clip away its own detail between them (a silhouette's pixels between samples on either side).
   // Where the clouds changed or moved in the image, the history is clipped to the range.
   vec4 range = max(hi - lo, vec4(1e-6));
-  float changed = max(max(change.r / range.r, change.g / range.g), max(change.b / range.b, change.a / range.a));
+  float changed =
+      max(max(change.r / range.r, change.g / range.g), max(change.b / range.b, change.a / range.a));
   history = mix(history, clamp(history, lo, hi), smoothstep(0.1, 0.4, changed));
 #endif
   return history;
 }
+
+#if CLOUDS_CLEAR
+// Up to where this pixel's ray met no cloud (m; src/first_hit_skip.h), for the next frame's march: the
+// march's own where it marched this pixel, else the least of the fresh samples around it.
+float resolved_clear(ivec2 pixel) {
+  ivec2 block = pixel / u_block;
+  if (u_full_frame == 1) return texelFetch(u_current_distance, pixel, 0).b;
+  if (all(equal(pixel % u_block, u_offset))) return texelFetch(u_current_distance, block, 0).b;
+  ivec2 current_size = textureSize(u_current_distance, 0);
+  float clear = 3.4e38;
+  for (int y = -1; y <= 1; ++y)
+    for (int x = -1; x <= 1; ++x)
+      clear = min(clear, texelFetch(u_current_distance,
+                                    clamp(block + ivec2(x, y), ivec2(0), current_size - 1), 0).b);
+  return clear;
+}
+#endif
 
 #if CLOUDS_WITH_CLUSTERS
 // The clusters laid behind the resolved clouds: march + T x clusters.

@@ -75,7 +75,8 @@ void expect_forms_agree(const nlohmann::json& doc, const std::string& pass) {
 // The peer scene: cumulus around debug shapes (geometry that ends rays), high quality.
 nlohmann::json peer() {
   nlohmann::json doc = scene_file("clouds-peer");
-  test::entity_with(doc, "clouds.VolumetricClouds")["components"]["clouds.VolumetricClouds"]["quality"] = "high";
+  nlohmann::json& clouds = test::entity_with(doc, "clouds.VolumetricClouds")["components"];
+  clouds["clouds.VolumetricClouds"]["quality"] = "high";
   return doc;
 }
 
