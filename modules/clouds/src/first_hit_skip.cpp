@@ -75,8 +75,8 @@ FirstHitSkip plan_first_hit_skip(CloudsGpu& gpu, bool enabled, bool partial, int
   skip.unit = unit;
   skip.previous_view_projection = gpu.previous_view_projection;
   skip.camera_moved_m = camera_moved_m;
-  defines["CLOUDS_SKIP"] = "1";
-  defines["CLOUDS_UNIT_FIRST_HIT"] = std::to_string(unit);
+  defines.insert_or_assign("CLOUDS_SKIP", std::string("1"));
+  defines.insert_or_assign("CLOUDS_UNIT_FIRST_HIT", std::to_string(unit));
   return skip;
 }
 
