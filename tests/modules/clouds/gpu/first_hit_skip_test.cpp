@@ -44,8 +44,8 @@ void move(test::Rendered& r, int f) {
 
 // Frames 1-15 (after the first, whole) with and without skipping: a skipped ray's samples fall at
 // other places along it, so the frames differ as the march's jitter makes them differ. Measured:
-// relative L1 0.22-0.41% (the silhouette test's jitter from frame to frame: 0.39%), the largest channel
-// difference 5.6-14.3% of the frame's brightest (at silhouettes).
+// relative L1 0.17-0.41% (the silhouette test's jitter from frame to frame: 0.39%), the largest channel
+// difference 4.0-14.3% of the frame's brightest (at silhouettes).
 TEST(CloudsFirstHitSkip, TurningAndFlyingFramesMatchTheMarchWithoutIt) {
   test::Rendered skipped = test::render(doc(true), kW, kH), whole = test::render(doc(false), kW, kH);
   Difference largest, jitter;
