@@ -61,7 +61,8 @@ void Scheduler::add(SystemDesc s) {
 namespace {
 
 // The systems of one stage (indices into `all`, in registration order) sorted so that each comes
-// after those it names in `after` and before those in `before`: Kahn's algorithm, always taking the earliest registered of those ready.
+// after those it names in `after` and before those in `before`: Kahn's algorithm, always taking the
+// earliest registered of those ready.
 std::vector<size_t> sort_stage(const std::vector<SystemDesc>& all, const std::vector<size_t>& stage) {
   const size_t n = stage.size();
   std::vector<std::vector<size_t>> followers(n);  // positions in `stage`
@@ -70,7 +71,8 @@ std::vector<size_t> sort_stage(const std::vector<SystemDesc>& all, const std::ve
   auto locate = [&](const SystemDesc& s, const std::string& name, const char* list) {
     auto at = std::find_if(stage.begin(), stage.end(), [&](size_t k) { return all[k].name == name; });
     if (at != stage.end()) return size_t(at - stage.begin());
-    auto elsewhere = std::find_if(all.begin(), all.end(), [&](const SystemDesc& d) { return d.name == name; });
+    auto elsewhere =
+        std::find_if(all.begin(), all.end(), [&](const SystemDesc& d) { return d.name == name; });
     throw Error(ErrorInfo{.path = "system " + s.name + "/" + list,
                           .expected = std::string("a system of its stage, ") + stage_name(s.stage),
                           .found = elsewhere == all.end()

@@ -12,6 +12,7 @@
 
 #include "billboards.h"
 #include "clusters.h"
+#include "first_hit_skip.h"
 #include "frame_block.h"
 #include "noise_volumes.h"
 #include "shadow_cascades.h"
@@ -59,6 +60,7 @@ struct CloudsGpu {
   glm::mat4 previous_view_projection{1.0f};
   glm::dvec3 previous_camera_m{0.0};
   uint64_t temporal_frame = 0;
+  FirstHitHistory first_hit;  // where the last frame's rays met no cloud (first_hit_skip.h)
   // A still view keeps its clouds: the digest of everything the march and the resolve read
   // (clouds_system), and how many frames in a row marched under it. After a whole cycle of the
   // upscaling's blocks every pixel of the history was marched under it, and the frames after

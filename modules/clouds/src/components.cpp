@@ -136,6 +136,8 @@ void describe(TypeBuilder<VolumetricClouds>& t) {
       .tooltip("quality custom: 2 (a quarter of the pixels per frame) or 4 (a sixteenth)");
   t.field("temporal_clipping", &VolumetricClouds::temporal_clipping)
       .tooltip("Clip reprojected history to this frame's samples (against ghosting)");
+  t.field("skip_empty_front", &VolumetricClouds::skip_empty_front)
+      .tooltip("Start each ray where the last frame's rays around it met no cloud (temporal upscaling)");
   t.field("shadows", &VolumetricClouds::shadows).tooltip("Cloud shadows and sky occlusion on every material");
   t.field("shadow_map_size", &VolumetricClouds::shadow_map_size).unit("px").range(16, 4096);
   t.field("shadow_distance_m", &VolumetricClouds::shadow_distance_m).unit("m").range(100, 1e6);

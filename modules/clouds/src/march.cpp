@@ -9,6 +9,7 @@
 #include <string>
 
 #include "density_field.h"
+#include "first_hit_skip.h"
 #include "frame_upload.h"
 #include "placement.h"
 #include "temporal_resolve.h"
@@ -16,6 +17,7 @@
 #include "welkin/gfx/compute.h"
 #include "welkin/gfx/light_environment.h"
 #include "welkin/gfx/renderer.h"
+#include "welkin/gfx/screen_pass.h"
 
 namespace welkin::clouds {
 
@@ -52,10 +54,11 @@ glm::ivec2 block_offset(CloudsGpu& gpu, bool partial, int n) {
 }
 
 // The march at qw x qh (the frame's size over the block's), stopping where the mesh clusters turn
-// opaque (`front`, when valid, bound at `front_unit`).
+// opaque (`front`, when valid, bound at `front_unit`), starting where `skip` allows; a fragment or a
+// compute pass (welkin/gfx/screen_pass.h), one body (clouds/march_pixel.glsl).
 MarchOutput add_march_pass(SystemContext& sc, CloudsGpu& gpu, const ShaderDefines& defines,
-                           glm::ivec3 stride_offset, int qw, int qh, ResourceHandle front,
-                           GLuint front_unit) {
+                           glm::ivec3 stride_offset, int qw, int qh, ResourceHandle front, GLuint front_unit,
+                           const FirstHitSkip& skip) {
   World& world = sc.world;
   auto& rc = world.resource<RenderContext>();
   const FrameTargets t = *sc.targets;
@@ -65,19 +68,41 @@ MarchOutput add_march_pass(SystemContext& sc, CloudsGpu& gpu, const ShaderDefine
                                 TextureDesc{.width = qw, .height = qh, .format = TextureFormat::rgba16f}),
       .distance = sc.graph->create("clouds.march_distance", TextureDesc{.width = qw,
                                                                          .height = qh,
-                                                                         .format = TextureFormat::rg32f,
+                                                                         .format = TextureFormat::rgba32f,
                                                                          .linear_filter = false})};
   CloudsGpu* gp = &gpu;
+  const bool compute = rc.forms.compute("clouds.march");
+  const ResourceHandle clear =
+      skip.read ? sc.graph->import("clouds.first_hit_previous", *gpu.first_hit.clear[1 - gpu.history_index])
+                : ResourceHandle{};
   sc.graph->add_pass(
       "clouds.march",
       [&](PassBuilder& b) {
         b.read(t.depth);
         if (cluster_front) b.read(front);
+        if (skip.read) b.read(clear);
         b.write(current.color);
         b.write(current.distance);
       },
-      [gp, &rc, &world, t, current, defines, stride_offset, cluster_front, front,
-       front_unit](PassContext& pc) {
+      [gp, &rc, &world, t, current, defines, stride_offset, cluster_front, front, front_unit, compute, qw, qh,
+       skip, clear](PassContext& pc) {
+        world.resource<LightEnvironment>().bind();
+        bind_field(*gp);
+        glBindTextureUnit(3, pc.texture(t.depth).id());
+        glBindTextureUnit(4, gp->blue_noise->id());
+        if (cluster_front) glBindTextureUnit(front_unit, pc.texture(front).id());
+        if (skip.read) glBindTextureUnit(skip.unit, pc.texture(clear).id());
+        const Program& p = compute ? rc.shaders.compute("clouds/march.comp", defines)
+                                   : rc.shaders.graphics("fullscreen.vert", "clouds/march.frag", defines);
+        glProgramUniform3i(p.id(), p.location("u_stride_offset"), stride_offset.x, stride_offset.y,
+                           stride_offset.z);
+        set_first_hit_uniforms(p, skip);
+        if (compute) {
+          bind_image_for_write(0, pc.texture(current.color));
+          bind_image_for_write(1, pc.texture(current.distance));
+          dispatch_screen(p, PixelRect{0, 0, qw, qh});
+          return;
+        }
         Framebuffer fb({&pc.texture(current.color), &pc.texture(current.distance)}, nullptr);
         fb.bind();
         glDisable(GL_DEPTH_TEST);
@@ -85,15 +110,7 @@ MarchOutput add_march_pass(SystemContext& sc, CloudsGpu& gpu, const ShaderDefine
         // GL forbids several draw buffers while the blend function names a second source colour
         // (the atmosphere's aerial perspective leaves one), even with blending off.
         glBlendFunc(GL_ONE, GL_ZERO);
-        world.resource<LightEnvironment>().bind();
-        bind_field(*gp);
-        glBindTextureUnit(3, pc.texture(t.depth).id());
-        glBindTextureUnit(4, gp->blue_noise->id());
-        if (cluster_front) glBindTextureUnit(front_unit, pc.texture(front).id());
-        const Program& p = rc.shaders.graphics("fullscreen.vert", "clouds/march.frag", defines);
         p.use();
-        glProgramUniform3i(p.id(), p.location("u_stride_offset"), stride_offset.x, stride_offset.y,
-                           stride_offset.z);
         rc.draw_fullscreen_triangle();
       });
   return current;
@@ -165,19 +182,29 @@ void clouds_system(SystemContext& sc) {
     return;
   }
   if (gpu.march_state != 0) ++gpu.march_state_frames;
+  // Each ray starts where the last frame's rays around it met no cloud (first_hit_skip.h).
+  ShaderDefines march_defines = defines;
+  const glm::vec3 moved = glm::vec3(view.camera_position_m - gpu.previous_camera_m);
+  // A still view marches whole (its march_state holds): what it keeps is then exactly its own march.
+  const bool view_changed = gpu.march_state_frames <= 1;
+  const FirstHitSkip skip =
+      plan_first_hit_skip(gpu, temporal && clouds->skip_empty_front, partial && view_changed, w, h, moved,
+                          front_unit + 1, march_defines);
   ++gpu.marches;
   if (!partial) ++gpu.full_marches;
 
   const int qw = (w + n - 1) / n, qh = (h + n - 1) / n;
   const glm::ivec2 offset = block_offset(gpu, partial, n);
   const glm::ivec3 stride_offset(n, offset.x, offset.y);
-  const MarchOutput current = add_march_pass(sc, gpu, defines, stride_offset, qw, qh, front, front_unit);
+  const MarchOutput current =
+      add_march_pass(sc, gpu, march_defines, stride_offset, qw, qh, front, front_unit, skip);
   ResourceHandle result = current.color;
   if (temporal) {
-    result = add_resolve_pass(g, rc, gpu, *clouds, current, offset, partial, n, w, h, clusters);
+    result = add_resolve_pass(g, rc, gpu, *clouds, current, offset, partial, n, w, h, clusters, skip.write);
   } else {
     gpu.history_valid = false;
   }
+  finish_first_hit(gpu, skip);
   gpu.previous_view_projection = view.view_projection;
   gpu.previous_camera_m = view.camera_position_m;
   composite_clouds(g, rc, t, result, clusters);

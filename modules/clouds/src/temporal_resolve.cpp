@@ -3,11 +3,14 @@
 
 #include <memory>
 
+#include "welkin/gfx/compute.h"
+#include "welkin/gfx/screen_pass.h"
+
 namespace welkin::clouds {
 
 ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gpu,
                                 const VolumetricClouds& clouds, const MarchOutput& current, glm::ivec2 offset,
-                                bool partial, int n, int w, int h, ResourceHandle& clusters) {
+                                bool partial, int n, int w, int h, ResourceHandle& clusters, bool clear) {
   const FrameView& view = rc.view;
   // The mesh clusters (and billboards) drawn before the march lie behind it. At the march's resolution
   // the resolve lays them in as it writes (a read at a quarter of the frame's pixels); otherwise the
@@ -22,11 +25,15 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
   const bool valid = gpu.history_valid;
   const float inside_cloud_m = 2.0f * gpu.block.min_step_m;  // two of the shortest march steps
   const ShaderDefines resolve_defines = {{"CLOUDS_CLIP", clouds.temporal_clipping ? "1" : "0"},
-                                         {"CLOUDS_WITH_CLUSTERS", merge_clusters ? "1" : "0"}};
+                                         {"CLOUDS_WITH_CLUSTERS", merge_clusters ? "1" : "0"},
+                                         {"CLOUDS_CLEAR", clear ? "1" : "0"}};
   const ResourceHandle merged =
       merge_clusters ? g.create("clouds.with_clusters",
                                 TextureDesc{.width = w, .height = h, .format = TextureFormat::rgba16f})
                      : ResourceHandle{};
+  const ResourceHandle out_clear =
+      clear ? g.import("clouds.first_hit_clear", *gpu.first_hit.clear[write]) : ResourceHandle{};
+  const bool compute = rc.forms.compute("clouds.resolve");
   g.add_pass(
       "clouds.resolve",
       [&](PassBuilder& b) {
@@ -34,25 +41,22 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
         b.read(current.distance);
         b.read(history);
         b.write(out_color);
+        if (clear) b.write(out_clear);
         if (merge_clusters) {
           b.read(clusters);
           b.write(merged);
         }
       },
       [&rc, current, out_color, history, offset, moved, previous_vp, inverse_vp, valid, resolve_defines,
-       inside_cloud_m, partial, n, merge_clusters, clusters, merged](PassContext& pc) {
-        Framebuffer fb = merge_clusters ? Framebuffer({&pc.texture(out_color), &pc.texture(merged)}, nullptr)
-                                        : Framebuffer(&pc.texture(out_color), nullptr);
-        fb.bind();
-        glDisable(GL_DEPTH_TEST);
-        glDisable(GL_BLEND);
-        glBlendFunc(GL_ONE, GL_ZERO);  // no second source colour while several buffers are drawn
+       inside_cloud_m, partial, n, merge_clusters, clusters, merged, compute, w, h, clear,
+       out_clear](PassContext& pc) {
         glBindTextureUnit(0, pc.texture(current.color).id());
         glBindTextureUnit(1, pc.texture(current.distance).id());
         glBindTextureUnit(2, pc.texture(history).id());
         if (merge_clusters) glBindTextureUnit(3, pc.texture(clusters).id());
-        const Program& p = rc.shaders.graphics("fullscreen.vert", "clouds/resolve.frag", resolve_defines);
-        p.use();
+        const Program& p =
+            compute ? rc.shaders.compute("clouds/resolve.comp", resolve_defines)
+                    : rc.shaders.graphics("fullscreen.vert", "clouds/resolve.frag", resolve_defines);
         glProgramUniform2i(p.id(), p.location("u_offset"), offset.x, offset.y);
         glProgramUniform1i(p.id(), p.location("u_block"), n);
         p.set("u_inverse_view_projection", inverse_vp);
@@ -61,6 +65,26 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
         p.set("u_history_valid", valid ? 1 : 0);
         p.set("u_full_frame", partial ? 0 : 1);
         p.set("u_inside_cloud_m", inside_cloud_m);
+        if (compute) {
+          bind_image_for_write(0, pc.texture(out_color));
+          if (merge_clusters) bind_image_for_write(1, pc.texture(merged));
+          if (clear) bind_image_for_write(2, pc.texture(out_clear));
+          dispatch_screen(p, PixelRect{0, 0, w, h});
+          return;
+        }
+        // Drawn in this order: colour, the clusters laid in, the clear distances (resolve.frag).
+        const Texture* color = &pc.texture(out_color);
+        const Texture* laid_in = merge_clusters ? &pc.texture(merged) : nullptr;
+        const Texture* clear_distances = clear ? &pc.texture(out_clear) : nullptr;
+        Framebuffer fb = laid_in && clear_distances ? Framebuffer({color, laid_in, clear_distances}, nullptr)
+                         : laid_in                  ? Framebuffer({color, laid_in}, nullptr)
+                         : clear_distances          ? Framebuffer({color, clear_distances}, nullptr)
+                                                    : Framebuffer(color, nullptr);
+        fb.bind();
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ZERO);  // no second source colour while several buffers are drawn
+        p.use();
         rc.draw_fullscreen_triangle();
       });
   const ResourceHandle result = merge_clusters ? merged : out_color;
@@ -72,6 +96,7 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
 
 void composite_clouds(RenderGraph& g, RenderContext& rc, const FrameTargets& t, ResourceHandle result,
                       ResourceHandle clusters) {
+  const bool compute = rc.forms.compute("clouds.composite");
   g.add_pass(
       "clouds.composite",
       [&](PassBuilder& b) {
@@ -80,16 +105,24 @@ void composite_clouds(RenderGraph& g, RenderContext& rc, const FrameTargets& t, 
         b.read(t.color);
         b.write(t.color);
       },
-      [&rc, t, result, clusters](PassContext& pc) {
-        Framebuffer fb(&pc.texture(t.color), nullptr);
+      [&rc, t, result, clusters, compute](PassContext& pc) {
+        const Texture& color = pc.texture(t.color);
+        glBindTextureUnit(0, pc.texture(result).id());
+        if (clusters.valid()) glBindTextureUnit(1, pc.texture(clusters).id());
+        ShaderDefines defines = {{"CLOUDS_WITH_CLUSTERS", clusters.valid() ? "1" : "0"}};
+        if (compute) {
+          defines["CLOUDS_RADIANCE_FORMAT"] = image_format_qualifier(color.desc().format);
+          const Program& p = rc.shaders.compute("clouds/composite.comp", defines);
+          bind_image_read_write(0, color);
+          dispatch_screen(p, PixelRect{0, 0, color.desc().width, color.desc().height});
+          return;
+        }
+        Framebuffer fb(&color, nullptr);
         fb.bind();
         glDisable(GL_DEPTH_TEST);
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_SRC_ALPHA);  // clouds + transmittance x what lies behind
-        glBindTextureUnit(0, pc.texture(result).id());
-        if (clusters.valid()) glBindTextureUnit(1, pc.texture(clusters).id());
-        const Program& p = rc.shaders.graphics("fullscreen.vert", "clouds/composite.frag",
-                                               {{"CLOUDS_WITH_CLUSTERS", clusters.valid() ? "1" : "0"}});
+        const Program& p = rc.shaders.graphics("fullscreen.vert", "clouds/composite.frag", defines);
         p.use();
         rc.draw_fullscreen_triangle();
         glDisable(GL_BLEND);

@@ -1,128 +1,20 @@
-// Temporal upscaling of the clouds: this frame marched one pixel of each N x N block (u_current,
-// N = 2 or 4); the others come from the previous frame's result, reprojected
-// through the clouds' own distance, and clipped to the range of this frame's neighbouring samples
-// so that what moved or appeared does not leave ghosts. CLOUDS_CLIP 0 keeps plain reprojection
-// (for the ghosting comparison of `welkin accuracy clouds`). Where the ray starts inside a cloud (the
-// camera in it) nothing is reprojected: the history there would smear the cloud around the camera.
-// CLOUDS_WITH_CLUSTERS: the mesh clusters, drawn at this resolution, are also laid behind the result
-// in a second target (march + T x clusters) for the composite, which then reads one texture at the
-// frame's resolution instead of two; the history stays the march alone.
-#include "welkin/view.glsl"
+// The clouds' temporal resolve as a fragment pass (clouds/resolve_pixel.glsl).
+#include "clouds/resolve_pixel.glsl"
 in vec2 v_ndc;
 layout(location = 0) out vec4 o_color;
 #if CLOUDS_WITH_CLUSTERS
 layout(location = 1) out vec4 o_with_clusters;
-layout(binding = 3) uniform sampler2D u_clusters;  // premultiplied, opacity in alpha
 #endif
-layout(binding = 0) uniform sampler2D u_current;           // one pixel per block: colour, transmittance
-// one pixel per block: mean and first cloud distance (m)
-layout(binding = 1) uniform sampler2D u_current_distance;
-layout(binding = 2) uniform sampler2D u_history;           // the last result at the march resolution
-uniform int u_block;               // N
-uniform ivec2 u_offset;            // the position in the block marched this frame
-uniform mat4 u_inverse_view_projection;
-uniform mat4 u_previous_view_projection;
-uniform vec3 u_camera_moved_m;     // this frame's camera minus the last one's
-uniform int u_history_valid;
-uniform int u_full_frame;  // every pixel was marched this frame (no history yet): taken as it is
-uniform float u_inside_cloud_m;  // a first cloud sample closer than this: the camera is in the cloud
-
-// The history at uv through a Catmull-Rom filter: a moving view reads it between texels every frame,
-// and bilinear reads, repeated, blur the history (its silhouettes most) frame after frame. Nine
-// bilinear reads: the two middle taps of each axis merged into one read between them (their weights
-// have the same sign).
-vec4 history_catmull_rom(vec2 uv) {
-  vec2 size = vec2(textureSize(u_history, 0));
-  vec2 texel = uv * size - 0.5;
-  vec2 base = floor(texel), f = texel - base;
-  vec2 w0 = f * (-0.5 + f * (1.0 - 0.5 * f)), w1 = 1.0 + f * f * (-2.5 + 1.5 * f);
-  vec2 w2 = f * (0.5 + f * (2.0 - 1.5 * f)), w3 = f * f * (-0.5 + 0.5 * f);
-  vec2 w12 = w1 + w2;
-  vec2 p0 = (base - 0.5) / size, p12 = (base + 0.5 + w2 / w12) / size, p3 = (base + 2.5) / size;
-  vec2 px[3] = vec2[3](p0, p12, p3), wx[3] = vec2[3](w0, w12, w3);
-  vec4 sum = vec4(0.0);
-  for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 3; ++i) sum += wx[i].x * wx[j].y * textureLod(u_history, vec2(px[i].x, px[j].y), 0.0);
-  return sum;
-}
-
-// Where the clouds seen through ndc at distance_m were last frame, in the history's uv (outside [0, 1]
-// where they were not in view).
-vec2 previous_uv(vec2 ndc, float distance_m) {
-  vec3 dir = view_ray_direction(u_inverse_view_projection, ndc);
-  vec4 clip = u_previous_view_projection * vec4(dir * distance_m + u_camera_moved_m, 1.0);
-  return clip.w <= 0.0 ? vec2(-1.0) : clip.xy / clip.w * 0.5 + 0.5;
-}
-bool in_view(vec2 uv) { return all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))); }
-
-vec4 resolved(ivec2 pixel) {
-  ivec2 block = pixel / u_block;
-  ivec2 current_size = textureSize(u_current, 0);
-  if (u_full_frame == 1) return texelFetch(u_current, pixel, 0);
-  if (all(equal(pixel % u_block, u_offset))) return texelFetch(u_current, block, 0);
-  // The neighbourhood of fresh samples around this pixel: its range bounds the history.
-  vec4 lo = vec4(1e30), hi = vec4(-1e30), nearest = vec4(0.0);
-  float distance_m = 0.0, front_m = 0.0;
-  vec2 fresh_pos = vec2(pixel - u_offset) / float(u_block);  // in u_current's texels (centres at integers)
-  float best = 1e30;
-  for (int y = -1; y <= 1; ++y)
-    for (int x = -1; x <= 1; ++x) {
-      ivec2 q = clamp(block + ivec2(x, y), ivec2(0), current_size - 1);
-      vec4 c = texelFetch(u_current, q, 0);
-      lo = min(lo, c), hi = max(hi, c);
-      float d = dot(vec2(q) - fresh_pos, vec2(q) - fresh_pos);
-      if (d < best) {
-        vec2 distances = texelFetch(u_current_distance, q, 0).rg;
-        best = d, nearest = c, distance_m = distances.x, front_m = distances.y;
-      }
-    }
-  vec4 upsampled = texture(u_current, (fresh_pos + 0.5) / vec2(current_size));
-  if (u_history_valid == 0 || front_m < u_inside_cloud_m) return upsampled;
-  // Where this pixel's clouds were last frame, seen from last frame's camera.
-  vec2 uv = previous_uv(v_ndc, distance_m);
-  if (!in_view(uv)) return upsampled;
-#if CLOUDS_CLIP
-  // How much the clouds changed since the history was written, seen at the four fresh samples
-  // around the pixel (what a bilinear read between them weighs): each against the history where it
-  // was last frame, moved in the image as this pixel moved.
-  vec4 change = vec4(0.0);
-  vec2 frame_size = vec2(textureSize(u_history, 0)), motion = uv - (v_ndc * 0.5 + 0.5);
-  ivec2 corner = ivec2(floor(fresh_pos));
-  for (int y = 0; y <= 1; ++y)
-    for (int x = 0; x <= 1; ++x) {
-      ivec2 q = clamp(corner + ivec2(x, y), ivec2(0), current_size - 1);
-      vec2 q_uv = (vec2(q * u_block + u_offset) + 0.5) / frame_size + motion;
-      change = in_view(q_uv) ? max(change, abs(texelFetch(u_current, q, 0) - texture(u_history, q_uv)))
-                             : vec4(1e30);
-    }
+#if CLOUDS_CLEAR
+layout(location = 1 + CLOUDS_WITH_CLUSTERS) out float o_clear;
 #endif
-  // Where the camera did not move, the pixel lands on its own texel's centre up to rounding: that
-  // texel is read as it is, or the history would be filtered again every frame and blur.
-  vec2 texel = uv * vec2(textureSize(u_history, 0)) - 0.5;
-  vec2 centre = round(texel);
-  vec4 history = all(lessThan(abs(texel - centre), vec2(0.125)))
-                     ? texelFetch(u_history, ivec2(centre), 0)
-                     : history_catmull_rom(uv);
-  history = max(history, vec4(0.0));  // the filter's negative lobes, at an edge
-  history.a = min(history.a, 1.0);
-#if CLOUDS_CLIP
-  // Where the neighbours' history still holds (what changed is small against the neighbourhood's
-  // range) this pixel's history is kept as it is: the range of the fresh samples around it would
-  // clip away its own detail between them (a silhouette's pixels between samples on either side).
-  // Where the clouds changed or moved in the image, the history is clipped to the range.
-  vec4 range = max(hi - lo, vec4(1e-6));
-  float changed =
-      max(max(change.r / range.r, change.g / range.g), max(change.b / range.b, change.a / range.a));
-  history = mix(history, clamp(history, lo, hi), smoothstep(0.1, 0.4, changed));
-#endif
-  return history;
-}
-
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
-  o_color = resolved(pixel);
+  o_color = resolved(pixel, v_ndc);
 #if CLOUDS_WITH_CLUSTERS
-  vec4 c = texelFetch(u_clusters, pixel, 0);
-  o_with_clusters = vec4(o_color.rgb + o_color.a * c.rgb, o_color.a * (1.0 - c.a));
+  o_with_clusters = with_clusters(pixel, o_color);
+#endif
+#if CLOUDS_CLEAR
+  o_clear = resolved_clear(pixel);
 #endif
 }
