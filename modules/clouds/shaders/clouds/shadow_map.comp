@@ -26,25 +26,31 @@ void main() {
        inner = clouds_sphere_from(start, dir, cl.lowest_m);
   // No cloud: the front at the column's end and no optical depth, so that filtering between a cloudy
   // texel and a clear one blends their optical depths instead of jumping at the texel's edge.
+  // The column is the whole line through the texel along the light, its distances measured from
+  // the start plane (negative: toward the sun). The plane is tilted with the sun (at 35 degrees up,
+  // its far edges lie 25 km above and below the centre's start), so a texel's start may lie inside
+  // or under the shell: a column cut at its start missed the cloud above it, and a deck was lit
+  // beyond a straight seam across the map.
   vec4 result = vec4(0.0);
-  if (outer.x <= outer.y && outer.y > 0.0) {
-    vec2 seg = vec2(max(outer.x, 0.0), outer.y);
-    if (inner.x <= inner.y && inner.x > 0.0) seg.y = min(seg.y, inner.x);
+  if (outer.x <= outer.y) {
+    vec2 seg = outer;
+    if (inner.x <= inner.y && inner.x > seg.x) seg.y = min(seg.y, inner.x);
     result.x = seg.y;
     float step_m = (seg.y - seg.x) / float(u_steps);
-    float tau = 0.0, front = -1.0, back = 0.0;
+    float tau = 0.0, front = 0.0, back = 0.0;
+    bool cloudy = false;
     // columns are a few km long
     clouds_system_g = clouds_weather_system_at(start + dir * (0.5 * (seg.x + seg.y)));
     for (int i = 0; i < u_steps; ++i) {
       float t = seg.x + (float(i) + 0.5) * step_m;
       float d = clouds_density(start + dir * t, false, true) * (cl.scattering + cl.absorption);
       if (d > 0.0) {
-        if (front < 0.0) front = t - 0.5 * step_m;
+        if (!cloudy) front = t - 0.5 * step_m, cloudy = true;
         back = t + 0.5 * step_m;
         tau += d * step_m;
       }
     }
-    if (front >= 0.0) result = vec4(front, tau / max(back - front, 1e-3), tau, 0.0);
+    if (cloudy) result = vec4(front, tau / max(back - front, 1e-3), tau, 0.0);
   }
   imageStore(u_map, id + ivec2(u_region.x, 0), result);
 }
