@@ -13,13 +13,27 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::vector<fs::path> json_files(const fs::path& dir) {
-  std::vector<fs::path> files;
+// A preset file and its name in its folder: the path below it without .json ("genera/cumulus").
+struct FoundFile {
+  fs::path file;
+  std::string name, folder;
+};
+
+// The .json files in `dir` and its sub-folders (at most `depth` below), in name order; symbolic links
+// to folders are not followed, so a loop of links cannot make the scan endless.
+void json_files(const fs::path& dir, const std::string& folder, int depth, std::vector<FoundFile>& out) {
   std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(dir, ec))
-    if (entry.is_regular_file(ec) && entry.path().extension() == ".json") files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
-  return files;
+  std::vector<fs::directory_entry> entries;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) entries.push_back(entry);
+  std::sort(entries.begin(), entries.end());
+  const std::string prefix = folder.empty() ? "" : folder + "/";
+  for (const auto& entry : entries) {
+    const std::string leaf = entry.path().filename().string();
+    if (entry.is_regular_file(ec) && entry.path().extension() == ".json")
+      out.push_back(FoundFile{entry.path(), prefix + entry.path().stem().string(), folder});
+    else if (depth > 0 && !leaf.starts_with(".") && entry.is_directory(ec) && !entry.is_symlink(ec))
+      json_files(entry.path(), prefix + leaf, depth - 1, out);
+  }
 }
 
 ErrorInfo located(const Error& err, const fs::path& file) {
@@ -51,8 +65,11 @@ std::vector<PresetFolder> PresetLibrary::folders() const {
 
 void PresetLibrary::rescan() {
   presets_.clear();
-  for (const PresetFolder& folder : folders())
-    for (const fs::path& file : json_files(folder.dir)) presets_.push_back(read(folder.module, file));
+  for (const PresetFolder& folder : folders()) {
+    std::vector<FoundFile> found;
+    json_files(folder.dir, "", kMaxFolderDepth, found);
+    for (const FoundFile& f : found) presets_.push_back(read(folder.module, f.file, f.name));
+  }
 }
 
 const PresetFile* PresetLibrary::find(std::string_view module, std::string_view name) const {
@@ -68,6 +85,17 @@ std::vector<const PresetFile*> PresetLibrary::presets_for(std::string_view compo
   return out;
 }
 
+std::vector<const PresetFile*> PresetLibrary::presets_in(const PresetFolder& folder) const {
+  std::vector<const PresetFile*> out;
+  for (const PresetFile& p : presets_)
+    if (p.module == folder.module &&
+        p.file.parent_path() == (p.folder.empty() ? folder.dir : folder.dir / p.folder))
+      out.push_back(&p);
+  std::stable_sort(out.begin(), out.end(),
+                   [](const PresetFile* a, const PresetFile* b) { return a->folder < b->folder; });
+  return out;
+}
+
 fs::path PresetLibrary::folder_of(std::string_view module) const {
   for (const PresetFolder& f : folders())
     if (f.module == module) return f.dir;
@@ -78,8 +106,10 @@ const TypeDesc& PresetLibrary::component_type(const std::string& component) {
   return *catalog_->modules().require_component(component).type;
 }
 
-PresetFile PresetLibrary::read(const std::string& module, const fs::path& file) {
-  PresetFile preset{.module = module, .name = file.stem().string(), .file = file};
+PresetFile PresetLibrary::read(const std::string& module, const fs::path& file, const std::string& name) {
+  PresetFile preset{.module = module, .name = name.empty() ? file.stem().string() : name, .file = file};
+  if (const size_t slash = preset.name.rfind('/'); slash != std::string::npos)
+    preset.folder = preset.name.substr(0, slash);
   try {
     json doc = read_json_file(file.string());
     if (!doc.is_object())
@@ -87,7 +117,8 @@ PresetFile PresetLibrary::read(const std::string& module, const fs::path& file) 
     const ModuleManifest* manifest = catalog_->modules().manifest(module);
     if (!manifest) throw Error(ErrorInfo{.file = file.string(), .message = "module '" + module + "' is not installed"});
     // The component whose fields the keys name; on a tie the first declared. With no full match the
-    // closest one is validated, so the error names the first unknown key.
+    // closest one is validated, so the error names the first unknown key. An element of a component's
+    // array of structs (a cloud layer) is chosen only when it matches more keys than every component.
     const TypeDesc* best = nullptr;
     size_t best_keys = 0;
     for (const std::string& c : manifest->components) {
@@ -98,7 +129,17 @@ PresetFile PresetLibrary::read(const std::string& module, const fs::path& file) 
     }
     if (!best) throw Error(ErrorInfo{.file = file.string(), .message = "module '" + module + "' has no components"});
     preset.component = best->name;
-    complete_component_json(*best, doc);  // validates every value
+    const TypeDesc* best_element = nullptr;
+    for (const std::string& c : manifest->components) {
+      if (c == Name::kTypeName) continue;
+      for (const FieldDesc& f : component_type(c).fields) {
+        if (f.kind != FieldKind::array || !f.element) continue;
+        size_t keys = matching_keys(*f.element, doc);
+        if (keys > best_keys)
+          best_element = f.element, best_keys = keys, preset.component = c, preset.element_field = f.name;
+      }
+    }
+    complete_component_json(best_element ? *best_element : *best, doc);  // validates every value
     preset.fields = std::move(doc);
   } catch (const Error& err) {
     preset.error = located(err, file);
@@ -120,9 +161,19 @@ PresetFile PresetLibrary::read_for_component(const std::string& component, const
   return preset;
 }
 
+const TypeDesc& PresetLibrary::preset_type(const PresetFile& preset) {
+  const TypeDesc& type = component_type(preset.component);
+  if (!preset.is_element()) return type;
+  const FieldDesc* f = type.field(preset.element_field);
+  if (!f || f->kind != FieldKind::array || !f->element)
+    throw Error(
+        ErrorInfo{.file = preset.file.string(), .message = preset.target() + " is not an array of structs"});
+  return *f->element;
+}
+
 json PresetLibrary::complete_value(const PresetFile& preset) {
   if (!preset.ok()) throw Error(*preset.error);
-  return complete_component_json(component_type(preset.component), preset.fields);
+  return complete_component_json(preset_type(preset), preset.fields);
 }
 
 void PresetLibrary::save(std::string component, const json& value, fs::path file) {
@@ -137,6 +188,21 @@ void PresetLibrary::save(std::string component, const json& value, fs::path file
   }
   if (file.has_parent_path()) fs::create_directories(file.parent_path(), ec);
   write_file_atomically(file.string(), in_declaration_order(component_type(component), complete).dump(2) + "\n");
+  rescan();
+}
+
+void PresetLibrary::save_element(PresetFile preset, const json& element) {
+  if (!preset.is_element())
+    throw Error(ErrorInfo{.file = preset.file.string(), .message = "not a preset of an array's element"});
+  const TypeDesc& type = preset_type(preset);
+  json complete = complete_component_json(type, element);
+  PresetFile existing = read(preset.module, preset.file, preset.name);
+  if (!existing.ok() || existing.target() != preset.target())
+    throw Error(ErrorInfo{.file = preset.file.string(),
+                          .message = "does not load as a " + preset.target() + " preset" +
+                                     (existing.ok() ? "" : " (" + format_error(*existing.error) + ")") +
+                                     "; it was left untouched"});
+  write_file_atomically(preset.file.string(), in_declaration_order(type, complete).dump(2) + "\n");
   rescan();
 }
 

@@ -110,6 +110,14 @@ double parse_number(const ScriptLine& line, size_t i, const char* what) {
   return v;
 }
 
+// An element of an array (a layer's index): decimal digits only.
+size_t element_index(const ScriptLine& line, size_t i) {
+  const std::string& s = line.args[i];
+  if (s.empty() || s.size() > 6 || s.find_first_not_of("0123456789") != std::string::npos)
+    line_error(line, "expected an element index (0, 1, ...), found '" + s + "'");
+  return size_t(std::stoul(s));
+}
+
 // Numbers match within a relative 1e-6 (the value went through a float).
 bool values_match(const json& a, const json& b) {
   if (a.is_number() && b.is_number()) {
@@ -176,6 +184,64 @@ std::string track_entity_name(EditorDocument& doc, EntityId id) {
   return n ? n->value : std::string();
 }
 
+// The preset verbs (apply, revert, blend, save, load, rename, diff, rescan); false for another verb.
+bool run_preset_verb(EditorDocument& doc, PresetLibrary& presets, const ScriptLine& line,
+                     std::string& output) {
+  const std::string& v = line.verb;
+  const auto& a = line.args;
+  if (v == "apply-preset") {
+    require_args(line, 2, 3, "apply-preset MODULE NAME [ELEMENT]");
+    const PresetFile& p = find_preset(presets, line, a[0], a[1]);
+    if (a.size() == 3)
+      apply_preset_to_element(doc, presets, p, preset_target(doc, line, p.component), element_index(line, 2));
+    else
+      apply_preset(doc, presets, p, preset_target(doc, line, p.component));
+  } else if (v == "revert-preset") {
+    require_args(line, 2, 2, "revert-preset MODULE NAME");
+    const PresetFile& p = find_preset(presets, line, a[0], a[1]);
+    revert_to_preset_file(doc, presets, p, preset_target(doc, line, p.component));
+  } else if (v == "blend-presets") {
+    require_args(line, 4, 4, "blend-presets MODULE A B T");
+    const PresetFile& pa = find_preset(presets, line, a[0], a[1]);
+    const PresetFile& pb = find_preset(presets, line, a[0], a[2]);
+    blend_presets(doc, presets, pa, pb, parse_number(line, 3, "a blend factor in [0, 1]"),
+                  preset_target(doc, line, pa.component));
+  } else if (v == "save-preset") {
+    require_args(line, 2, 3, "save-preset MODULE NAME [ELEMENT]");
+    PresetFile p = find_preset(presets, line, a[0], a[1]);
+    if (a.size() == 3)
+      save_preset_element(doc, presets, p, target_for(doc, line, p.component), element_index(line, 2));
+    else
+      save_preset(doc, presets, p, target_for(doc, line, p.component));
+  } else if (v == "save-preset-as") {
+    require_args(line, 2, 2, "save-preset-as COMPONENT PATH");
+    save_preset_as(doc, presets, a[0], target_for(doc, line, a[0]), a[1]);
+  } else if (v == "load-preset") {
+    require_args(line, 2, 2, "load-preset COMPONENT PATH");
+    PresetFile p = presets.read_for_component(a[0], a[1]);
+    if (!p.ok()) line_error(line, "preset does not load: " + format_error(*p.error));
+    apply_preset(doc, presets, p, preset_target(doc, line, a[0]));
+  } else if (v == "rename-preset") {
+    require_args(line, 3, 3, "rename-preset MODULE NAME NEW_NAME");
+    presets.rename(find_preset(presets, line, a[0], a[1]), a[2]);
+  } else if (v == "diff-preset") {
+    require_args(line, 2, 3, "diff-preset MODULE NAME [ELEMENT]");
+    const PresetFile& p = find_preset(presets, line, a[0], a[1]);
+    const EntityId target = target_for(doc, line, p.component);
+    auto fields = a.size() == 3 ? preset_element_differences(doc, presets, p, target, element_index(line, 2))
+                                : preset_differences(doc, presets, p, target);
+    output += a[0] + "/" + a[1] + " differs in " + std::to_string(fields.size()) + " field(s)";
+    for (const auto& f : fields) output += " " + f;
+    output += "\n";
+  } else if (v == "rescan-presets") {
+    require_args(line, 0, 0, "rescan-presets");
+    presets.rescan();
+  } else {
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 std::string ScriptLine::tail(size_t i) const {
@@ -211,6 +277,7 @@ std::vector<ScriptLine> load_script(const std::string& path) {
 bool run_document_verb(EditorDocument& doc, PresetLibrary& presets, const ScriptLine& line, std::string& output) {
   const std::string& v = line.verb;
   const auto& a = line.args;
+  if (run_preset_verb(doc, presets, line, output)) return true;
   if (v == "load-scene") {
     require_args(line, 1, 1, "load-scene PATH");
     doc.load_scene(a[0]);
@@ -250,44 +317,6 @@ bool run_document_verb(EditorDocument& doc, PresetLibrary& presets, const Script
       else if (!values_match(actual, parse_value(line, 1)))
         line_error(line, "expected " + a[0] + " = " + parse_value(line, 1).dump() + ", found " + actual.dump());
     }
-  } else if (v == "apply-preset") {
-    require_args(line, 2, 2, "apply-preset MODULE NAME");
-    const PresetFile& p = find_preset(presets, line, a[0], a[1]);
-    apply_preset(doc, presets, p, preset_target(doc, line, p.component));
-  } else if (v == "revert-preset") {
-    require_args(line, 2, 2, "revert-preset MODULE NAME");
-    const PresetFile& p = find_preset(presets, line, a[0], a[1]);
-    revert_to_preset_file(doc, presets, p, preset_target(doc, line, p.component));
-  } else if (v == "blend-presets") {
-    require_args(line, 4, 4, "blend-presets MODULE A B T");
-    const PresetFile& pa = find_preset(presets, line, a[0], a[1]);
-    const PresetFile& pb = find_preset(presets, line, a[0], a[2]);
-    blend_presets(doc, presets, pa, pb, parse_number(line, 3, "a blend factor in [0, 1]"), preset_target(doc, line, pa.component));
-  } else if (v == "save-preset") {
-    require_args(line, 2, 2, "save-preset MODULE NAME");
-    PresetFile p = find_preset(presets, line, a[0], a[1]);
-    save_preset(doc, presets, p, target_for(doc, line, p.component));
-  } else if (v == "save-preset-as") {
-    require_args(line, 2, 2, "save-preset-as COMPONENT PATH");
-    save_preset_as(doc, presets, a[0], target_for(doc, line, a[0]), a[1]);
-  } else if (v == "load-preset") {
-    require_args(line, 2, 2, "load-preset COMPONENT PATH");
-    PresetFile p = presets.read_for_component(a[0], a[1]);
-    if (!p.ok()) line_error(line, "preset does not load: " + format_error(*p.error));
-    apply_preset(doc, presets, p, preset_target(doc, line, a[0]));
-  } else if (v == "rename-preset") {
-    require_args(line, 3, 3, "rename-preset MODULE NAME NEW_NAME");
-    presets.rename(find_preset(presets, line, a[0], a[1]), a[2]);
-  } else if (v == "diff-preset") {
-    require_args(line, 2, 2, "diff-preset MODULE NAME");
-    const PresetFile& p = find_preset(presets, line, a[0], a[1]);
-    auto fields = preset_differences(doc, presets, p, target_for(doc, line, p.component));
-    output += a[0] + "/" + a[1] + " differs in " + std::to_string(fields.size()) + " field(s)";
-    for (const auto& f : fields) output += " " + f;
-    output += "\n";
-  } else if (v == "rescan-presets") {
-    require_args(line, 0, 0, "rescan-presets");
-    presets.rescan();
   } else if (v == "undo" || v == "redo") {
     require_args(line, 0, 0, "undo | redo");
     if (!(v == "undo" ? doc.undo() : doc.redo())) line_error(line, "nothing to " + v);
@@ -409,9 +438,12 @@ const char* script_verbs_help() {
                                       the component, else the first that has it
   expect COMPONENT/FIELD/PATH VALUE   fails the script unless equal (numbers within 1e-6)
   print COMPONENT/FIELD/PATH
-  apply-preset MODULE NAME | revert-preset MODULE NAME | blend-presets MODULE A B T
-  save-preset MODULE NAME | save-preset-as COMPONENT PATH | load-preset COMPONENT PATH
-  rename-preset MODULE NAME NEW_NAME | diff-preset MODULE NAME | rescan-presets
+  apply-preset MODULE NAME [ELEMENT] | revert-preset MODULE NAME | blend-presets MODULE A B T
+  save-preset MODULE NAME [ELEMENT] | save-preset-as COMPONENT PATH | load-preset COMPONENT PATH
+  rename-preset MODULE NAME NEW_NAME | diff-preset MODULE NAME [ELEMENT] | rescan-presets
+                                      NAME may be in a sub-folder (clouds genera/cirrus); a preset of
+                                      one element (a cloud layer) is added as a new element, or with
+                                      ELEMENT set over that one (layers/ELEMENT)
   undo | redo
   key COMPONENT/FIELD/PATH TIME VALUE | unkey COMPONENT/FIELD/PATH TIME | time SECONDS
   load-sequence PATH | save-sequence PATH

@@ -1,9 +1,12 @@
-// The preset browser: every module's preset files, grouped by module. Apply, blend two (A/B and a
-// slider), save over, save as, rename, revert to the file, and see which fields differ from it. A
-// file that fails to load is listed in red with its error and is never written.
+// The preset browser: every module's preset files, grouped by module and, within a module, by
+// sub-folder (the clouds' genera). Apply, blend two (A/B and a slider), save over, save as, rename,
+// revert to the file, and see which fields differ from it. A preset of one element of an array (a
+// cloud layer of a genus) is added as a new element or applied over a chosen one. A file that fails
+// to load is listed in red with its error and is never written.
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "model/preset_actions.h"
@@ -27,6 +30,7 @@ struct PresetPanelState {
   std::string save_as_component;
   std::string rename_to;
   std::string pending_overwrite;  // a save-as target that exists, awaiting confirmation
+  int element = 0;                // which element an element preset is applied to, saved from, compared with
 };
 
 const PresetFile* lookup(PresetLibrary& presets, const PresetKey& key) {
@@ -49,6 +53,63 @@ bool is_selected(const EditorContext& ctx, const PresetFile& p) {
   return ctx.preset_browser.selected_module == p.module && ctx.preset_browser.selected_name == p.name;
 }
 
+void draw_rename_popup(EditorContext& ctx, PresetPanelState& s, const PresetFile& p) {
+  if (!ImGui::BeginPopup("rename preset")) return;
+  ImGui::InputText("new name", &s.rename_to);
+  if (ImGui::Button("rename")) {
+    PresetFile copy = p;
+    if (ctx.attempt([&] { ctx.presets.rename(copy, s.rename_to); }))
+      select(ctx, copy.module, copy.folder.empty() ? s.rename_to : copy.folder + "/" + s.rename_to);
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::EndPopup();
+}
+
+// A preset of one element of an array (a cloud layer): added as a new element, or applied over,
+// saved from and compared with the element chosen.
+void draw_element_details(EditorContext& ctx, PresetPanelState& s, const PresetFile& p, EntityId target) {
+  if (ImGui::Button("add as a new element"))
+    ctx.attempt([&] { apply_preset(ctx.doc, ctx.presets, p, target); });
+  const int count = int(element_count(ctx.doc, p, target));
+  if (count == 0) return;
+  s.element = std::clamp(s.element, 0, count - 1);
+  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6);
+  ImGui::InputInt(p.element_field.c_str(), &s.element);
+  s.element = std::clamp(s.element, 0, count - 1);
+  const size_t index = size_t(s.element);
+  ImGui::SameLine();
+  if (ImGui::Button("apply to it"))
+    ctx.attempt([&] { apply_preset_to_element(ctx.doc, ctx.presets, p, target, index); });
+  ImGui::SameLine();
+  if (ImGui::Button("save it over file")) ImGui::OpenPopup("confirm save");
+  ImGui::SameLine();
+  if (ImGui::Button("rename")) {
+    s.rename_to = p.file.stem().string();
+    ImGui::OpenPopup("rename preset");
+  }
+  if (ImGui::BeginPopup("confirm save")) {
+    ImGui::Text("Write %s/%zu over %s?", p.element_field.c_str(), index, p.file.filename().string().c_str());
+    if (ImGui::Button("write")) {
+      PresetFile copy = p;
+      if (ctx.attempt([&] { save_preset_element(ctx.doc, ctx.presets, copy, target, index); }))
+        ctx.log.info("saved " + copy.file.string());
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("cancel")) ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+    return;  // the save may have rescanned: `p` is stale now
+  }
+  if (ImGui::IsPopupOpen("rename preset")) return draw_rename_popup(ctx, s, p);
+  auto differences = preset_element_differences(ctx.doc, ctx.presets, p, target, index);
+  if (differences.empty())
+    ImGui::TextDisabled("%s/%zu matches the file", p.element_field.c_str(), index);
+  else
+    ImGui::Text("%s/%zu differs from the file in %zu field(s)", p.element_field.c_str(), index,
+                differences.size());
+  for (const auto& f : differences) ImGui::BulletText("%s", f.c_str());
+}
+
 void draw_details(EditorContext& ctx, PresetPanelState& s, const PresetFile& p) {
   ImGui::TextDisabled("%s", p.file.string().c_str());
   if (!p.ok()) {
@@ -61,8 +122,10 @@ void draw_details(EditorContext& ctx, PresetPanelState& s, const PresetFile& p) 
     return;
   }
   EntityId target = preset_target(ctx.doc, p.component);
-  ImGui::Text("%s  ->  %s", p.component.c_str(), target == kNoEntity ? "(no entity)" : ctx.doc.display_name(target).c_str());
+  ImGui::Text("%s  ->  %s", p.target().c_str(),
+              target == kNoEntity ? "(no entity)" : ctx.doc.display_name(target).c_str());
   if (target == kNoEntity) return;
+  if (p.is_element()) return draw_element_details(ctx, s, p, target);
   if (ImGui::Button("apply")) ctx.attempt([&] { apply_preset(ctx.doc, ctx.presets, p, target); });
   ImGui::SameLine();
   if (ImGui::Button("revert to file")) ctx.attempt([&] { revert_to_preset_file(ctx.doc, ctx.presets, p, target); });
@@ -73,7 +136,7 @@ void draw_details(EditorContext& ctx, PresetPanelState& s, const PresetFile& p) 
   ImGui::EndDisabled();
   ImGui::SameLine();
   if (ImGui::Button("rename")) {
-    s.rename_to = p.name;
+    s.rename_to = p.file.stem().string();
     ImGui::OpenPopup("rename preset");
   }
   if (ImGui::BeginPopup("confirm save")) {
@@ -88,16 +151,8 @@ void draw_details(EditorContext& ctx, PresetPanelState& s, const PresetFile& p) 
     ImGui::EndPopup();
     return;  // the save may have rescanned: `p` is stale now
   }
-  if (ImGui::BeginPopup("rename preset")) {
-    ImGui::InputText("new name", &s.rename_to);
-    if (ImGui::Button("rename")) {
-      PresetFile copy = p;
-      if (ctx.attempt([&] { ctx.presets.rename(copy, s.rename_to); })) select(ctx, copy.module, s.rename_to);
-      ImGui::CloseCurrentPopup();
-    }
-    ImGui::EndPopup();
-    return;
-  }
+  if (ImGui::IsPopupOpen("rename preset"))
+    return draw_rename_popup(ctx, s, p);  // may rescan: `p` is stale after
   if (!has_component) return;
   auto differences = preset_differences(ctx.doc, ctx.presets, p, target);
   if (differences.empty()) {
@@ -119,8 +174,10 @@ void draw_blend(EditorContext& ctx, PresetPanelState& s) {
   const PresetFile* a = lookup(ctx.presets, s.blend_a);
   const PresetFile* b = lookup(ctx.presets, s.blend_b);
   ImGui::Text("A: %s   B: %s", a ? a->name.c_str() : "-", b ? b->name.c_str() : "-");
-  bool ready = a && b && a->ok() && b->ok() && a->component == b->component;
+  bool ready =
+      a && b && a->ok() && b->ok() && a->component == b->component && !a->is_element() && !b->is_element();
   if (a && b && a->component != b->component) ImGui::TextDisabled("A and B set different components");
+  if ((a && a->is_element()) || (b && b->is_element())) ImGui::TextDisabled("only whole components blend");
   ImGui::BeginDisabled(!ready);
   bool moved = ImGui::SliderFloat("blend A -> B", &s.blend_t, 0.0f, 1.0f, "%.3f", ImGuiSliderFlags_AlwaysClamp);
   bool released = ImGui::IsItemDeactivatedAfterEdit();
@@ -181,6 +238,45 @@ void draw_save_as(EditorContext& ctx, PresetPanelState& s) {
   }
 }
 
+void draw_row(EditorContext& ctx, PresetPanelState& s, const PresetFile& p) {
+  ImGui::PushID(p.name.c_str());
+  if (ImGui::SmallButton(s.blend_a.is(p) ? "[A]" : " A ")) s.blend_a = {p.module, p.name};
+  ImGui::SameLine();
+  if (ImGui::SmallButton(s.blend_b.is(p) ? "[B]" : " B ")) s.blend_b = {p.module, p.name};
+  ImGui::SameLine();
+  if (!p.ok()) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
+  const std::string leaf = p.folder.empty() ? p.name : p.name.substr(p.folder.size() + 1);
+  std::string label = p.ok() ? leaf + "  (" + p.target() + ")" : leaf + "  (does not load)";
+  if (ImGui::Selectable(label.c_str(), is_selected(ctx, p), ImGuiSelectableFlags_AllowDoubleClick)) {
+    select(ctx, p.module, p.name);
+    if (ImGui::IsMouseDoubleClicked(0) && p.ok()) {
+      EntityId target = preset_target(ctx.doc, p.component);
+      if (target != kNoEntity) ctx.attempt([&] { apply_preset(ctx.doc, ctx.presets, p, target); });
+    }
+  }
+  if (!p.ok()) {
+    ImGui::PopStyleColor();
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", format_error(*p.error).c_str());
+  }
+  ImGui::PopID();
+}
+
+// One folder's presets: those at its top, then each sub-folder as a node of its own.
+void draw_folder(EditorContext& ctx, PresetPanelState& s, const PresetFolder& folder) {
+  const std::vector<const PresetFile*> files = ctx.presets.presets_in(folder);
+  std::string open_folder;
+  bool open = true;
+  for (const PresetFile* p : files) {
+    if (p->folder != open_folder) {
+      if (!open_folder.empty() && open) ImGui::TreePop();
+      open_folder = p->folder;
+      open = ImGui::TreeNodeEx(p->folder.c_str(), ImGuiTreeNodeFlags_DefaultOpen);
+    }
+    if (open) draw_row(ctx, s, *p);
+  }
+  if (!open_folder.empty() && open) ImGui::TreePop();
+}
+
 }  // namespace
 
 void draw_preset_panel(EditorContext& ctx) {
@@ -189,7 +285,7 @@ void draw_preset_panel(EditorContext& ctx) {
   ImGui::SameLine();
   ImGui::TextDisabled("%zu preset files", ctx.presets.presets().size());
 
-  // The list, grouped by module; A and B pick the blend ends.
+  // The list, grouped by module and sub-folder; A and B pick the blend ends.
   ImGui::BeginChild("preset list", ImVec2(0, ImGui::GetContentRegionAvail().y * 0.45f), true);
   for (const PresetFolder& folder : ctx.presets.folders()) {
     std::error_code ec;
@@ -198,28 +294,7 @@ void draw_preset_panel(EditorContext& ctx) {
     bool open = ImGui::TreeNodeEx(folder.module.c_str(), ImGuiTreeNodeFlags_DefaultOpen);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", folder.dir.string().c_str());
     if (open) {
-      for (const PresetFile& p : ctx.presets.presets()) {
-        if (p.module != folder.module || p.file.parent_path() != folder.dir) continue;
-        ImGui::PushID(p.name.c_str());
-        if (ImGui::SmallButton(s.blend_a.is(p) ? "[A]" : " A ")) s.blend_a = {p.module, p.name};
-        ImGui::SameLine();
-        if (ImGui::SmallButton(s.blend_b.is(p) ? "[B]" : " B ")) s.blend_b = {p.module, p.name};
-        ImGui::SameLine();
-        if (!p.ok()) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
-        std::string label = p.ok() ? p.name + "  (" + p.component + ")" : p.name + "  (does not load)";
-        if (ImGui::Selectable(label.c_str(), is_selected(ctx, p), ImGuiSelectableFlags_AllowDoubleClick)) {
-          select(ctx, p.module, p.name);
-          if (ImGui::IsMouseDoubleClicked(0) && p.ok()) {
-            EntityId target = preset_target(ctx.doc, p.component);
-            if (target != kNoEntity) ctx.attempt([&] { apply_preset(ctx.doc, ctx.presets, p, target); });
-          }
-        }
-        if (!p.ok()) {
-          ImGui::PopStyleColor();
-          if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", format_error(*p.error).c_str());
-        }
-        ImGui::PopID();
-      }
+      draw_folder(ctx, s, folder);
       ImGui::TreePop();
     }
     ImGui::PopID();

@@ -8,7 +8,7 @@
 //
 // Counters are milliseconds per frame (medians over the iterations) and ratios: *_x_copy against the
 // copy, speedup_* the raymarch's cost over the LUT path's. Errors of the same configurations against
-// the references come from `welkin accuracy atmosphere` (README).
+// the references come from `welkin accuracy atmosphere` (docs/atmosphere.md).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>

@@ -4,7 +4,7 @@
 # writes the contact sheet after it, and every file must equal a single-process `welkin sequence`
 # render byte for byte. Then `welkin farm status` and the guard against submitting twice.
 # Usage: slurm_farm_test.sh WELKIN SOURCE_DIR. Skipped (exit 77) only when not root.
-# WELKIN_SLURM_TIMING=1 also times the same farm with 1 task (the README's figures).
+# WELKIN_SLURM_TIMING=1 also times the same farm with 1 task (the figures in docs/farms.md).
 set -euo pipefail
 WELKIN=$1
 SRC=$2

@@ -66,14 +66,7 @@ const CloudClusters* first_clusters(World& world) {
 
 // The shape a genus's clusters take: dome (as the field's), form (0 heaps, 1 sheets, 2 streaks).
 glm::vec2 genus_form(Genus genus) {
-  switch (genus) {
-    case Genus::stratus:
-    case Genus::altostratus:
-    case Genus::nimbostratus:
-    case Genus::cirrostratus: return {genus_model(genus).dome, 1.0f};
-    case Genus::cirrus: return {genus_model(genus).dome, 2.0f};
-    default: return {genus_model(genus).dome, 0.0f};
-  }
+  return {genus_model(genus).dome, float(int(genus_traits(genus).cluster_form))};
 }
 
 // What placing a frame's puffs needs, taken when the pass is declared.

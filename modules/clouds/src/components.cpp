@@ -9,25 +9,31 @@
 namespace welkin::clouds {
 
 namespace {
-const std::vector<EnumValue> kGenera = {
-    {"cumulus", int(Genus::cumulus)},           {"stratus", int(Genus::stratus)},
-    {"stratocumulus", int(Genus::stratocumulus)}, {"cumulonimbus", int(Genus::cumulonimbus)},
-    {"altocumulus", int(Genus::altocumulus)},   {"altostratus", int(Genus::altostratus)},
-    {"nimbostratus", int(Genus::nimbostratus)}, {"cirrus", int(Genus::cirrus)},
-    {"cirrostratus", int(Genus::cirrostratus)}, {"cirrocumulus", int(Genus::cirrocumulus)},
-};
+// The enum's names for JSON, the inspector and sequences, from the genus table.
+std::vector<EnumValue> genus_values() {
+  std::vector<EnumValue> values;
+  for (const GenusTraits& g : kGenera) values.push_back({g.name, int(g.genus)});
+  return values;
+}
 }  // namespace
 
+const GenusTraits& genus_traits(Genus genus) {
+  const int i = int(genus);
+  if (i < 0 || i >= kGenusCount)
+    throw Error(ErrorInfo{.path = "genus",
+                          .expected = "one of the " + std::to_string(kGenusCount) + " genera",
+                          .found = std::to_string(i)});
+  return kGenera[i];
+}
+
 const char* genus_name(Genus genus) {
-  for (const EnumValue& v : kGenera)
-    if (v.value == int(genus)) return v.name.c_str();
-  return "?";
+  return genus_traits(genus).name;
 }
 
 void describe(TypeBuilder<CloudLayer>& t) {
   t.tooltip("One layer of clouds: altitude, thickness, genus, coverage, density and its profile over height");
   t.field("genus", &CloudLayer::genus)
-      .values(kGenera)
+      .values(genus_values())
       .tooltip("Shape model: domes with flat bases, sheets, rolls or streaks");
   t.field("base_altitude_m", &CloudLayer::base_altitude_m)
       .unit("m")

@@ -40,29 +40,8 @@ std::vector<glm::vec2> altitude_bands(std::vector<glm::vec2> ranges, int max_ban
 }
 
 GenusModel genus_model(Genus genus) {
-  switch (genus) {
-    case Genus::cumulus:
-      return {1.0f, 2.5f};
-    case Genus::cumulonimbus:
-      return {1.0f, 0.4f};
-    case Genus::stratocumulus:
-      return {0.4f, 1.6f};
-    case Genus::altocumulus:
-      return {0.5f, 4.0f};
-    case Genus::cirrocumulus:
-      return {0.3f, 8.0f};
-    case Genus::stratus:
-      return {0.0f, 0.5f};
-    case Genus::nimbostratus:
-      return {0.1f, 0.4f};
-    case Genus::altostratus:
-      return {0.0f, 0.7f};
-    case Genus::cirrostratus:
-      return {0.0f, 0.5f};
-    case Genus::cirrus:
-      return {0.2f, 2.5f};
-  }
-  return {1.0f, 1.0f};
+  const GenusTraits& g = genus_traits(genus);
+  return {g.dome, g.weather_frequency};
 }
 
 PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& ctx,

@@ -25,7 +25,7 @@ void describe(TypeBuilder<Terrain>& t) {
   t.field("lod_levels", &Terrain::lod_levels).range(1, 10);
   t.field("lod_pixel_error", &Terrain::lod_pixel_error).unit("px").range(0.1, 100);
   t.field("compress_images", &Terrain::compress_images)
-      .tooltip("BC1 block compression: 1/8 of the GPU memory of RGBA8, with a small colour error (README)");
+      .tooltip("BC1 compression: 1/8 of the GPU memory of RGBA8, a small colour error (docs/terrain.md)");
   t.field("cast_shadows", &Terrain::cast_shadows).tooltip("Cascaded shadow maps from the sun");
   t.field("shadow_map_size", &Terrain::shadow_map_size).unit("px").range(64, 8192);
   t.field("shadow_distance_m", &Terrain::shadow_distance_m).unit("m").range(10, 1e6);

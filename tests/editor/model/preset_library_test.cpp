@@ -216,6 +216,104 @@ TEST_F(Presets, ExtraFoldersServeModulesWithoutADataFolder) {
   EXPECT_EQ(noon->component, "core.DirectionalLight");
 }
 
+// Sub-folders are searched (the clouds' genera); a preset's name is its path there. Hidden folders and
+// files of other kinds are not presets.
+TEST_F(Presets, PresetsInSubFoldersAreFoundByTheirPath) {
+  dir.write("presets/layers/wispy.json", R"({"coverage": 0.1, "octaves": 2})");
+  dir.write("presets/layers/deep/dense.json", R"({"coverage": 0.9})");
+  dir.write("presets/.hidden/secret.json", R"({"density": 1})");
+  dir.write("presets/layers/notes.txt", "not a preset");
+  library.rescan();
+  const PresetFile* wispy = library.find("test", "layers/wispy");
+  ASSERT_NE(wispy, nullptr);
+  ASSERT_TRUE(wispy->ok()) << format_error(*wispy->error);
+  EXPECT_EQ(wispy->folder, "layers");
+  EXPECT_EQ(wispy->component, "test.Clouds");
+  EXPECT_EQ(wispy->element_field, "layers");
+  EXPECT_EQ(wispy->target(), "test.Clouds/layers");
+  const PresetFile* dense = library.find("test", "layers/deep/dense");
+  ASSERT_NE(dense, nullptr);
+  EXPECT_EQ(dense->folder, "layers/deep");
+  EXPECT_EQ(library.find("test", ".hidden/secret"), nullptr);
+  EXPECT_EQ(library.find("test", "wispy"), nullptr);
+  EXPECT_EQ(library.presets().size(), 5u);  // thin, thick, haze and the two layers
+  // Whole-component presets stay whole: more of their keys are the component's than an element's.
+  EXPECT_FALSE(library.find("test", "thick")->is_element());
+  EXPECT_EQ(library.presets_for("test.Clouds").size(), 4u);
+  // As the browser lists them: the folder's own first, then each sub-folder's.
+  std::vector<std::string> listed;
+  for (const PresetFile* p : library.presets_in(PresetFolder{"test", dir.path() / "presets"}))
+    listed.push_back(p->name);
+  EXPECT_EQ(listed, (std::vector<std::string>{"haze", "thick", "thin", "layers/wispy", "layers/deep/dense"}));
+}
+
+// An element preset is added as a new element, or applied over a chosen one; each is one undo step,
+// the array's bound holds, and it is compared with and saved from an element.
+TEST_F(Presets, AnElementPresetAddsAnElementOrReplacesOne) {
+  dir.write("presets/layers/wispy.json", R"({"coverage": 0.1, "octaves": 2})");
+  library.rescan();
+  const PresetFile& wispy = *library.find("test", "layers/wispy");
+  json before = doc.get_component(deck, "test.Clouds");
+  ASSERT_EQ(before["layers"].size(), 1u);
+  apply_preset(doc, library, wispy, deck);
+  json after = doc.get_component(deck, "test.Clouds");
+  ASSERT_EQ(after["layers"].size(), 2u);
+  EXPECT_EQ(after["layers"][0], before["layers"][0]);
+  EXPECT_EQ(doc.get_field(deck, "test.Clouds", "layers/1/octaves"), json(2));
+  EXPECT_NEAR(doc.get_field(deck, "test.Clouds", "layers/1/coverage").get<double>(), 0.1, 1e-7);
+  EXPECT_EQ(doc.get_field(deck, "test.Clouds", "density"), before["density"]);  // the rest is left alone
+  EXPECT_EQ(element_count(doc, wispy, deck), 2u);
+  doc.undo();
+  EXPECT_EQ(doc.get_component(deck, "test.Clouds"), before);
+
+  apply_preset_to_element(doc, library, wispy, deck, 0);
+  EXPECT_EQ(doc.get_field(deck, "test.Clouds", "layers/0/octaves"), json(2));
+  EXPECT_EQ(doc.get_component(deck, "test.Clouds")["layers"].size(), 1u);
+  EXPECT_TRUE(preset_element_differences(doc, library, wispy, deck, 0).empty());
+  doc.set_field(deck, "test.Clouds", "layers/0/octaves", 5);
+  EXPECT_EQ(preset_element_differences(doc, library, wispy, deck, 0), (std::vector<std::string>{"octaves"}));
+  try {
+    apply_preset_to_element(doc, library, wispy, deck, 3);
+    FAIL() << "element 3 of 1 was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.info().path, "test.Clouds/layers/3");
+  }
+
+  // The array's bound (4) holds: the fifth layer is refused and changes nothing.
+  for (int i = 0; i < 3; ++i) apply_preset(doc, library, wispy, deck);
+  json full = doc.get_component(deck, "test.Clouds");
+  EXPECT_EQ(full["layers"].size(), 4u);
+  EXPECT_THROW(apply_preset(doc, library, wispy, deck), Error);
+  EXPECT_EQ(doc.get_component(deck, "test.Clouds"), full);
+
+  // Saved from element 0 (octaves 5), read back.
+  save_preset_element(doc, library, wispy, deck, 0);
+  const PresetFile* saved = library.find("test", "layers/wispy");
+  ASSERT_NE(saved, nullptr);
+  EXPECT_EQ(saved->fields["octaves"], json(5));
+  EXPECT_TRUE(saved->is_element());
+
+  // What applies to whole components only is refused, not done to the wrong thing.
+  EXPECT_THROW(save_preset(doc, library, *saved, deck), Error);
+  EXPECT_THROW(revert_to_preset_file(doc, library, *saved, deck), Error);
+  EXPECT_THROW(blend_presets(doc, library, *saved, *saved, 0.5, deck), Error);
+  EXPECT_THROW(apply_preset_to_element(doc, library, *library.find("test", "thin"), deck, 0), Error);
+  EXPECT_EQ(editor_test::read_bytes(dir.path() / "presets" / "thin.json").find("\"octaves\": 5"),
+            std::string::npos);
+}
+
+// An entity without the component gains it with its declared defaults and the new element after them.
+TEST_F(Presets, AnElementPresetAddsTheComponentWhenItIsMissing) {
+  dir.write("presets/layers/wispy.json", R"({"coverage": 0.1, "octaves": 2})");
+  library.rescan();
+  EntityId bare = doc.add_entity("bare");
+  apply_preset(doc, library, *library.find("test", "layers/wispy"), bare);
+  json c = doc.get_component(bare, "test.Clouds");
+  ASSERT_EQ(c["layers"].size(), 2u);  // the declared default layer, then the preset's
+  EXPECT_EQ(c["layers"][1]["octaves"], json(2));
+  EXPECT_EQ(c["steps"], json(16));
+}
+
 TEST_F(Presets, TheShippedCorePresetsAllLoad) {
   library.add_folder(PresetFolder{"core", WELKIN_SOURCE_DIR "/assets/presets/core"});
   library.rescan();

@@ -110,6 +110,35 @@ TEST_F(ScriptRun, ApplyAndBlendShippedPresets) {
   EXPECT_NE(out.find("differs in 0 field(s)"), std::string::npos) << out;
 }
 
+// A preset in a sub-folder, of one element of an array: added, applied over an element, compared.
+TEST_F(ScriptRun, ElementPresetsInSubFoldersByPath) {
+  editor_test::test_module_data_dir() = dir.path().string();
+  dir.write("presets/layers/wispy.json", R"({"coverage": 0.1, "octaves": 2})");
+  PresetLibrary library(editor_test::make_test_world());
+  library.rescan();
+  doc.add_entity("deck", json{{"test.Clouds", json::object()}});
+  std::string output;
+  auto run_here = [&](const std::string& text) {
+    for (const ScriptLine& line : parse_script(text, "test.script"))
+      if (!run_document_verb(doc, library, line, output))
+        throw Error(ErrorInfo{.file = line.where(), .message = "unknown verb"});
+  };
+  run_here(
+      "apply-preset test layers/wispy\n"
+      "expect test.Clouds/layers/1/octaves 2\n"
+      "set test.Clouds/layers/0/octaves 7\n"
+      "diff-preset test layers/wispy 0\n"
+      "apply-preset test layers/wispy 0\n"
+      "expect test.Clouds/layers/0/octaves 2\n"
+      "diff-preset test layers/wispy 0\n");
+  EXPECT_NE(output.find("test/layers/wispy differs in 2 field(s) coverage octaves"), std::string::npos)
+      << output;
+  EXPECT_NE(output.find("test/layers/wispy differs in 0 field(s)"), std::string::npos) << output;
+  EXPECT_THROW(run_here("apply-preset test layers/wispy 9"), Error);
+  EXPECT_THROW(run_here("apply-preset test layers/wispy -1"), Error);
+  EXPECT_THROW(run_here("apply-preset test layers/wispy one"), Error);
+}
+
 TEST_F(ScriptRun, TimelineVerbs) {
   std::string seq = (dir.path() / "day.json").string();
   run("load-scene " WELKIN_SOURCE_DIR "/assets/scenes/debug.json\n"

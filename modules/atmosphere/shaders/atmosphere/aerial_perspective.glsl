@@ -2,8 +2,9 @@
 // The atmosphere's public material include. A material that includes it (the pass binds the
 // atmosphere with welkin::atmosphere::bind_for_materials) can, for a camera-relative position in
 // metres, get the light between it and the camera and the sun, moon and sky light falling on it.
-// Opaque geometry gets aerial perspective from the atmosphere's deferred pass on the scene depth;
-// materials that write no depth (clouds, billboards, particles) call atmosphere_apply themselves.
+// Opaque geometry gets aerial perspective from the atmosphere's one deferred pass over the scene
+// depth (aerial_perspective_apply.frag/.comp); what writes no depth (the clouds' march, clusters and
+// billboards) asks the light environment's welkin_aerial_perspective (light_term.glsl) along its rays.
 #include "atmosphere/integrate.glsl"
 
 struct AtmosphereAerialPerspective {
@@ -49,11 +50,6 @@ AtmosphereAerialPerspective atmosphere_aerial_perspective(vec3 camera_relative_m
 #else
   return atm_aerial_perspective_froxels(camera_relative_m);
 #endif
-}
-
-vec3 atmosphere_apply(vec3 color, vec3 camera_relative_m) {
-  AtmosphereAerialPerspective ap = atmosphere_aerial_perspective(camera_relative_m);
-  return color * ap.transmittance + ap.inscattering;
 }
 
 // Illuminance (lux on a plane facing the light) at a point, through the air and the planet's shadow.

@@ -101,7 +101,7 @@ TEST(AtmosphereAccuracy, AllOrdersAgainstCachedPathTracedReferences) {
       std::filesystem::path(WELKIN_SOURCE_DIR) / "modules/atmosphere/validation/accuracy-references.json";
   // A cache made for another planet or other settings is ignored; here that would be a stale file.
   ASSERT_GT(cache.load(file.string()), 0u) << file << " does not match the default atmosphere: regenerate it "
-                                           << "with `welkin accuracy atmosphere --cache` (README)";
+                                           << "with `welkin accuracy atmosphere --cache` (see docs)";
   double sum_sq = 0.0;
   int n = 0;
   for (const ref::ProbeGeometry& g : kRays) {
@@ -113,7 +113,7 @@ TEST(AtmosphereAccuracy, AllOrdersAgainstCachedPathTracedReferences) {
                 describe(g).c_str(), e, max_rel(pt->radiance + pt->ci95, pt->radiance));
     for (int c = 0; c < 3; ++c)
       sum_sq += std::pow((gpu.radiance[c] - pt->radiance[c]) / pt->radiance[c], 2), ++n;
-    // The bound, for a sun 3 degrees up or higher (the sweep: 3.5% worst; README).
+    // The bound, for a sun 3 degrees up or higher (the sweep: 3.5% worst; docs/atmosphere.md).
     EXPECT_LT(e, 0.05) << describe(g);
   }
   const double rmse = std::sqrt(sum_sq / n);
@@ -124,7 +124,7 @@ TEST(AtmosphereAccuracy, AllOrdersAgainstCachedPathTracedReferences) {
 TEST(AtmosphereAccuracy, AllOrdersOverTheSweep) {
   // Every ray of `welkin accuracy atmosphere` at the default quality against the path tracer, by the
   // sun's elevation: the goals at -6 degrees (RMSE <= 4%, worst <= 12%), and the other bands
-  // bounded near their measured figures (README), so that a regression shows. With the sun 12
+  // bounded near their measured figures (docs/atmosphere.md), so that a regression shows. With the sun 12
   // degrees down the references' own 95% intervals reach 20%, so there a ray fails only beyond
   // twice its interval plus 15%.
   gl().make_current();

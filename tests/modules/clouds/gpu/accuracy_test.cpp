@@ -1,6 +1,6 @@
 // The GPU march against the path-traced reference through the same field (validation/cloud_probe.h), on
 // rays from below, inside and above a cumulus layer. The full sweep with run times is
-// `welkin accuracy clouds`; here a handful of rays guard the figures the README states.
+// `welkin accuracy clouds`; here a handful of rays guard the figures docs/clouds.md states.
 #include <cstdio>
 
 #include "clouds_test_support.h"
@@ -13,7 +13,7 @@ VolumetricClouds cumulus() {
   VolumetricClouds c;
   c.layers = {CloudLayer{.genus = Genus::cumulus, .base_altitude_m = 1500.0f, .thickness_m = 1200.0f, .coverage = 0.6f, .density_per_m = 0.03f}};
   c.shadows = true;  // the march reads the optical depth beyond its light steps from the shadow map
-  // The field the README's figures were measured on: the layer's own coverage everywhere (with the
+  // The field docs/clouds.md's figures were measured on: the layer's own coverage everywhere (with the
   // weather systems' slight change of the coverage the worst ray, a base, is 37% too bright).
   c.weather_system_amount = 0.0f;
   return c;

@@ -1,10 +1,11 @@
 // Bad cloud values in a scene file: one clear error naming the file and the field's path, before
 // anything is drawn. Round trips keep every field.
-#include "clouds_test_support.h"
-#include "welkin/core/error.h"
 #include <cstring>
 #include <filesystem>
+#include <set>
 
+#include "clouds_test_support.h"
+#include "welkin/core/error.h"
 #include "welkin/scene/json_fields.h"
 
 namespace welkin::clouds {
@@ -68,8 +69,8 @@ TEST(CloudsComponents, RoundTripKeepsEveryField) {
 namespace welkin::clouds {
 namespace {
 
-// Every scene preset is a valid clouds.VolumetricClouds, every genus preset a valid layer of its genus.
-TEST(CloudsPresets, EveryPresetFileLoadsAndEachGenusHasOne) {
+// Every scene preset is a valid clouds.VolumetricClouds, every other preset of its own component.
+TEST(CloudsPresets, EveryPresetFileLoads) {
   const std::filesystem::path dir = WELKIN_SOURCE_DIR "/modules/clouds/presets";
   int scenes = 0, clusters = 0, billboards = 0, lods = 0;
   for (const auto& e : std::filesystem::directory_iterator(dir)) {
@@ -104,12 +105,37 @@ TEST(CloudsPresets, EveryPresetFileLoadsAndEachGenusHasOne) {
   EXPECT_GE(clusters, 3);
   EXPECT_GE(billboards, 2);
   EXPECT_GE(lods, 1);
-  for (int g = 0; g <= int(Genus::cirrocumulus); ++g) {
-    const std::string name = genus_name(Genus(g));
+}
+
+// The genus table (genera.h) and the preset folder agree: each row has its preset file, a valid layer
+// of that genus, and each file in presets/genera is a row of the table. Nothing here counts genera.
+TEST(CloudsPresets, TheGenusTableAndTheGeneraFolderAgree) {
+  const std::filesystem::path dir = WELKIN_SOURCE_DIR "/modules/clouds/presets/genera";
+  std::set<std::string> rows;
+  for (int i = 0; i < kGenusCount; ++i) {
+    const GenusTraits& g = kGenera[i];
+    EXPECT_EQ(int(g.genus), i) << g.name;
+    EXPECT_STREQ(genus_name(g.genus), g.name);
+    EXPECT_TRUE(rows.insert(g.name).second) << g.name << " is in the table twice";
+    const std::filesystem::path file = dir / (std::string(g.name) + ".json");
+    ASSERT_TRUE(std::filesystem::is_regular_file(file)) << "no preset file for the genus " << g.name;
     CloudLayer layer;
-    EXPECT_NO_THROW(object_from_json(type_desc<CloudLayer>(), &layer, read_json_file((dir / "genera" / (name + ".json")).string())));
-    EXPECT_EQ(int(layer.genus), g) << name;
+    layer.genus = g.genus == Genus::cumulus ? Genus::stratus : Genus::cumulus;  // so a file without it fails
+    EXPECT_NO_THROW(object_from_json(type_desc<CloudLayer>(), &layer, read_json_file(file.string()))) << file;
+    EXPECT_EQ(layer.genus, g.genus) << file;
   }
+  std::set<std::string> files;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    if (e.path().extension() == ".json") files.insert(e.path().stem().string());
+  EXPECT_EQ(files, rows);
+  // The JSON reads and writes exactly the table's names.
+  const FieldDesc* genus = type_desc<CloudLayer>().field("genus");
+  ASSERT_NE(genus, nullptr);
+  std::set<std::string> names;
+  for (const EnumValue& v : genus->enum_values) names.insert(v.name);
+  EXPECT_EQ(names, rows);
+  EXPECT_THROW(genus_name(Genus(kGenusCount)), Error);
+  EXPECT_THROW(genus_traits(Genus(-1)), Error);
 }
 
 }  // namespace

@@ -42,7 +42,7 @@ std::vector<CloudLayer> many_layers(int n) {
     layers[size_t(i)].base_altitude_m = 500.0f + 97.0f * float(i);
     layers[size_t(i)].thickness_m = 300.0f + 11.0f * float(i % 7);
     layers[size_t(i)].coverage = 0.1f + 0.008f * float(i);
-    layers[size_t(i)].genus = Genus(i % 10);
+    layers[size_t(i)].genus = Genus(i % kGenusCount);
   }
   return layers;
 }

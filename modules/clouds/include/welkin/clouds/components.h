@@ -8,24 +8,10 @@
 #include <string_view>
 #include <vector>
 
+#include "welkin/clouds/genera.h"
 #include "welkin/core/reflection.h"
 
 namespace welkin::clouds {
-
-// The ten genera (WMO). The genus picks the shape model of a layer (domes with flat bases, sheets,
-// rolls, streaks) and the defaults of its preset file (presets/genera/<genus>.json).
-enum class Genus : int {
-  cumulus = 0,
-  stratus = 1,
-  stratocumulus = 2,
-  cumulonimbus = 3,
-  altocumulus = 4,
-  altostratus = 5,
-  nimbostratus = 6,
-  cirrus = 7,
-  cirrostratus = 8,
-  cirrocumulus = 9,
-};
 
 // One layer of clouds. Density at a point = weather (coverage) x vertical envelope x profile,
 // eroded by the shape and detail noise, times density_per_m.
@@ -262,6 +248,7 @@ inline constexpr int64_t kMaxSamplesPerRay = 65536;
 // Throws Error naming the field for values that fail together (ranges are checked by reflection).
 void validate(const VolumetricClouds& clouds);
 
+// The genus's name in the table (genera.h); throws Error for a value outside it.
 const char* genus_name(Genus genus);
 
 }  // namespace welkin::clouds

@@ -1,0 +1,55 @@
+#pragma once
+// The cloud genera (WMO), one row each. Adding a genus is a row here and its preset file
+// presets/genera/<name>.json; the Genus enum, the names the JSON reads and writes, the density
+// field's shape model and the mesh clusters' form all come from this table, and a test checks the
+// table against the preset folder.
+#include <cstddef>
+
+// X(name, dome, weather_frequency, cluster_form)
+//   dome: 0 a sheet .. 1 domes with flat bases; weather_frequency: the layer's weather frequency
+//   relative to VolumetricClouds::weather_period_m; cluster_form: how mesh clusters place its puffs.
+#define WELKIN_CLOUD_GENERA(X)        \
+  X(cumulus, 1.0f, 2.5f, heaps)       \
+  X(stratus, 0.0f, 0.5f, sheets)      \
+  X(stratocumulus, 0.4f, 1.6f, heaps) \
+  X(cumulonimbus, 1.0f, 0.4f, heaps)  \
+  X(altocumulus, 0.5f, 4.0f, heaps)   \
+  X(altostratus, 0.0f, 0.7f, sheets)  \
+  X(nimbostratus, 0.1f, 0.4f, sheets) \
+  X(cirrus, 0.2f, 2.5f, streaks)      \
+  X(cirrostratus, 0.0f, 0.5f, sheets) \
+  X(cirrocumulus, 0.3f, 8.0f, heaps)
+
+namespace welkin::clouds {
+
+// The genus picks the shape model of a layer (domes with flat bases, sheets, rolls, streaks) and the
+// defaults of its preset file. Values are the rows' order.
+enum class Genus : int {
+#define WELKIN_GENUS_ENUMERATOR(name, dome, weather_frequency, cluster_form) name,
+  WELKIN_CLOUD_GENERA(WELKIN_GENUS_ENUMERATOR)
+#undef WELKIN_GENUS_ENUMERATOR
+};
+
+// How mesh clusters place a genus's puffs; the values are those of shaders/clouds/clusters_place.comp.
+enum class ClusterForm : int { heaps = 0, sheets = 1, streaks = 2 };
+
+struct GenusTraits {
+  Genus genus;
+  const char* name;
+  float dome;               // 0 a sheet .. 1 domes with flat bases
+  float weather_frequency;  // relative to the weather's period
+  ClusterForm cluster_form;
+};
+
+inline constexpr GenusTraits kGenera[] = {
+#define WELKIN_GENUS_ROW(name, dome, weather_frequency, cluster_form) \
+  {Genus::name, #name, dome, weather_frequency, ClusterForm::cluster_form},
+    WELKIN_CLOUD_GENERA(WELKIN_GENUS_ROW)
+#undef WELKIN_GENUS_ROW
+};
+inline constexpr int kGenusCount = int(sizeof(kGenera) / sizeof(kGenera[0]));
+
+// The row of a genus; throws Error for a value outside the table (an int cast to Genus).
+const GenusTraits& genus_traits(Genus genus);
+
+}  // namespace welkin::clouds
