@@ -71,8 +71,8 @@ void main() {
     float step_opacity = 1.0 - exp(-sigma * dt);
     float below_m = max(p.z + u_volume.y, 0.0), above_m = max(u_box.y - p.z, 0.0);
     light += transmittance * step_opacity *
-             clouds_sample_source(mu, phase_single, tau, sigma, below_m, above_m, u_light_dir, v_up, b.light.rgb,
-                                  b.sky.rgb);
+             clouds_sample_source(mu, phase_single, tau, sigma, below_m, above_m, u_light_dir, v_up,
+                                  b.light.rgb, b.sky.rgb);
     if (transmittance > 0.5 && transmittance * (1.0 - step_opacity) <= 0.5) front = t;
     transmittance *= 1.0 - step_opacity;
   }
@@ -118,8 +118,9 @@ void main() {
   Billboard b = bb_billboards[v_billboard];
   float above_m = max(u_volume.y + u_box.y - height, 0.0);  // to the box's top
   vec3 source = clouds_diffusion_model
-      ? clouds_light_source(mu, phase_single, clouds_light_inputs(tau, sigma * scale, max(height, 0.0), above_m),
-                            u_light_dir, v_up, b.light.rgb, b.sky.rgb)
+      ? clouds_light_source(mu, phase_single,
+                            clouds_light_inputs(tau, sigma * scale, max(height, 0.0), above_m), u_light_dir,
+                            v_up, b.light.rgb, b.sky.rgb)
       : clouds_sample_source(mu, phase_single, tau, sigma * scale, max(height, 0.0), above_m,
                              u_light_dir, v_up, b.light.rgb, b.sky.rgb);
   light = opacity * source;
