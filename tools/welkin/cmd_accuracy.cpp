@@ -46,8 +46,8 @@ struct AccuracyOptions {
   std::string scene;  // godrays, clusters, clouds: the scene measured (each has its own default)
   std::string rays, image;  // clouds: a file of view rays; a scene whose path-traced image is made
   int paths_per_pixel = 64;
-  bool fit = false;
-  int fit_evaluations = 120;
+  bool fit = false, light_only = false;
+  std::vector<std::string> fit_also;
   std::vector<std::string> methods{"lut", "raymarch"}, qualities{"low", "medium", "high", "ultra"};
   int frames = 7, threads = 2;
   bool quick = false, json = false, check = false;
@@ -374,8 +374,8 @@ int run_accuracy(const AccuracyOptions& options) {
   if (o.technique == "clouds")
     return run_cloud_accuracy({.out = o.out, .size = o.size.empty() ? (o.image.empty() ? "640x360" : "96x54") : o.size,
                                .ghosting_scene = o.ghosting_scene, .scene = o.scene, .rays = o.rays, .image = o.image,
-                               .paths_per_pixel = o.paths_per_pixel, .fit = o.fit,
-                               .fit_evaluations = o.fit_evaluations, .qualities = o.qualities, .frames = o.frames,
+                               .cache = o.cache, .paths_per_pixel = o.paths_per_pixel, .fit = o.fit, .fit_also = o.fit_also, .light_only = o.light_only,
+                               .qualities = o.qualities, .frames = o.frames,
                                .quick = o.quick, .json = o.json});
   if (o.size.empty()) o.size = "640x360";
   if (o.technique != "atmosphere")
@@ -599,7 +599,8 @@ void add_accuracy_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", o->out, "Folder for the CSVs and the plot")->capture_default_str();
   cmd->add_option(
       "--cache", o->cache,
-      "Path-traced reference cache (default: the atmosphere module's validation/ folder, else --out)");
+      "Path-traced reference cache (atmosphere: default the module's validation/ folder, else --out; clouds: the "
+      "rays path traced, default $WELKIN_CACHE_DIR, $XDG_CACHE_HOME/welkin or ~/.cache/welkin)");
   cmd->add_option("-s,--size", o->size, "Frame size WxH for GPU time (godrays: also of the measured frame; default 320x180, else 640x360)");
   cmd->add_option("--ghosting-scene", o->ghosting_scene, "clouds: the scene the temporal upscaling flies through")
       ->capture_default_str();
@@ -615,11 +616,12 @@ void add_accuracy_command(CLI::App& app, int& exit_code) {
                   "clouds: instead of the sweep, the scene's view marched at each quality beside the path tracer's "
                   "image of the same rays and their difference (size from --size, default 96x54)");
   cmd->add_flag("--fit", o->fit,
-               "clouds: fit the multiple-scattering estimate's coefficients to the path tracer on the rays measured "
-               "(at high and low) and write light_model_fit.glsl into --out");
-  cmd->add_option("--fit-evaluations", o->fit_evaluations, "clouds --fit: the most evaluations of the rays")
-      ->check(CLI::Range(1, 10000))
-      ->capture_default_str();
+               "clouds: fit the light model's weights to the path tracer on the rays measured (at the --qualities "
+               "given) and write light_model_fit.glsl into --out");
+  cmd->add_option("--fit-also", o->fit_also,
+                  "clouds --fit: a further training set, SCENE,RAYS (two files; repeat for more)");
+  cmd->add_flag("--light-only", o->light_only,
+                "clouds: the rays' errors and the light model's term budget only (no GPU time, ghosting or aerial perspective)");
   cmd->add_option("--paths-per-pixel", o->paths_per_pixel, "clouds --image: paths per pixel of the path-traced image")
       ->check(CLI::Range(1, 65536))
       ->capture_default_str();

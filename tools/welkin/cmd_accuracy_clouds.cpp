@@ -10,7 +10,6 @@
 #include <sstream>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <nlopt.h>
 
 #include "commands.h"
 #include "error_plot.h"
@@ -25,6 +24,7 @@
 #include "welkin/atmosphere/components.h"
 #include "welkin/gfx/debug_content.h"
 #include "comparison_panels.h"
+#include "cloud_light_fit.h"
 
 namespace welkin::cli {
 
@@ -50,14 +50,6 @@ clouds::VolumetricClouds measured_clouds() {
   // Shadows on (the default): the march reads the optical depth beyond its light steps from the shadow map.
   return c;
 }
-
-// The clouds and the sun measured: a scene file's (after one update, so that a time of day has placed
-// the sun), or the built-in cumulus layer under a sun 40 degrees up.
-struct MeasuredCase {
-  clouds::VolumetricClouds clouds;
-  double sun_azimuth_deg = 200.0, sun_elevation_deg = 40.0;
-  Camera camera;
-};
 
 MeasuredCase case_from_scene(const std::string& file) {
   if (file.empty()) return {measured_clouds()};
@@ -297,141 +289,21 @@ int write_cloud_images(const CloudAccuracyOptions& o, const std::map<std::string
   return kOk;
 }
 
-// --fit: the multiple-scattering estimate's coefficients (light_model_fit.glsl) that minimise the
-// diffusion model's relative RMSE at `high` and `low` over the training rays (the built-in set, or
-// --scene and --rays), by NLopt's BOBYQA on their logarithms from the hand-set values. Deterministic:
-// fixed reference seeds, a fixed start and evaluation budget. Writes the shader file into --out; the
-// committed copy is modules/clouds/shaders/clouds/light_model_fit.glsl.
-struct FitCoefficient {
-  const char* name;
-  double start, low, high;
-  const char* meaning;
-};
-constexpr FitCoefficient kFitCoefficients[] = {
-    {"CLOUDS_MS_DIFFUSION", 0.15, 0.005, 2.0, "k in the diffuse transmittance 1 / (1 + k tau) toward the light"},
-    {"CLOUDS_MS_BASE", 0.159155, 0.001, 5.0, "the diffuse light's weight with no cloud below"},
-    {"CLOUDS_MS_BELOW", 0.0358099, 0.0001, 5.0, "its growth with the optical depth below"},
-    {"CLOUDS_MS_BELOW_SATURATION", 0.15, 0.001, 5.0, "the saturation of that growth"},
-    {"CLOUDS_MS_DIRECT", 0.25, 0.0, 1.0, "the share of the direct beam taken out of the diffuse light"},
-    {"CLOUDS_MS_POWDER", 10.0, 0.01, 1000.0, "the estimate's fade where the cloud around is thin"},
-    {"CLOUDS_DIRECT_DEPTH", 1.0, 0.2, 1.5, "the light march's optical depth as the direct beam sees it"},
-};
-
-struct FitProblem {
-  clouds::CloudProbe* probe;
-  const std::vector<CloudView>* views;
-  std::vector<double> reference;
-  double mean_reference = 0.0;
-  int evaluations = 0;
-  std::map<std::string, double> coefficients(const double* x) const {
-    std::map<std::string, double> c;
-    for (size_t i = 0; i < std::size(kFitCoefficients); ++i) c[kFitCoefficients[i].name] = x[i];
-    return c;
+// A scene's rays with their references and the probe that marches them.
+RaySet measure_set(const std::string& scene, const std::string& rays, const CloudAccuracyOptions& o,
+                   const clouds::reference::PathTraceSettings& settings) {
+  RaySet set;
+  set.measured = case_from_scene(scene);
+  set.views = rays.empty() ? measured_views(o.quick) : read_rays(rays);
+  set.name = (scene.empty() ? std::string("the built-in cumulus case") : scene) + (rays.empty() ? "" : " with " + rays);
+  set.probe = std::make_unique<clouds::CloudProbe>(set.measured.clouds, set.measured.sun_azimuth_deg, set.measured.sun_elevation_deg);
+  set.probe->set_reference_cache(o.cache.empty() ? DiskCache::from_environment() : DiskCache(o.cache));
+  for (size_t i = 0; i < set.views.size(); ++i) {
+    set.refs.push_back(set.probe->reference_radiance(set.views[i], settings));
+    std::fprintf(stderr, "\rreference %zu/%zu", i + 1, set.views.size());
   }
-  double rmse(Quality q) {
-    probe->clouds().quality = q;
-    double sum = 0.0;
-    for (size_t i = 0; i < views->size(); ++i) {
-      const double e = (probe->gpu_radiance((*views)[i]) - reference[i]) / mean_reference;
-      sum += e * e;
-    }
-    return std::sqrt(sum / double(views->size()));
-  }
-};
-
-double fit_objective(unsigned n, const double* x, double*, void* data) {
-  FitProblem& p = *static_cast<FitProblem*>(data);
-  p.probe->set_light_model_fit(p.coefficients(x));
-  const double high = p.rmse(Quality::high);
-  std::fprintf(stderr, "\rfit evaluation %d: RMSE high %.2f%%   ", ++p.evaluations, 100 * high);
-  (void)n;
-  return high * high;
-}
-
-int fit_light_model(const CloudAccuracyOptions& o, clouds::CloudProbe& probe, const std::vector<CloudView>& views,
-                    const std::vector<clouds::reference::CloudRadianceEstimate>& refs) {
-  FitProblem p{.probe = &probe, .views = &views};
-  for (const auto& r : refs) p.reference.push_back(r.radiance()), p.mean_reference += r.radiance() / double(refs.size());
-  probe.clouds().multiple_scattering = MultipleScattering::diffusion;
-  const unsigned n = unsigned(std::size(kFitCoefficients));
-  std::vector<double> x, lo, hi;
-  for (const FitCoefficient& c : kFitCoefficients) x.push_back(c.start), lo.push_back(c.low), hi.push_back(c.high);
-  const double start = fit_objective(n, x.data(), nullptr, &p);
-  nlopt_opt opt = nlopt_create(NLOPT_LN_BOBYQA, n);
-  nlopt_set_lower_bounds(opt, lo.data());
-  nlopt_set_upper_bounds(opt, hi.data());
-  nlopt_set_min_objective(opt, fit_objective, &p);
-  nlopt_set_maxeval(opt, o.fit_evaluations);
-  nlopt_set_xtol_rel(opt, 1e-3);
-  double best = 0.0;
-  const nlopt_result result = nlopt_optimize(opt, x.data(), &best);
-  nlopt_destroy(opt);
   std::fprintf(stderr, "\n");
-  if (result < 0) throw Error("the light model's fit failed (NLopt result " + std::to_string(int(result)) + ")");
-  probe.set_light_model_fit(p.coefficients(x.data()));
-  const double high = p.rmse(Quality::high), low = p.rmse(Quality::low);
-  std::ostringstream glsl;  // each define guarded alone: a partial override (the term budget's) keeps the rest
-  glsl << "#pragma once\n// The multiple-scattering estimate's coefficients (light_model.glsl), fitted to the project's path\n"
-          "// tracer by `welkin accuracy clouds --fit` (tools/welkin/cmd_accuracy_clouds.cpp), which wrote this file:\n"
-       << "// " << views.size() << " rays, " << (o.quick ? 1024 : 8192) << " paths each; relative RMSE at high "
-       << std::lround(1000 * std::sqrt(start)) / 10.0 << "% (from the hand-set values) -> high "
-       << std::lround(1000 * high) / 10.0 << "%, low " << std::lround(1000 * low) / 10.0 << "%.\n"
-       << "// The fit overrides them with defines while it searches.\n";
-  char value[32];
-  for (size_t i = 0; i < n; ++i) {
-    std::snprintf(value, sizeof value, "%.6g", x[i]);
-    std::string v = value;
-    if (v.find_first_of(".e") == std::string::npos) v += ".0";
-    glsl << "#ifndef " << kFitCoefficients[i].name << "  // " << kFitCoefficients[i].meaning << "\n#define "
-         << kFitCoefficients[i].name << " " << v << "\n#endif\n";
-  }
-  const std::string file = (fs::path(o.out) / "light_model_fit.glsl").string();
-  write_file_atomically(file, glsl.str());
-  std::printf("fit over %zu rays in %d evaluations: relative RMSE high %.1f%%, low %.1f%%; wrote %s\n", views.size(),
-              p.evaluations, 100 * high, 100 * low, file.c_str());
-  return kOk;
-}
-
-// The diffusion model's error term by term: single scattering alone (the multiple-scattering estimate's
-// coefficients zeroed) against the path tracer stopped after one scattering, and the estimate (the
-// rest of the light) against the rest of the path tracer's; relative to the mean full reference.
-void write_term_budget(clouds::CloudProbe& probe, const std::vector<CloudView>& views,
-                       const std::vector<clouds::reference::CloudRadianceEstimate>& refs,
-                       const std::map<std::string, Quality>& names, const CloudAccuracyOptions& o,
-                       clouds::reference::PathTraceSettings settings) {
-  settings.max_orders = 1;
-  std::vector<double> single_ref;
-  double mean_reference = 0.0;
-  for (size_t i = 0; i < views.size(); ++i) {
-    single_ref.push_back(probe.reference_radiance(views[i], settings).radiance());
-    mean_reference += refs[i].radiance() / double(views.size());
-  }
-  probe.clouds().multiple_scattering = MultipleScattering::diffusion;
-  std::ostringstream csv;
-  csv << "quality,view,altitude_m,heading_deg,pitch_deg,gpu,gpu_single,reference,reference_single\n";
-  std::printf("\nthe diffusion model term by term (relative RMSE / worst over the rays; sun only: no sky, no ground)\n"
-              "| quality | total | single scattering | multiple-scattering estimate |\n|---|---|---|---|\n");
-  for (const std::string& q : o.qualities) {
-    probe.clouds().quality = names.at(q);
-    probe.set_light_model_fit({});
-    std::vector<double> full;
-    for (const CloudView& v : views) full.push_back(probe.gpu_radiance(v));
-    probe.set_light_model_fit({{"CLOUDS_MS_BASE", 0.0}, {"CLOUDS_MS_BELOW", 0.0}});
-    double e2[3] = {0, 0, 0}, worst[3] = {0, 0, 0};
-    for (size_t i = 0; i < views.size(); ++i) {
-      const double single = probe.gpu_radiance(views[i]), r = refs[i].radiance();
-      const double e[3] = {(full[i] - r) / mean_reference, (single - single_ref[i]) / mean_reference,
-                           ((full[i] - single) - (r - single_ref[i])) / mean_reference};
-      for (int k = 0; k < 3; ++k) e2[k] += e[k] * e[k], worst[k] = std::max(worst[k], std::abs(e[k]));
-      csv << q << "," << views[i].name << "," << views[i].altitude_m << "," << views[i].heading_deg << "," << views[i].pitch_deg
-          << "," << full[i] << "," << single << "," << r << "," << single_ref[i] << "\n";
-    }
-    const double n = double(views.size());
-    std::printf("| %s | %.1f%% / %.1f%% | %.1f%% / %.1f%% | %.1f%% / %.1f%% |\n", q.c_str(), 100 * std::sqrt(e2[0] / n),
-                100 * worst[0], 100 * std::sqrt(e2[1] / n), 100 * worst[1], 100 * std::sqrt(e2[2] / n), 100 * worst[2]);
-  }
-  probe.set_light_model_fit({});
-  write_file_atomically((fs::path(o.out) / "accuracy-clouds-terms.csv").string(), csv.str());
+  return set;
 }
 
 int run_cloud_accuracy(const CloudAccuracyOptions& o) {
@@ -445,23 +317,28 @@ int run_cloud_accuracy(const CloudAccuracyOptions& o) {
       configs.push_back({names.at(q), m, std::string(m == MultipleScattering::diffusion ? "diffusion" : "octaves") + "/" + q});
     }
   if (!o.image.empty()) return write_cloud_images(o, names, width, height);
-  const MeasuredCase measured = case_from_scene(o.scene);
-  const std::vector<CloudView> views = o.rays.empty() ? measured_views(o.quick) : read_rays(o.rays);
   fs::create_directories(o.out);
   std::unique_ptr<GlContext> gl = create_headless_context();
   const std::string renderer = gl->info().renderer;
-  clouds::CloudProbe probe(measured.clouds, measured.sun_azimuth_deg, measured.sun_elevation_deg);
-
   // References once per ray (they do not depend on the GPU's settings).
   clouds::reference::PathTraceSettings settings;
   settings.samples = o.quick ? 1024 : 8192;
-  std::vector<clouds::reference::CloudRadianceEstimate> refs;
-  for (size_t i = 0; i < views.size(); ++i) {
-    refs.push_back(probe.reference_radiance(views[i], settings));
-    std::fprintf(stderr, "\rreference %zu/%zu", i + 1, views.size());
+  // The rays measured (--scene, --rays) and, for --fit, the further sets (--fit-also).
+  std::vector<RaySet> sets;
+  sets.push_back(measure_set(o.scene, o.rays, o, settings));
+  if (o.fit) {
+    for (const std::string& also : o.fit_also) {
+      const size_t comma = also.find(',');
+      if (comma == std::string::npos)
+        throw Error(ErrorInfo{.path = "--fit-also", .expected = "SCENE,RAYS (two files)", .found = "'" + also + "'"});
+      sets.push_back(measure_set(also.substr(0, comma), also.substr(comma + 1), o, settings));
+    }
+    return fit_light_model(o, sets, names);
   }
-  std::fprintf(stderr, "\n");
-  if (o.fit) return fit_light_model(o, probe, views, refs);
+  const MeasuredCase& measured = sets[0].measured;
+  clouds::CloudProbe& probe = *sets[0].probe;
+  const std::vector<CloudView>& views = sets[0].views;
+  const std::vector<clouds::reference::CloudRadianceEstimate>& refs = sets[0].refs;
 
   std::ostringstream rays_csv, csv;  // written atomically once complete
   rays_csv << "config,view,altitude_m,heading_deg,pitch_deg,gpu,reference,reference_ci95,relative_error\n";
@@ -473,7 +350,7 @@ int run_cloud_accuracy(const CloudAccuracyOptions& o) {
       o.scene.empty() ? CloudView{"cost", 100.0, 210.0, 8.0}
                       : CloudView{"cost", measured.camera.position_m.z, measured.camera.heading_deg, measured.camera.pitch_deg,
                                   measured.camera.position_m.x, measured.camera.position_m.y};
-  std::printf("errors relative to the mean reference radiance over the rays\n");
+  std::printf("errors relative to the mean reference radiance over the rays%s\n", o.light_only ? " (--light-only: not timed)" : "");
   std::printf("| model / quality | clouds ms | x copy | relative RMSE | worst |\n|---|---|---|---|---|\n");
   for (const CloudConfig& cfg : configs) {
     clouds::VolumetricClouds& c = probe.clouds();
@@ -494,7 +371,7 @@ int run_cloud_accuracy(const CloudAccuracyOptions& o) {
     const double rmse = std::sqrt(sum / double(views.size()));
     c.temporal_upscaling = true;
     // Frames that march: the view turns half a degree a frame (a still view keeps its clouds).
-    const clouds::CloudProbe::Cost cost = probe.cost(cost_view, width, height, o.frames);
+    const clouds::CloudProbe::Cost cost = o.light_only ? clouds::CloudProbe::Cost{0.0, 1.0} : probe.cost(cost_view, width, height, o.frames);
     c.temporal_upscaling = false;
     csv << cfg.name << "," << cost.clouds_ms << "," << cost.copy_ms << "," << cost.clouds_ms / cost.copy_ms << "," << rmse << "," << worst << "\n";
     std::printf("| %s | %.1f | %.0f | %.1f%% | %.1f%% |\n", cfg.name.c_str(), cost.clouds_ms, cost.clouds_ms / cost.copy_ms,
@@ -508,6 +385,7 @@ int run_cloud_accuracy(const CloudAccuracyOptions& o) {
   write_term_budget(probe, views, refs, names, o, settings);
   write_file_atomically((fs::path(o.out) / "accuracy-clouds-rays.csv").string(), rays_csv.str());
   write_file_atomically((fs::path(o.out) / "accuracy-clouds.csv").string(), csv.str());
+  if (o.light_only) return kOk;
   const std::string png = (fs::path(o.out) / "accuracy-clouds.png").string();
   write_error_plot(png, "welkin accuracy clouds: error against GPU time per frame",
                    "path-traced reference through the same field, " + std::to_string(views.size()) + " rays; " + o.size + ", " + renderer,

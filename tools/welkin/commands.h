@@ -33,9 +33,11 @@ struct CloudAccuracyOptions {
   std::string scene;  // the layers and sun measured ("": the built-in cumulus case)
   std::string rays;   // the view rays measured ("": the built-in set)
   std::string image;  // a scene: path-traced image panels instead of the sweep
+  std::string cache;  // the path-traced rays kept between runs ("": DiskCache::from_environment's folder)
   int paths_per_pixel = 64;
-  bool fit = false;  // fit the multiple-scattering coefficients instead of the sweep
-  int fit_evaluations = 120;
+  bool fit = false;  // fit the light model's weights instead of the sweep
+  std::vector<std::string> fit_also;  // --fit: further training sets, each "SCENE,RAYS"
+  bool light_only = false;  // the rays' errors and the term budget only: no GPU time, ghosting or aerial perspective
   std::vector<std::string> qualities{"low", "medium", "high", "ultra"};
   int frames = 5;
   bool quick = false, json = false;

@@ -2,14 +2,15 @@
 
 #include <algorithm>
 #include <atomic>
-#include <thread>
 #include <cmath>
+#include <cstring>
 #include <nlohmann/json.hpp>
+#include <thread>
 
-#include "reference/medium.h"
-#include "reference/phase.h"
 #include "cloud_field.h"
 #include "clouds_gpu.h"
+#include "reference/medium.h"
+#include "reference/phase.h"
 #include "welkin/core/module.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/debug_content.h"
@@ -111,8 +112,8 @@ void CloudProbe::aim(const CloudView& view) {
 
 double CloudProbe::gpu_radiance(const CloudView& view) {
   aim(view);
-  renderer_->render_frame(FrameInfo{.index = frame_++}, 1, 1);
-  return renderer_->read_hdr().rgba[1];
+  renderer_->render_frame(FrameInfo{.index = frame_++}, 1, kRows);
+  return renderer_->read_hdr().pixel(0, kRows / 2)[1];
 }
 
 struct CloudProbe::ReferenceScene {
@@ -136,15 +137,98 @@ std::unique_ptr<CloudProbe::ReferenceScene> CloudProbe::reference_scene() {
   return std::make_unique<ReferenceScene>(CloudField(read_noise(gpu), gpu.block, gpu.layers), clouds());
 }
 
+namespace {
+
+// What a cached reference ray depends on (reference_radiance): everything but the big inputs is
+// written out; the noise, the layers and the field along the ray enter as hashes.
+std::string reference_key(const VolumetricClouds& clouds, const CloudField& field, const ref::Medium& medium,
+                          const NoiseVolumes& noise, const std::vector<LayerBlock>& layers,
+                          const CloudView& view, const ref::Ray& ray, const glm::dvec3& sun,
+                          const ref::PathTraceSettings& s) {
+  uint64_t noise_hash = DiskCache::hash({});
+  for (const std::vector<uint8_t>* v :
+       {&noise.shape, &noise.detail, &noise.weather, &noise.systems, &noise.coverage_map})
+    noise_hash =
+        DiskCache::hash(std::string_view(reinterpret_cast<const char*>(v->data()), v->size()), noise_hash);
+  const uint64_t layers_hash = DiskCache::hash(
+      std::string_view(reinterpret_cast<const char*>(layers.data()), layers.size() * sizeof(LayerBlock)));
+  // The field as the ray sees it: 1024 points spread over the stretches where it may be non-zero.
+  double length = 0.0;
+  const ref::MajorantSegments segments = medium.segments(ray);
+  for (const ref::MajorantSegment& g : segments) length += g.t1 - g.t0;
+  uint64_t field_hash = DiskCache::hash({});
+  for (int i = 0; i < 1024 && length > 0.0; ++i) {
+    double into = (i + 0.5) * length / 1024.0, t = 0.0;  // distance into the stretches, and along the ray
+    for (const ref::MajorantSegment& g : segments) {
+      t = g.t0 + into;
+      if (into <= g.t1 - g.t0) break;
+      into -= g.t1 - g.t0;
+    }
+    const double e = field.extinction(ray.origin + ray.direction * t);
+    field_hash = DiskCache::hash(std::string_view(reinterpret_cast<const char*>(&e), sizeof e), field_hash);
+  }
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "|sun %.17g %.17g %.17g|view %.17g %.17g %.17g %.17g %.17g|paths %llu seed %llu orders %d "
+                "roulette %d batch %llu "
+                "steps %llu|noise %016llx layers %016llx field %016llx",
+                sun.x, sun.y, sun.z, view.east_m, view.north_m, view.altitude_m, view.heading_deg,
+                view.pitch_deg, (unsigned long long)s.samples, (unsigned long long)s.seed, s.max_orders,
+                s.roulette_start_order, (unsigned long long)s.batch_size,
+                (unsigned long long)s.max_steps_per_path, (unsigned long long)noise_hash,
+                (unsigned long long)layers_hash, (unsigned long long)field_hash);
+  return "clouds reference ray v1|" + object_to_json(type_desc<VolumetricClouds>(), &clouds).dump() + text;
+}
+
+// A reference ray as the cache stores it.
+struct StoredEstimate {
+  double scattered[2], transmittance[2], background[2], mean_scattering_events, wall_ms;
+  uint64_t samples, truncated_paths, majorant_violations;
+};
+
+}  // namespace
+
 ref::CloudRadianceEstimate CloudProbe::reference_radiance(const CloudView& view,
                                                           const ref::PathTraceSettings& settings) {
   aim(view);
   renderer_->render_frame(FrameInfo{.index = frame_++}, 1, 1);  // this view's frame block and layers
-  const std::unique_ptr<ReferenceScene> scene = reference_scene();
+  const CloudsGpu& gpu = world_->resource<CloudsGpu>();
+  NoiseVolumes noise = read_noise(gpu);
+  const ReferenceScene scene(CloudField(noise, gpu.block, gpu.layers), clouds());
   const glm::dvec3 dir = direction_from_azimuth_elevation(view.heading_deg, view.pitch_deg);
-  return ref::path_trace(scene->medium, *scene->phase, ref::Ray{glm::dvec3(0.0), dir},
-                         ref::Lighting{.sun_direction = sun_direction_, .sun_irradiance = kSunIlluminance},
-                         settings);
+  const ref::Ray ray{glm::dvec3(0.0), dir};
+  std::string key;
+  if (cache_.enabled()) {
+    key = reference_key(clouds(), scene.field, scene.medium, noise, gpu.layers, view, ray, sun_direction_,
+                        settings);
+    if (const auto bytes = cache_.read(key, sizeof(StoredEstimate))) {
+      StoredEstimate s;
+      std::memcpy(&s, bytes->data(), sizeof s);
+      ref::CloudRadianceEstimate r;
+      r.scattered = {s.scattered[0], s.scattered[1]},
+      r.transmittance = {s.transmittance[0], s.transmittance[1]};
+      r.background = {s.background[0], s.background[1]};
+      r.samples = s.samples, r.mean_scattering_events = s.mean_scattering_events,
+      r.truncated_paths = s.truncated_paths;
+      r.majorant_violations = s.majorant_violations, r.wall_ms = s.wall_ms;
+      return r;
+    }
+  }
+  const ref::CloudRadianceEstimate r = ref::path_trace(
+      scene.medium, *scene.phase, ray,
+      ref::Lighting{.sun_direction = sun_direction_, .sun_irradiance = kSunIlluminance}, settings);
+  if (cache_.enabled()) {
+    const StoredEstimate s{{r.scattered.mean, r.scattered.ci95},
+                           {r.transmittance.mean, r.transmittance.ci95},
+                           {r.background.mean, r.background.ci95},
+                           r.mean_scattering_events,
+                           r.wall_ms,
+                           r.samples,
+                           r.truncated_paths,
+                           r.majorant_violations};
+    cache_.write(key, std::string_view(reinterpret_cast<const char*>(&s), sizeof s));
+  }
+  return r;
 }
 
 std::vector<double> CloudProbe::gpu_image(const Camera& camera, int width, int height) {

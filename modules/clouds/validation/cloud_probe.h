@@ -1,7 +1,7 @@
 #pragma once
 // The GPU march against the CPU reference on single view rays through the same cloud field: a world
 // with the clouds, a white sun (core.DirectionalLight, 100 klx, no sky light, no air, no ground
-// bounce) so that both see exactly the same light, and a 1x1 frame aimed along each ray.
+// bounce) so that both see exactly the same light, and a frame aimed along each ray (kRows).
 #include <glm/glm.hpp>
 #include <map>
 #include <memory>
@@ -9,6 +9,7 @@
 
 #include "reference/cloud_path_tracer.h"
 #include "welkin/clouds/components.h"
+#include "welkin/core/disk_cache.h"
 #include "welkin/gfx/camera.h"
 
 namespace welkin {
@@ -32,12 +33,24 @@ class CloudProbe {
   CloudProbe(const VolumetricClouds& clouds, double sun_azimuth_deg, double sun_elevation_deg);
   ~CloudProbe();
   static constexpr double kSunIlluminance = 100000.0;
+  // Each ray is the middle pixel of a frame one pixel wide and kRows high, one degree high: the pixel
+  // a 1080p frame 60 degrees high has, so that the march reads the noise at the mip level such a frame
+  // reads (it follows the pixel's footprint; a 1x1 frame one degree high read the detail noise 2 km
+  // away blurred over 35 m, where the reference sees it sharp). Odd, and odd at every quality's march
+  // resolution (ceil(17 x 0.25, 0.4, 0.5, 1) = 5, 7, 9, 17): the middle march pixel is the ray.
+  static constexpr int kRows = 17;
 
-  // Radiance (cd/m^2, green channel) of the ray through the centre of a 1x1 frame.
+  // Radiance (cd/m^2, green channel) of the ray through the middle of the frame.
   double gpu_radiance(const CloudView& view);
-  // The path-traced radiance of the same ray through the same field (the noise read back).
+  // The path-traced radiance of the same ray through the same field (the noise read back); from the
+  // reference cache when it holds the same ray, light, settings and field (see set_reference_cache).
   reference::CloudRadianceEstimate reference_radiance(const CloudView& view,
                                                       const reference::PathTraceSettings& settings);
+  // Keeps path-traced rays between runs (disabled by default). A ray's key holds the clouds'
+  // settings, the sun, the ray, the path tracer's settings, hashes of the noise volumes and the
+  // layers, and of the field's extinction at 1024 points along the ray: a change to the field's
+  // code or data that the ray can see reads as a miss.
+  void set_reference_cache(DiskCache cache) { cache_ = std::move(cache); }
   // Median GPU milliseconds of the clouds' passes per frame of width x height, and of a copy.
   struct Cost {
     double clouds_ms = 0.0, copy_ms = 0.0;
@@ -66,6 +79,7 @@ class CloudProbe {
   std::unique_ptr<Renderer> renderer_;
   glm::dvec3 sun_direction_;
   uint64_t frame_ = 0;
+  DiskCache cache_;
 };
 
 }  // namespace welkin::clouds

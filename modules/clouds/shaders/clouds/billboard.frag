@@ -69,8 +69,9 @@ void main() {
     if (sigma <= 0.0) continue;
     float tau = billboard_march_depth(p, l_local, archetype, 24) * scale;
     float step_opacity = 1.0 - exp(-sigma * dt);
+    float below_m = max(p.z + u_volume.y, 0.0), above_m = max(u_box.y - p.z, 0.0);
     light += transmittance * step_opacity *
-             clouds_sample_source(mu, phase_single, tau, sigma, max(p.z + u_volume.y, 0.0), u_light_dir, v_up,
+             clouds_sample_source(mu, phase_single, tau, sigma, below_m, above_m, u_light_dir, v_up,
                                   b.light.rgb, b.sky.rgb);
     if (transmittance > 0.5 && transmittance * (1.0 - step_opacity) <= 0.5) front = t;
     transmittance *= 1.0 - step_opacity;
@@ -113,14 +114,15 @@ void main() {
   // The averaged diffuse transmittance toward the light, and the optical depth it stands for (the
   // direct beam's own average, kept in a third layer, measured no better: 10.0% against 10.1%).
   float tau = scale * (1.0 / billboard_transmittance(sh_diffuse, l_local, 0.02) - 1.0) / 0.15;
-  float direct = clouds_direct_transmittance(tau), diffuse = clouds_diffuse_transmittance(tau);
   float phase_single = clouds_phase(mu, 1.0);
   Billboard b = bb_billboards[v_billboard];
+  float above_m = max(u_volume.y + u_box.y - height, 0.0);  // to the box's top
   vec3 source = clouds_diffusion_model
-                    ? clouds_diffusion_source(mu, phase_single, direct, diffuse, sigma * scale,
-                                              max(height, 0.0), u_light_dir, v_up, b.light.rgb, b.sky.rgb)
-                    : clouds_sample_source(mu, phase_single, tau, sigma * scale, max(height, 0.0),
-                                           u_light_dir, v_up, b.light.rgb, b.sky.rgb);
+      ? clouds_light_source(mu, phase_single,
+                            clouds_light_inputs(tau, sigma * scale, max(height, 0.0), above_m), u_light_dir,
+                            v_up, b.light.rgb, b.sky.rgb)
+      : clouds_sample_source(mu, phase_single, tau, sigma * scale, max(height, 0.0), above_m,
+                             u_light_dir, v_up, b.light.rgb, b.sky.rgb);
   light = opacity * source;
   if (opacity > 0.5) front = t_half;
 #endif

@@ -64,6 +64,11 @@ float clouds_detail_displacement = 0.0;
 // The cloud below the last point clouds_density evaluated: its layers' depth under the point (m),
 // weighted by their density there (the light reflected up from it).
 float clouds_depth_below_m = 0.0;
+// And its depth over the point, up to the top of its column as the weather shapes it (m).
+float clouds_depth_above_m = 0.0;
+// The optical depths of the column under and over the point at the density the weather gives it
+// before the noise erodes it (the cloud's body, where the point itself may be a thin wisp).
+float clouds_column_below = 0.0, clouds_column_above = 0.0;
 float clouds_painted_sample = 2.0;  // > 1: not read yet at this point
 // CLOUDS_HANDOVER: some layer is handed over to the mesh clusters beyond a distance; the march sets
 // this while it samples what the camera sees (not toward the light).
@@ -186,6 +191,11 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
   }
 #endif
   clouds_depth_below_m += d * L.density_per_m * t * L.thickness_m;
+  // The column's top: where the envelope's fade from top * 0.75 to top is half way.
+  float above_m = max(0.875 * mix(1.0, max(d0, 0.05), L.dome) - t, 0.0) * L.thickness_m;
+  clouds_depth_above_m += d * L.density_per_m * above_m;
+  clouds_column_below += d * L.density_per_m * (L.density_per_m * d0 * t * L.thickness_m);
+  clouds_column_above += d * L.density_per_m * (L.density_per_m * d0 * above_m);
   return d * L.density_per_m;
 }
 
@@ -233,7 +243,8 @@ float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
   empty = true;
   clouds_detail_sample = -1.0, clouds_painted_sample = 2.0;
   clouds_detail_displacement = 0.0;
-  clouds_depth_below_m = 0.0;
+  clouds_depth_below_m = 0.0, clouds_depth_above_m = 0.0;
+  clouds_column_below = 0.0, clouds_column_above = 0.0;
   float h = clouds_altitude(x);
   if (h < cl.lowest_m || h > cl.highest_m) return 0.0;
   // The shape noise is the same for every layer: read once.
@@ -263,6 +274,8 @@ float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
   }
 #endif
   clouds_depth_below_m /= max(sum, 1e-12);
+  clouds_depth_above_m /= max(sum, 1e-12);
+  clouds_column_below /= max(sum, 1e-12), clouds_column_above /= max(sum, 1e-12);
   return sum;
 }
 float clouds_density(vec3 x, bool detail, bool shadow_only) {

@@ -1,15 +1,11 @@
 #pragma once
 // The light a cloud sample scatters toward the camera, per unit extinction (the albedo included):
-// shared by the march and the mesh clusters' puffs, so that both paths light one cloud alike.
+// shared by the march, the mesh clusters' puffs and the billboards, so that the paths light one cloud
+// alike (docs/clouds-light.md).
 //   mu: cosine between the view ray and the direction toward the light; phase_single: the phase at mu;
-//   tau: optical depth toward the light; sigma_t: extinction at the sample (1/m);
-//   depth_below_m: the cloud's depth under the sample (its light reflected back up); l: toward the
-//   light; up: the local vertical; e_light, e_sky: the light's and the sky's irradiance there.
+//   CloudsLightInputs: what each path measures about the sample (below); l: toward the light; up: the
+//   local vertical; e_light, e_sky: the light's and the sky's irradiance there.
 // Needs clouds/density.glsl (the block) and clouds/phase.glsl.
-// The two ways the optical depth toward the light enters the diffusion model: the direct beam's
-// transmittance exp(-tau), and the two-stream (diffuse) transmittance 1 / (1 + 0.15 tau). The source
-// is linear in both, so an average of sources over many samples is the source of their averages
-// (the billboards' atlas keeps those averages toward every direction).
 // CLOUDS_MULTIPLE_SCATTERING and CLOUDS_POWDER (src/density_field.cpp, light_model_defines) compile the
 // model's choices in; undefined, they are read from the block.
 #include "clouds/transmittance.glsl"
@@ -19,6 +15,19 @@ const bool clouds_diffusion_model = CLOUDS_MULTIPLE_SCATTERING == 1;
 #define clouds_diffusion_model (cl.multiple_scattering > 0.5)
 #endif
 
+// What the diffusion model reads about a sample. The transmittances toward the light enter linearly,
+// so an average of sources over many samples is the source of their averages (the billboards' atlas
+// keeps those averages toward every direction).
+struct CloudsLightInputs {
+  float direct;                      // the direct beam's transmittance toward the light
+  float diffuse;                     // the two-stream (diffuse) transmittance toward the light
+  float sigma_t;                     // extinction at the sample (1/m)
+  float depth_below_m;               // the cloud's depth under the sample (the light it reflects back up)
+  float depth_above_m;               // and over it, up to the top of its column (the light it lets down)
+  float octave4, octave16;           // exp(-tau / 4), exp(-tau / 16)
+  float column_below, column_above;  // the optical depths of the cloud's body under and over the sample
+};
+
 // Schneider's beer-powder darkening of thin edges (cl.powder = 0: off).
 float clouds_powder(float sigma_t) {
 #ifdef CLOUDS_POWDER
@@ -27,41 +36,95 @@ float clouds_powder(float sigma_t) {
   return 1.0 - cl.powder * exp(-2.0 * sigma_t * cl.light_step_m);
 }
 
-// The diffusion model's source from the two transmittances (see clouds_sample_source).
-vec3 clouds_diffusion_source(float mu, float phase_single, float direct, float diffuse, float sigma_t,
-                             float depth_below_m, vec3 l, vec3 up, vec3 e_light, vec3 e_sky) {
-  // Single scattering, and the multiple-scattering estimate: the diffuse light a conservative slab
-  // lets through beyond the direct beam (its two-stream transmittance toward the light), times what
-  // the cloud below sends back up: in a slab the diffuse light falls linearly from the lit top to the
-  // base, so a point with little cloud under it (a base) keeps little of it and one deep above the
-  // base (a top) gathers the reflection of all the cloud beneath. The form is (base + below tau_b) /
-  // (1 + saturation tau_b), tau_b the optical depth below; its coefficients are fitted to the path
-  // tracer (light_model_fit.glsl).
-  float tau_below = sigma_t * depth_below_m;
-  float below =
-      (CLOUDS_MS_BASE + CLOUDS_MS_BELOW * tau_below) / (1.0 + CLOUDS_MS_BELOW_SATURATION * tau_below);
-  // Where the cloud is thin around the point (its outskirts, wisps) little light has been scattered
-  // toward it from its neighbours: the multiple-scattering estimate fades with the optical depth of
-  // the first light step at the local density (the physical side of Schneider's "powder").
-  float neighbours = 1.0 - exp(-CLOUDS_MS_POWDER * sigma_t * cl.light_step_m);
-  float scattered =
-      phase_single * direct + max(diffuse - CLOUDS_MS_DIRECT * direct, 0.0) * below * neighbours;
-  scattered *= clouds_powder(sigma_t);
+// The multiple-scattering estimate: a sum of terms, each a physical shape with a weight fitted to the
+// path tracer (light_model_fit.glsl; `welkin accuracy clouds --fit` solves for the weights as a
+// non-negative least-squares problem, the march being linear in them). With tau the optical depth
+// toward the light, tau_b and tau_a the optical depths below and above (local extinction times the
+// depths), T_d the two-stream transmittance, T the direct beam's, S(x) = x / (1 + k x) the slab's
+// saturating reflection, D = T_d(tau) - T(tau) >= 0 the diffuse light beyond the direct beam:
+//   0  D                        the diffuse light a conservative slab lets through toward the light
+//   1  D S(tau_b)               ... gathered from the cloud below (a top sees all of it, a base none)
+//   2  D p_2(mu)                ... forward-peaked: second-order scattering keeps half the anisotropy
+//   3  mu_0 T_d(tau_a)          the light the cloud's top takes in (mu_0 of the sun's), let down
+//                               through the cloud above: a base under a thick column is dark
+//   4  mu_0 T_d(tau_a) S(tau_b) ... and reflected back up by the cloud below
+//   5  T_d(tau)                 the diffuse light toward the light, direct beam included
+//   6  T_d(tau) S(tau_b)        ... gathered from below
+//   7  D T_d(tau_a)             the diffuse light toward the light that the column above also lets by
+//   8  exp(-tau / 4)            octaves (Wrenninge): light scattered a few times sees a fraction of
+//   9  exp(-tau / 16)           the optical depth
+//  10  exp(-tau / 4) p_2(mu)    ... with half the anisotropy
+// All fade where the cloud around the sample is thin (its outskirts, wisps: little light has been
+// scattered toward it by neighbours, the physical side of Schneider's "powder"), by
+// 1 - exp(-n sigma_t l_1), l_1 the first light step.
+// Two-stream theory's k = 0.75 (1 - g) for the clouds' phase function, g its mean cosine (the dual
+// lobes' weighted g; the droplet fit's lobes likewise): the default lobes (g = 0.7 and -0.2, half
+// each) have g = 0.25, k = 0.56, a cloud three to four times as diffusive as the g = 0.8 of
+// CLOUDS_MS_DIFFUSION (which the ground's shading through the clouds keeps).
+float clouds_two_stream_k() {
+#ifdef CLOUDS_PHASE_MODEL
+  const bool droplets = CLOUDS_PHASE_MODEL == 1;
+#else
+  bool droplets = cl.phase_model > 0.5;
+#endif
+  float d = cl.droplet_diameter_um;
+  float w_d = exp(-0.599085 / (d - 0.641583) - 0.665888);
+  float g = droplets ? (1.0 - w_d) * exp(-0.0990567 / (d - 1.67154)) +
+                           w_d * exp(-2.20679 / (d + 3.91029) - 0.428934)
+                     : mix(cl.g_backward, cl.g_forward, cl.forward_weight);
+  return 0.75 * (1.0 - g);
+}
+float clouds_slab_diffuse(float tau) {
+  return 1.0 / (1.0 + clouds_two_stream_k() * tau);
+}
+float clouds_slab_reflection(float tau) {
+  return tau / (1.0 + clouds_two_stream_k() * tau);
+}
+float clouds_multiple_scattering(float mu, CloudsLightInputs s, vec3 l, vec3 up) {
+  float tau_below = s.sigma_t * s.depth_below_m, tau_above = s.sigma_t * s.depth_above_m;
+  float reflection = clouds_slab_reflection(tau_below);
+  float through_above = clouds_slab_diffuse(tau_above);
+  float above = max(dot(l, up), 0.0) * through_above;
+  float beyond = max(s.diffuse - s.direct, 0.0);
+  float forward = clouds_phase(mu, 0.5) * 4.0 * CLOUDS_PI;
+  float sum = beyond * (CLOUDS_MS_W0 + CLOUDS_MS_W1 * reflection + CLOUDS_MS_W2 * forward +
+                        CLOUDS_MS_W7 * through_above) +
+              above * (CLOUDS_MS_W3 + CLOUDS_MS_W4 * reflection) +
+              s.diffuse * (CLOUDS_MS_W5 + CLOUDS_MS_W6 * reflection) +
+              s.octave4 * (CLOUDS_MS_W8 + CLOUDS_MS_W10 * forward) + CLOUDS_MS_W9 * s.octave16;
+  float body_reflection = clouds_slab_reflection(s.column_below);
+  float body_above = max(dot(l, up), 0.0) * clouds_slab_diffuse(s.column_above);
+  sum += body_reflection * (CLOUDS_MS_W11 * beyond + CLOUDS_MS_W13 * s.diffuse + CLOUDS_MS_W15 * s.octave16) +
+         body_above * (CLOUDS_MS_W12 + CLOUDS_MS_W14 * body_reflection);
+  return sum * (1.0 - exp(-CLOUDS_MS_POWDER * s.sigma_t * cl.light_step_m));
+}
+
+vec3 clouds_light_source(float mu, float phase_single, CloudsLightInputs s, vec3 l, vec3 up, vec3 e_light,
+                         vec3 e_sky) {
+  float scattered = CLOUDS_SS_WEIGHT * phase_single * s.direct + clouds_multiple_scattering(mu, s, l, up);
+  scattered *= clouds_powder(s.sigma_t);
   // Sky from above and the lit ground from below, diffused through the cloud: the two-stream
-  // transmittance 1 / (1 + 0.75 (1 - g) tau) with g = 0.8, tau the optical depth toward the light
-  // (no extra samples: on software rasterisers each density sample is most of a step's cost).
-  vec3 e_ground = cl.ground_albedo * (e_light * max(dot(l, up), 0.0) * direct + e_sky);
-  vec3 ambient = (e_sky + e_ground) * diffuse / (2.0 * CLOUDS_PI);
+  // transmittance toward the light (no extra samples: on software rasterisers each density sample is
+  // most of a step's cost).
+  vec3 e_ground = cl.ground_albedo * (e_light * max(dot(l, up), 0.0) * s.direct + e_sky);
+  vec3 ambient = (e_sky + e_ground) * s.diffuse / (2.0 * CLOUDS_PI);
   float albedo = cl.scattering / max(cl.scattering + cl.absorption, 1e-9);
   return albedo * (e_light * scattered + ambient);
 }
 
-vec3 clouds_sample_source(float mu, float phase_single, float tau, float sigma_t, float depth_below_m, vec3 l,
-                          vec3 up, vec3 e_light, vec3 e_sky) {
+// The inputs from the optical depth toward the light.
+CloudsLightInputs clouds_light_inputs(float tau, float sigma_t, float depth_below_m, float depth_above_m) {
+  return CloudsLightInputs(clouds_direct_transmittance(tau), clouds_slab_diffuse(tau), sigma_t, depth_below_m,
+                           depth_above_m, exp(-0.25 * tau), exp(-0.0625 * tau), sigma_t * depth_below_m,
+                           sigma_t * depth_above_m);
+}
+
+vec3 clouds_sample_source(float mu, float phase_single, float tau, float sigma_t, float depth_below_m,
+                          float depth_above_m, vec3 l, vec3 up, vec3 e_light, vec3 e_sky) {
   if (clouds_diffusion_model)
-    return clouds_diffusion_source(mu, phase_single, clouds_direct_transmittance(tau),
-                                   clouds_diffuse_transmittance(tau), sigma_t, depth_below_m, l, up, e_light,
-                                   e_sky);
+    return clouds_light_source(mu, phase_single,
+                               clouds_light_inputs(tau, sigma_t, depth_below_m, depth_above_m), l, up,
+                               e_light, e_sky);
   // Wrenninge 2015: octave k scatters b^k of the light, sees a^k of the optical depth, and a
   // phase whose anisotropy is scaled by c^k (a = b = c = 1/2).
   float scattered = 0.0;

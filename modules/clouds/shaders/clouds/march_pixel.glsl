@@ -14,6 +14,7 @@
 #include "clouds/phase.glsl"
 #include "clouds/light_model.glsl"
 #include "welkin/lighting.glsl"
+#include "clouds/light_march.glsl"
 #include "welkin/view.glsl"
 
 // Temporal upscaling marches one pixel of each N x N block per frame: pixel p of the march's target
@@ -70,23 +71,6 @@ float scene_distance(vec2 ndc) {
   if (depth <= 0.0) return 3.4e38;
   vec4 p = cl.inverse_view_projection * vec4(ndc, depth, 1.0);
   return length(p.xyz / p.w);
-}
-
-// Optical depth toward the light from x (in density times metres): steps that double from the
-// first light step, then, toward the sun, the rest of the way from the clouds' shadow map (its
-// optical depth between the sun and where the steps end; layers that cast shadows only). The detail
-// noise is left out: it erodes edges the light crosses at most once.
-float light_optical_depth(vec3 x, vec3 l, float extinction_per_density) {
-  float tau = 0.0, s = 0.0, step_m = cl.light_step_m;
-  int n = int(cl.light_steps);
-  for (int k = 0; k < n; ++k) {
-    tau += clouds_density(x + l * (s + 0.5 * step_m), false, false) * step_m;
-    s += step_m;
-    step_m *= 2.0;
-  }
-  if (cl.moon_marched < 0.5)
-    tau += clouds_shadow_optical_depth(x + l * s) / max(extinction_per_density, 1e-9);
-  return tau;
 }
 
 struct Accumulated {
@@ -155,14 +139,14 @@ void march_segment(vec3 dir, vec2 segment, float start, float jitter, inout Accu
       continue;
     }
     {
-      float depth_below_m = clouds_depth_below_m;  // before the light march evaluates other points
+      // Before the light march evaluates other points.
+      CloudsSampleGeometry geometry = clouds_sample_geometry();
       float sigma_t = density * extinction_per_density;
       float along = clamp((t - segment.x) * inverse_length, 0.0, 1.0);
       vec3 up = normalize(mix(up0, up1, along));
       vec3 e_light = mix(e_light0, e_light1, along), e_sky = mix(e_sky0, e_sky1, along);
-      float tau = light_optical_depth(x, l, extinction_per_density) * extinction_per_density;
-      vec3 source =
-          clouds_sample_source(mu, phase_single, tau, sigma_t, depth_below_m, l, up, e_light, e_sky);
+      vec3 source = clouds_marched_source(x, l, mu, phase_single, sigma_t, extinction_per_density, geometry,
+                                          up, e_light, e_sky);
       // Energy-conserving step (Hillaire 2015): integrate the source over the step's own attenuation.
       float step_transmittance = exp(-sigma_t * step_m);
       vec3 step_light = source * (1.0 - step_transmittance);

@@ -83,8 +83,10 @@ void main() {
                 max(v_light_gradient.w + dot(v_light_gradient.xyz, local), 0.0);
     // The cloud under the sample, from the cluster's base (the march's depth in its layer).
     float depth_below_m = max(v_sky.w + local.z * radii.z, 0.0);
+    // And over it, to the puff's top (the cluster's other puffs are not above it).
+    float depth_above_m = max(sqrt(max(1.0 - dot(local.xy, local.xy), 0.0)) - local.z, 0.0) * radii.z;
     source += clouds_sample_source(mu, phase_single, tau, sigma * max(1.0 - q, 0.0), depth_below_m,
-                                   u_light_dir, up, v_light.rgb, v_sky.rgb);
+                                   depth_above_m, u_light_dir, up, v_light.rgb, v_sky.rgb);
   }
   vec3 light = source * (opacity / float(n));
   o_color = vec4(v_ap_transmittance.rgb * light + v_ap_inscattering.rgb * opacity, opacity);

@@ -128,7 +128,9 @@ EdgeError measure(bool flying, int frames, const std::string& name) {
 // silhouettes and 1.91% over the frame, flying 12.81% and 5.85%; the march's own jitter from frame to
 // frame is 0.51% and 0.31%. Those figures and the ones below were taken with the hand-set light model;
 // with the fitted one (light_model_fit.glsl) the same resolve measures still 0.92% and 0.45%, flying
-// 12.95% and 5.51% (the clouds' contrast is higher), jitter 0.67% and 0.39%. Flying, the error is the
+// 12.95% and 5.51% (the clouds' contrast is higher), jitter 0.67% and 0.39%; with the light model of
+// weighted terms (docs/clouds-light.md) still 1.12% and 0.52%, flying 15.90% and 6.28%, jitter 0.83%
+// and 0.45% (greyer undersides against bright edges: more contrast again). Flying, the error is the
 // 4-frame renewal's lag, which this resolve does not change: its bounds guard against a regression.
 // With the shadow map's columns whole (shadow_map.comp: half the map had none of the cloud above its
 // start plane, so half the scene was lit), there is more shadow and more contrast: still 1.06% and
@@ -139,8 +141,8 @@ TEST(CloudsSilhouettes, UpscaledFramesFollowTheFullMarchAtSilhouettes) {
   EXPECT_GT(flying.silhouette_pixels, 500u);
   EXPECT_LT(still.silhouette, 0.015);   // measured 0.75%
   EXPECT_LT(still.frame, 0.008);        // 0.37%
-  EXPECT_LT(flying.silhouette, 0.14);   // 11.60% (hand-set light), 12.95% (fitted)
-  EXPECT_LT(flying.frame, 0.066);       // 5.19%, 5.51%, 5.94%
+  EXPECT_LT(flying.silhouette, 0.175);  // 11.60% (hand-set light), 12.95% (fitted), 15.90% (terms)
+  EXPECT_LT(flying.frame, 0.07);        // 5.19%, 5.51%, 6.28%
 }
 
 // The self-shadowing through the shadow cascades against the same march with cascades of four times

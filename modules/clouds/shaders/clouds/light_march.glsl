@@ -1,0 +1,52 @@
+#pragma once
+// The light march: what the march measures toward the light at each cloud sample, for the light
+// model (clouds/light_model.glsl). Needs clouds/density.glsl and the clouds' light term (its shadow map).
+
+// The cloud around a sample, from the density evaluation that found it: read before the light march
+// evaluates other points.
+struct CloudsSampleGeometry {
+  float depth_below_m, depth_above_m, column_below, column_above;
+};
+CloudsSampleGeometry clouds_sample_geometry() {
+  return CloudsSampleGeometry(clouds_depth_below_m, clouds_depth_above_m, clouds_column_below,
+                              clouds_column_above);
+}
+
+// Optical depth toward the light from x: steps that double from the first light step, then, toward
+// the sun, the rest of the way from the clouds' shadow map (its optical depth between the sun and
+// where the steps end; layers that cast shadows only). The first step sees the detail noise (where
+// the layers use it): it erodes the edges the light enters by, which decide the direct beam of a
+// lit edge; beyond, the light crosses the eroded edge at most once and the shape noise stands for it.
+// CLOUDS_LIGHT_DETAIL 0: the first step without the detail noise (the term budget measures what it adds).
+#ifndef CLOUDS_LIGHT_DETAIL
+#define CLOUDS_LIGHT_DETAIL 1
+#endif
+float clouds_light_optical_depth(vec3 x, vec3 l, float extinction_per_density) {
+  float tau = 0.0, s = 0.0, step_m = cl.light_step_m;
+  int n = int(cl.light_steps);
+  if (n > 0) {
+    tau = clouds_density(x + l * (0.5 * step_m), CLOUDS_LIGHT_DETAIL != 0.0, false) * step_m;
+    s = step_m, step_m *= 2.0;
+  }
+  for (int k = 1; k < n; ++k) {
+    tau += clouds_density(x + l * (s + 0.5 * step_m), false, false) * step_m;
+    s += step_m;
+    step_m *= 2.0;
+  }
+  tau *= extinction_per_density;
+  if (cl.moon_marched < 0.5) tau += clouds_shadow_optical_depth(x + l * s);
+  return tau;
+}
+
+// The light the sample at x scatters toward the camera, per unit extinction (clouds_sample_source).
+vec3 clouds_marched_source(vec3 x, vec3 l, float mu, float phase_single, float sigma_t,
+                           float extinction_per_density, CloudsSampleGeometry g, vec3 up, vec3 e_light,
+                           vec3 e_sky) {
+  float tau = clouds_light_optical_depth(x, l, extinction_per_density);
+  if (!clouds_diffusion_model)
+    return clouds_sample_source(mu, phase_single, tau, sigma_t, g.depth_below_m, g.depth_above_m, l, up,
+                                e_light, e_sky);
+  CloudsLightInputs s = clouds_light_inputs(tau, sigma_t, g.depth_below_m, g.depth_above_m);
+  s.column_below = g.column_below, s.column_above = g.column_above;
+  return clouds_light_source(mu, phase_single, s, l, up, e_light, e_sky);
+}

@@ -1,0 +1,266 @@
+#include "cloud_light_fit.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <nlopt.h>
+#include <sstream>
+
+#include "welkin/core/error.h"
+#include "session.h"
+#include "welkin/core/files.h"
+
+namespace welkin::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using clouds::CloudView;
+using Coefficients = std::map<std::string, double>;
+
+// The model's constants that the fit keeps (their physical values; see light_model.glsl).
+struct Constant {
+  const char* name;
+  double value;
+  const char* meaning;
+};
+constexpr Constant kConstants[] = {
+    {"CLOUDS_MS_DIFFUSION", 0.15, "k in 1 / (1 + k tau) for the ground's shading: 0.75 (1 - g), g = 0.8"},
+    {"CLOUDS_DIRECT_DEPTH", 1.0, "the light march's optical depth as the direct beam sees it"},
+    {"CLOUDS_MS_POWDER", 10.0, "n in the estimate's fade 1 - exp(-n sigma_t l_1) where the cloud around is thin"},
+    {"CLOUDS_SS_WEIGHT", 1.0, "single scattering's weight (0 only while the fit measures the other terms)"},
+};
+// The multiple-scattering terms' weights, in light_model.glsl's order.
+constexpr const char* kTerms[] = {"CLOUDS_MS_W0", "CLOUDS_MS_W1", "CLOUDS_MS_W2", "CLOUDS_MS_W3",
+                                  "CLOUDS_MS_W4", "CLOUDS_MS_W5", "CLOUDS_MS_W6", "CLOUDS_MS_W7",
+                                  "CLOUDS_MS_W8", "CLOUDS_MS_W9", "CLOUDS_MS_W10", "CLOUDS_MS_W11",
+                                  "CLOUDS_MS_W12", "CLOUDS_MS_W13", "CLOUDS_MS_W14", "CLOUDS_MS_W15"};
+constexpr const char* kTermMeaning[] = {
+    "D = T_d(tau) - T(tau): the diffuse light beyond the direct beam, toward the light",
+    "D S(tau_b): ... gathered from the cloud below",
+    "D p_2(mu): ... forward-peaked",
+    "mu_0 T_d(tau_a): the light the top takes in, let down through the cloud above",
+    "mu_0 T_d(tau_a) S(tau_b): ... and reflected back up from below",
+    "T_d(tau): the diffuse light toward the light, direct beam included",
+    "T_d(tau) S(tau_b): ... gathered from the cloud below",
+    "D T_d(tau_a): the diffuse light toward the light that the column above lets by",
+    "exp(-tau / 4): an octave",
+    "exp(-tau / 16): an octave",
+    "exp(-tau / 4) p_2(mu): an octave, forward-peaked",
+    "D S(tau_B): the diffuse light gathered from the cloud's body below",
+    "mu_0 T_d(tau_A): the light let down through the body above",
+    "T_d(tau) S(tau_B)",
+    "mu_0 T_d(tau_A) S(tau_B)",
+    "exp(-tau / 16) S(tau_B)"};
+constexpr size_t kTermCount = std::size(kTerms);
+
+Coefficients constants() {
+  Coefficients c;
+  for (const Constant& k : kConstants) c[k.name] = k.value;
+  return c;
+}
+
+// Every term's weight 0 but `term`'s, single scattering at `single`. A term is marched at the weight
+// kTermScale and scaled back: at weight 1 a term under a 100 klx sun overflows the half-float frame.
+constexpr double kTermScale = 1.0 / 64.0;
+Coefficients only(int term, double single) {
+  Coefficients c = constants();
+  c["CLOUDS_SS_WEIGHT"] = single;
+  for (size_t k = 0; k < kTermCount; ++k) c[kTerms[k]] = int(k) == term ? kTermScale : 0.0;
+  return c;
+}
+
+std::vector<double> march(clouds::CloudProbe& probe, const std::vector<CloudView>& views, const Coefficients& c) {
+  probe.set_light_model_fit(c);
+  std::vector<double> r;
+  for (const CloudView& v : views) r.push_back(probe.gpu_radiance(v));
+  return r;
+}
+
+// The march is linear in the weights: radiance = single + sum_k w_k term_k, ray by ray. The least
+// squares of the relative errors (each against its set's mean reference), with the weights
+// non-negative (each term is light, never taken away), is convex; NLopt's L-BFGS with bounds finds
+// its minimum.
+struct Row {
+  double single = 0.0, reference = 0.0, scale = 1.0;  // scale: 1 / the set's mean reference
+  std::vector<double> terms;
+};
+struct LinearProblem {
+  std::vector<Row> rows;
+  double objective(const double* w, double* gradient) const {
+    double f = 0.0;
+    if (gradient) std::fill(gradient, gradient + kTermCount, 0.0);
+    const double n = double(rows.size());
+    for (const Row& r : rows) {
+      double e = r.single - r.reference;
+      for (size_t k = 0; k < kTermCount; ++k) e += w[k] * r.terms[k];
+      e *= r.scale;
+      f += e * e / n;
+      if (gradient)
+        for (size_t k = 0; k < kTermCount; ++k) gradient[k] += 2.0 * e * r.terms[k] * r.scale / n;
+    }
+    return f;
+  }
+};
+
+double linear_objective(unsigned, const double* w, double* gradient, void* data) {
+  return static_cast<const LinearProblem*>(data)->objective(w, gradient);
+}
+
+struct Error2 {
+  double rmse = 0.0, worst = 0.0;
+};
+Error2 error_of(const std::vector<double>& gpu, const std::vector<double>& reference, double mean_reference) {
+  Error2 e;
+  for (size_t i = 0; i < gpu.size(); ++i) {
+    const double d = (gpu[i] - reference[i]) / mean_reference;
+    e.rmse += d * d / double(gpu.size()), e.worst = std::max(e.worst, std::abs(d));
+  }
+  e.rmse = std::sqrt(e.rmse);
+  return e;
+}
+
+int settings_paths(const CloudAccuracyOptions& o) { return o.quick ? 1024 : 8192; }
+
+std::string glsl_number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", v);
+  std::string s = text;
+  if (s.find_first_of(".e") == std::string::npos) s += ".0";
+  return s;
+}
+
+}  // namespace
+
+double mean_radiance(const std::vector<clouds::reference::CloudRadianceEstimate>& refs) {
+  double m = 0.0;
+  for (const auto& r : refs) m += r.radiance() / double(refs.size());
+  return m;
+}
+
+int fit_light_model(const CloudAccuracyOptions& o, std::vector<RaySet>& sets, const std::map<std::string, clouds::Quality>& names) {
+  const auto started = std::chrono::steady_clock::now();
+  LinearProblem p;
+  std::ostringstream csv;  // the problem itself, ray by ray: what the march gives with each term alone (weight 1)
+  csv << "set,quality,view,altitude_m,heading_deg,pitch_deg,reference,single";
+  for (const char* t : kTerms) csv << "," << t;
+  csv << "\n";
+  size_t rays = 0;
+  for (size_t s = 0; s < sets.size(); ++s) {
+    RaySet& set = sets[s];
+    clouds::CloudProbe& probe = *set.probe;
+    probe.clouds().multiple_scattering = clouds::MultipleScattering::diffusion;
+    const double scale = 1.0 / mean_radiance(set.refs);
+    rays += set.views.size();
+    for (const std::string& q : o.qualities) {
+      probe.clouds().quality = names.at(q);
+      const std::vector<double> single = march(probe, set.views, only(-1, 1.0));
+      std::vector<std::vector<double>> terms;
+      for (size_t k = 0; k < kTermCount; ++k) {
+        terms.push_back(march(probe, set.views, only(int(k), 0.0)));
+        for (double& x : terms.back()) x /= kTermScale;
+        std::fprintf(stderr, "\rset %zu/%zu, %s: term %zu/%zu marched", s + 1, sets.size(), q.c_str(), k + 1, kTermCount);
+      }
+      for (size_t i = 0; i < set.views.size(); ++i) {
+        Row r{single[i], set.refs[i].radiance(), scale, {}};
+        const CloudView& v = set.views[i];
+        csv << s << "," << q << "," << v.name << "," << v.altitude_m << "," << v.heading_deg << "," << v.pitch_deg << ","
+            << r.reference << "," << r.single;
+        for (size_t k = 0; k < kTermCount; ++k) r.terms.push_back(terms[k][i]), csv << "," << terms[k][i];
+        csv << "\n";
+        p.rows.push_back(std::move(r));
+      }
+    }
+  }
+  std::fprintf(stderr, "\n");
+  write_file_atomically((fs::path(o.out) / "light-model-terms.csv").string(), csv.str());
+  std::vector<double> w(kTermCount, 0.0), lo(kTermCount, 0.0), hi(kTermCount, 100.0);
+  nlopt_opt opt = nlopt_create(NLOPT_LD_LBFGS, unsigned(kTermCount));
+  nlopt_set_lower_bounds(opt, lo.data());
+  nlopt_set_upper_bounds(opt, hi.data());
+  nlopt_set_min_objective(opt, linear_objective, &p);
+  nlopt_set_ftol_rel(opt, 1e-12);
+  nlopt_set_maxeval(opt, 20000);
+  double best = 0.0;
+  const nlopt_result result = nlopt_optimize(opt, w.data(), &best);
+  nlopt_destroy(opt);
+  if (result < 0) throw Error("the light model's fit failed (NLopt result " + std::to_string(int(result)) + ")");
+
+  // The weights compiled in, each set and quality marched again: the figures are the march's, not the sum's.
+  Coefficients fitted = constants();
+  for (size_t k = 0; k < kTermCount; ++k) fitted[kTerms[k]] = w[k];
+  std::ostringstream figures;
+  for (RaySet& set : sets) {
+    figures << "\n//   " << set.name << ", " << set.views.size() << " rays:";
+    std::vector<double> reference;
+    for (const auto& r : set.refs) reference.push_back(r.radiance());
+    for (const std::string& q : o.qualities) {
+      set.probe->clouds().quality = names.at(q);
+      const Error2 e = error_of(march(*set.probe, set.views, fitted), reference, mean_radiance(set.refs));
+      figures << " " << q << " " << std::lround(1000 * e.rmse) / 10.0 << "% (worst " << std::lround(1000 * e.worst) / 10.0 << "%)";
+    }
+    set.probe->set_light_model_fit({});
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  std::ostringstream glsl;  // each define guarded alone: a partial override (the term budget's) keeps the rest
+  glsl << "#pragma once\n// The light model's weights (light_model.glsl), fitted to the project's path tracer by\n"
+          "// `welkin accuracy clouds --fit` (tools/welkin/cloud_light_fit.cpp), which wrote this file: "
+       << rays << " rays,\n// " << settings_paths(o) << " paths each; the march's relative RMSE after the fit:" << figures.str()
+       << "\n// The fit overrides them with defines while it measures.\n";
+  for (const Constant& k : kConstants)
+    glsl << "#ifndef " << k.name << "  // " << k.meaning << "\n#define " << k.name << " " << glsl_number(k.value) << "\n#endif\n";
+  for (size_t k = 0; k < kTermCount; ++k)
+    glsl << "#ifndef " << kTerms[k] << "  // " << kTermMeaning[k] << "\n#define " << kTerms[k] << " " << glsl_number(w[k])
+         << "\n#endif\n";
+  const std::string file = (fs::path(o.out) / "light_model_fit.glsl").string();
+  write_file_atomically(file, glsl.str());
+  std::printf("fit over %zu rays: weights", rays);
+  for (double x : w) std::printf(" %.4g", x);
+  std::printf("\nthe sum's relative RMSE %.1f%%; marched:%s\n%.0f s; wrote %s\n", 100 * std::sqrt(best), figures.str().c_str(), seconds,
+              file.c_str());
+  return kOk;
+}
+
+void write_term_budget(clouds::CloudProbe& probe, const std::vector<CloudView>& views,
+                       const std::vector<clouds::reference::CloudRadianceEstimate>& refs,
+                       const std::map<std::string, clouds::Quality>& names, const CloudAccuracyOptions& o,
+                       clouds::reference::PathTraceSettings settings) {
+  settings.max_orders = 1;
+  std::vector<double> single_ref, reference;
+  double mean_reference = 0.0;
+  for (size_t i = 0; i < views.size(); ++i) {
+    single_ref.push_back(probe.reference_radiance(views[i], settings).radiance());
+    reference.push_back(refs[i].radiance());
+    mean_reference += refs[i].radiance() / double(views.size());
+  }
+  probe.clouds().multiple_scattering = clouds::MultipleScattering::diffusion;
+  std::ostringstream csv;
+  csv << "quality,view,altitude_m,heading_deg,pitch_deg,gpu,gpu_single,gpu_single_no_light_detail,reference,reference_single\n";
+  std::printf("\nthe diffusion model term by term (relative RMSE / worst over the rays; sun only: no sky, no ground)\n"
+              "| quality | total | single scattering | single, light march without detail | multiple-scattering estimate |\n"
+              "|---|---|---|---|---|\n");
+  Coefficients single_only = only(-1, 1.0), no_detail = only(-1, 1.0);
+  no_detail["CLOUDS_LIGHT_DETAIL"] = 0.0;
+  for (const std::string& q : o.qualities) {
+    probe.clouds().quality = names.at(q);
+    const std::vector<double> full = march(probe, views, {});
+    const std::vector<double> single = march(probe, views, single_only);
+    const std::vector<double> plain = march(probe, views, no_detail);
+    std::vector<double> rest(views.size()), rest_ref(views.size());
+    for (size_t i = 0; i < views.size(); ++i) {
+      rest[i] = full[i] - single[i], rest_ref[i] = reference[i] - single_ref[i];
+      csv << q << "," << views[i].name << "," << views[i].altitude_m << "," << views[i].heading_deg << "," << views[i].pitch_deg
+          << "," << full[i] << "," << single[i] << "," << plain[i] << "," << reference[i] << "," << single_ref[i] << "\n";
+    }
+    const Error2 e[4] = {error_of(full, reference, mean_reference), error_of(single, single_ref, mean_reference),
+                         error_of(plain, single_ref, mean_reference), error_of(rest, rest_ref, mean_reference)};
+    std::printf("| %s |", q.c_str());
+    for (const Error2& x : e) std::printf(" %.1f%% / %.1f%% |", 100 * x.rmse, 100 * x.worst);
+    std::printf("\n");
+  }
+  probe.set_light_model_fit({});
+  write_file_atomically((fs::path(o.out) / "accuracy-clouds-terms.csv").string(), csv.str());
+}
+
+}  // namespace welkin::cli
