@@ -50,17 +50,7 @@ std::string new_map(EditorDocument& doc, const MapFieldSpec& spec, int side) {
     throw Error(ErrorInfo{.path = spec.component + "/" + spec.file_field,
                           .message = "save the scene first: a new map is written beside it"});
   const std::string file = new_map_file(doc.scene_path(), spec);
-  PaintedMaps& maps = doc.world().resource<PaintedMaps>();
-  std::error_code ec;
-  if (maps.holds(file) || std::filesystem::exists(file, ec)) {
-    maps.get(file);  // never replaces one there
-  } else {
-    // Written at once, neutral: an autosave (which holds no texels) or a crash must never leave a
-    // scene naming a map file that does not exist.
-    maps.create(file, side);
-    maps.save(file);
-  }
-  doc.set_field(target.entity, spec.component, spec.file_field, file);
+  doc.make_map(target.entity, spec.component, spec.file_field, file, side);
   return file;
 }
 

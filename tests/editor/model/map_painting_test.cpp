@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "model/script.h"
 #include "test_module.h"
 #include "welkin/core/error.h"
@@ -68,6 +70,30 @@ TEST_F(MapPainting, ANewMapIsNeutralBesideTheSceneAndUndoable) {
   unsaved.add_entity("weather", json{{"test.Weather", json::object()}});
   EXPECT_THROW(new_map(unsaved, kWeatherMap, 32), Error);
   EXPECT_THROW(paint_at(unsaved, kWeatherMap, {0, 0, 0}, MapBrush{}), Error);  // no map to paint
+}
+
+TEST_F(MapPainting, UndoingANewMapLeavesNoMapButKeepsItsFile) {
+  // The scene names a file that is not there: the document has no map until one is made.
+  const std::string file = (dir.path() / "valley.map.png").string();
+  doc.set_field(find_map(doc, kWeatherMap).entity, "test.Weather", "map", file);
+  PaintedMaps& maps = doc.world().resource<PaintedMaps>();
+  EXPECT_THROW(maps.get(file), Error);
+  EXPECT_EQ(new_map(doc, kWeatherMap, 16), file);
+  const uint64_t made = maps.get(file).revision;
+  ASSERT_TRUE(std::filesystem::exists(file));  // written at once
+  EXPECT_TRUE(doc.undo());
+  EXPECT_EQ(find_map(doc, kWeatherMap).file, file);  // the field was already this
+  EXPECT_THROW(maps.get(file), Error);              // no map, as before, though the file stays
+  EXPECT_TRUE(std::filesystem::exists(file));
+  EXPECT_TRUE(doc.redo());
+  EXPECT_EQ(texels(), std::vector<uint8_t>(16 * 16, kPaintedMapNeutral));
+  EXPECT_GT(maps.get(file).revision, made);  // a reader that uploaded the first one uploads again
+  // Undone, then made again: the file there is read, not replaced, and that too undoes to no map.
+  EXPECT_TRUE(doc.undo());
+  EXPECT_EQ(new_map(doc, kWeatherMap, 64), file);
+  EXPECT_EQ(maps.get(file).side, 16);
+  EXPECT_TRUE(doc.undo());
+  EXPECT_THROW(maps.get(file), Error);
 }
 
 TEST_F(MapPainting, AStrokeIsOneStepThatRestoresEveryTexel) {
