@@ -14,10 +14,6 @@ enum class EditTarget {
   entity,     // a whole entity {"name", "components"}; null = it does not exist
   sequence,   // the timeline's sequence document
   map,        // texels of a painted map: path = its file; {"x", "y", "width", "height", "texels"}
-  new_map,    // a painted map made and named in a field (entity, component, path = the field):
-              // {"field": value, "file": name, "map": state}; a state is a side (made neutral), "read"
-              // (from its file), "absent" (not held: read on use) or "missing" (no map, whatever the
-              // disk holds); null leaves the map alone
 };
 
 struct Edit {

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 
 #include "model/reflected_object.h"
 #include "welkin/core/error.h"
@@ -19,23 +18,6 @@ namespace {
 constexpr std::string_view kNameComponent = Name::kTypeName;
 
 std::string step_label(const std::string& verb, const std::string& what) { return verb + " " + what; }
-
-void set_map_state(PaintedMaps& maps, const std::string& file, const json& state) {
-  if (state.is_number_integer()) {
-    maps.create(file, state.get<int>());
-  } else if (state == "read") {
-    const bool was_missing = maps.missing(file);
-    maps.release(file, false);
-    try {
-      maps.get(file);
-    } catch (const Error&) {
-      maps.release(file, was_missing);  // a failed step changes nothing
-      throw;
-    }
-  } else if (state == "absent" || state == "missing") {
-    maps.release(file, state == "missing");
-  }
-}
 
 json region_to_json(const MapRegion& r) {
   return {{"x", r.x}, {"y", r.y}, {"width", r.width}, {"height", r.height}, {"texels", json::binary(r.texels)}};
@@ -384,37 +366,10 @@ void EditorDocument::apply(const Edit& edit, const json& value) {
       PaintedMaps::touched(map);
       return;
     }
-    case EditTarget::new_map: {
-      set_map_state(world_->resource<PaintedMaps>(), value.at("file").get<std::string>(), value.at("map"));
-      apply(Edit{.target = EditTarget::field, .entity = edit.entity, .component = edit.component, .path = edit.path},
-            value.at("field"));
-      return;
-    }
   }
 }
 
 // --- Painted maps ------------------------------------------------------------------------------
-
-void EditorDocument::make_map(EntityId id, const std::string& component, const std::string& field, const std::string& file,
-                              int side) {
-  end_preview();
-  PaintedMaps& maps = world_->resource<PaintedMaps>();
-  std::error_code ec;
-  const bool on_disk = std::filesystem::exists(file, ec);
-  json before = nullptr, after = nullptr;
-  if (!maps.holds(file)) {
-    // A file that is not there is no map, even if one appears before this is undone.
-    before = maps.missing(file) || !on_disk ? "missing" : "absent";
-    after = on_disk ? json("read") : json(side);  // never replaces a map already there
-  }
-  Edit edit{.target = EditTarget::new_map, .entity = id, .component = component, .path = field,
-            .before = {{"field", get_field(id, component, field)}, {"file", file}, {"map", before}},
-            .after = {{"field", file}, {"file", file}, {"map", after}}};
-  execute(std::move(edit), step_label("New map", file), false);
-  // Written at once, neutral: an autosave (which holds no texels) or a crash must never leave a
-  // scene naming a map file that does not exist.
-  if (after.is_number_integer()) maps.save(file);
-}
 
 bool EditorDocument::paint_map(const std::string& file, const BrushStamp& stamp, bool continuous) {
   PaintedMap& map = world_->resource<PaintedMaps>().edit(file);

@@ -100,10 +100,6 @@ class EditorDocument {
   // `continuous` part of a stroke that stays one step until end_continuous_edit(). False when the
   // stamp misses the map. save_scene also writes every map changed since it was read.
   bool paint_map(const std::string& file, const BrushStamp& stamp, bool continuous = false);
-  // Makes the map in `file` (a neutral one of `side` texels, written at once, or the one already
-  // there, read) and names it in the field: one undo step. Undoing it puts back the field and the
-  // map as the document had them (no map, if there was none), and never deletes the file.
-  void make_map(EntityId id, const std::string& component, const std::string& field, const std::string& file, int side);
 
   // --- Timeline ------------------------------------------------------------------------------
   const Sequence& sequence() const { return sequence_; }

@@ -39,9 +39,16 @@ MapTarget find_map(EditorDocument& doc, const MapFieldSpec& spec) {
   return t;
 }
 
-std::string new_map_file(const std::string& scene_path, const MapFieldSpec& spec) {
+std::string new_map_file(const std::string& scene_path, const MapFieldSpec& spec,
+                         const std::function<bool(const std::string&)>& taken) {
   const std::filesystem::path scene(scene_path);
-  return (scene.parent_path() / (scene.stem().string() + "." + spec.file_field + ".png")).string();
+  const std::string stem = (scene.parent_path() / (scene.stem().string() + "." + spec.file_field)).string();
+  for (int n = 1; n <= kMaxNewMapNames; ++n) {
+    const std::string file = stem + (n == 1 ? "" : "-" + std::to_string(n)) + ".png";
+    if (!taken(file)) return file;
+  }
+  throw Error(ErrorInfo{.file = stem + ".png", .message = "no free name for a new map beside the scene (" +
+                                                          std::to_string(kMaxNewMapNames) + " tried)"});
 }
 
 std::string new_map(EditorDocument& doc, const MapFieldSpec& spec, int side) {
@@ -49,8 +56,17 @@ std::string new_map(EditorDocument& doc, const MapFieldSpec& spec, int side) {
   if (doc.scene_path().empty())
     throw Error(ErrorInfo{.path = spec.component + "/" + spec.file_field,
                           .message = "save the scene first: a new map is written beside it"});
-  const std::string file = new_map_file(doc.scene_path(), spec);
-  doc.make_map(target.entity, spec.component, spec.file_field, file, side);
+  PaintedMaps& maps = doc.world().resource<PaintedMaps>();
+  // A name the field holds already would make no edit to undo (a scene naming a missing file).
+  const std::string file = new_map_file(doc.scene_path(), spec, [&](const std::string& name) {
+    std::error_code ec;
+    return name == target.file || maps.holds(name) || std::filesystem::exists(name, ec) || ec;
+  });
+  // Written at once, neutral: an autosave (which holds no texels) or a crash must never leave a
+  // scene naming a map file that does not exist.
+  maps.create(file, side);
+  maps.save(file);
+  doc.set_field(target.entity, spec.component, spec.file_field, file);
   return file;
 }
 

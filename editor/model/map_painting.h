@@ -2,6 +2,7 @@
 // Painting a map a module declares (model/module_panels.h): where its component's map lies on the
 // planet, making a new one beside the scene, and brush stamps at world points, each an undoable
 // edit of the document. Shared by the map panel, the viewport's brush and scripts.
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -32,11 +33,15 @@ struct MapTarget {
 // Throws Error when no entity has the component or a field is not what the spec says.
 MapTarget find_map(EditorDocument& doc, const MapFieldSpec& spec);
 
-// The file a new map of a saved scene gets: <scene stem>.<file field>.png beside the scene.
-std::string new_map_file(const std::string& scene_path, const MapFieldSpec& spec);
-// Names a new map in the component (one undoable edit): a neutral map of `side` texels, written
-// with the scene; a file already there is read instead, never replaced. Throws Error when the
-// scene has not been saved yet (the map has no place) or `side` is out of range.
+// The file a new map of a saved scene gets beside the scene: <scene stem>.<file field>.png, or with
+// -2, -3, ... before .png, the first name for which `taken` is false (at most kMaxNewMapNames tried).
+inline constexpr int kMaxNewMapNames = 1000;
+std::string new_map_file(const std::string& scene_path, const MapFieldSpec& spec,
+                         const std::function<bool(const std::string&)>& taken);
+// Names a new map in the component (one undoable edit): a neutral map of `side` texels, written at
+// once under a name no file, held map or the field itself has yet, so the field always changes
+// and undoing it gives back what the field named before. No file is ever replaced. Throws Error
+// when the scene has not been saved yet (the map has no place) or `side` is out of range.
 std::string new_map(EditorDocument& doc, const MapFieldSpec& spec, int side);
 
 // One stamp at a world point (the map is read along the planet's radius, so any altitude serves).

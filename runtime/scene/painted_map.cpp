@@ -45,7 +45,6 @@ MapFrame scene_map_frame(World& world, double size_m) {
 
 const PaintedMap& PaintedMaps::get(const std::string& file) {
   if (auto it = maps_.find(file); it != maps_.end()) return it->second;
-  if (missing(file)) throw Error(ErrorInfo{.file = file, .message = "no map here: its creation was undone"});
   const ImageU8 image = read_png(file, kMaxPaintedMapSide);  // the side checked before decoding
   if (image.width != image.height || image.width > kMaxPaintedMapSide)
     throw Error(ErrorInfo{
@@ -56,26 +55,8 @@ const PaintedMap& PaintedMaps::get(const std::string& file) {
   map.side = image.width;
   map.texels.resize(size_t(map.side) * size_t(map.side));
   for (size_t i = 0; i < map.texels.size(); ++i) map.texels[i] = image.rgba[i * 4];
-  map.revision = next_revision(file);
+  map.revision = 1;
   return maps_[file] = std::move(map);
-}
-
-uint64_t PaintedMaps::next_revision(const std::string& file) const {
-  uint64_t last = 0;
-  if (auto it = maps_.find(file); it != maps_.end()) last = it->second.revision;
-  if (auto it = released_revisions_.find(file); it != released_revisions_.end()) last = std::max(last, it->second);
-  return last + 1;
-}
-
-void PaintedMaps::release(const std::string& file, bool as_missing) {
-  if (auto it = maps_.find(file); it != maps_.end()) {
-    released_revisions_[file] = it->second.revision;
-    maps_.erase(it);
-  }
-  if (as_missing)
-    missing_.insert(file);
-  else
-    missing_.erase(file);
 }
 
 PaintedMap& PaintedMaps::edit(const std::string& file) {
@@ -88,12 +69,11 @@ PaintedMap& PaintedMaps::create(const std::string& file, int side) {
     throw Error(ErrorInfo{.file = file,
                           .expected = "1 to " + std::to_string(kMaxPaintedMapSide) + " texels a side",
                           .found = std::to_string(side)});
-  const uint64_t revision = next_revision(file);
-  missing_.erase(file);
   PaintedMap& map = maps_[file];
+  const uint64_t revision = map.revision;
   map = PaintedMap{.side = side,
                    .texels = std::vector<uint8_t>(size_t(side) * size_t(side), kPaintedMapNeutral)};
-  map.revision = revision;
+  map.revision = revision + 1;
   map.unsaved = true;
   return map;
 }

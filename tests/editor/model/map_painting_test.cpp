@@ -72,28 +72,25 @@ TEST_F(MapPainting, ANewMapIsNeutralBesideTheSceneAndUndoable) {
   EXPECT_THROW(paint_at(unsaved, kWeatherMap, {0, 0, 0}, MapBrush{}), Error);  // no map to paint
 }
 
-TEST_F(MapPainting, UndoingANewMapLeavesNoMapButKeepsItsFile) {
-  // The scene names a file that is not there: the document has no map until one is made.
-  const std::string file = (dir.path() / "valley.map.png").string();
-  doc.set_field(find_map(doc, kWeatherMap).entity, "test.Weather", "map", file);
+TEST_F(MapPainting, ANewMapTakesAFreeNameSoUndoGivesBackWhatTheFieldNamed) {
+  // The scene names a file that is not there: the document has no map.
+  const std::string named = (dir.path() / "valley.map.png").string();
+  doc.set_field(find_map(doc, kWeatherMap).entity, "test.Weather", "map", named);
   PaintedMaps& maps = doc.world().resource<PaintedMaps>();
-  EXPECT_THROW(maps.get(file), Error);
-  EXPECT_EQ(new_map(doc, kWeatherMap, 16), file);
-  const uint64_t made = maps.get(file).revision;
-  ASSERT_TRUE(std::filesystem::exists(file));  // written at once
+  EXPECT_THROW(maps.get(named), Error);
+  const std::string file = new_map(doc, kWeatherMap, 16);
+  EXPECT_EQ(file, (dir.path() / "valley.map-2.png").string());  // the field's own name would be no edit
+  EXPECT_TRUE(std::filesystem::exists(file));                   // written at once
   EXPECT_TRUE(doc.undo());
-  EXPECT_EQ(find_map(doc, kWeatherMap).file, file);  // the field was already this
-  EXPECT_THROW(maps.get(file), Error);              // no map, as before, though the file stays
-  EXPECT_TRUE(std::filesystem::exists(file));
+  EXPECT_EQ(find_map(doc, kWeatherMap).file, named);
+  EXPECT_THROW(maps.get(named), Error);  // no map, as before; the new file stays on disk
   EXPECT_TRUE(doc.redo());
   EXPECT_EQ(texels(), std::vector<uint8_t>(16 * 16, kPaintedMapNeutral));
-  EXPECT_GT(maps.get(file).revision, made);  // a reader that uploaded the first one uploads again
-  // Undone, then made again: the file there is read, not replaced, and that too undoes to no map.
-  EXPECT_TRUE(doc.undo());
-  EXPECT_EQ(new_map(doc, kWeatherMap, 64), file);
+  // Now the first name is free again; after it, a file already there is never replaced.
+  EXPECT_EQ(new_map(doc, kWeatherMap, 32), named);
+  EXPECT_EQ(new_map(doc, kWeatherMap, 64), (dir.path() / "valley.map-3.png").string());
   EXPECT_EQ(maps.get(file).side, 16);
-  EXPECT_TRUE(doc.undo());
-  EXPECT_THROW(maps.get(file), Error);
+  EXPECT_EQ(maps.get(named).side, 32);
 }
 
 TEST_F(MapPainting, AStrokeIsOneStepThatRestoresEveryTexel) {

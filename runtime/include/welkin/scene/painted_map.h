@@ -10,7 +10,6 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <map>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -63,11 +62,6 @@ class PaintedMaps {
   // A new map of `side` texels, all neutral, not yet written (it replaces one held under that name).
   PaintedMap& create(const std::string& file, int side);
   bool holds(const std::string& file) const { return maps_.count(file) != 0; }
-  // Lets go of the map in `file` (the editor undoing its creation). With `as_missing`, get() then
-  // fails as a missing file would, even if one is there now, until create() or release(file, false):
-  // the document is as it was before the map existed, whatever the disk holds since.
-  void release(const std::string& file, bool as_missing);
-  bool missing(const std::string& file) const { return missing_.count(file) != 0; }
   // Records a change made through edit().
   static void touched(PaintedMap& map);
   // Writes every map changed since it was read or written (atomically, as grey PNG).
@@ -75,11 +69,7 @@ class PaintedMaps {
   void save(const std::string& file);
 
  private:
-  uint64_t next_revision(const std::string& file) const;
   std::map<std::string, PaintedMap> maps_;
-  std::set<std::string> missing_;
-  // A map read again after a release goes on from here, so a reader never sees a revision twice.
-  std::map<std::string, uint64_t> released_revisions_;
 };
 
 // One rectangle of a map's texels (an undo step of a brush stroke holds two of these).
