@@ -20,6 +20,7 @@
 #include "app/module_dirs.h"
 #include "app/script_player.h"
 #include "model/editor_config.h"
+#include "model/frame_measure.h"
 #include "model/panel_layout.h"
 #include "ui/panel_registry.h"
 #include "ui/viewport_panel.h"
@@ -29,6 +30,7 @@
 #include "welkin/gfx/gl_context.h"
 #include "welkin/gfx/image.h"
 #include "welkin/gfx/renderer.h"
+#include "welkin/scene/scene_file.h"
 
 namespace welkin::editor {
 
@@ -133,6 +135,9 @@ class EditorApp {
   // After the document's world is replaced (a scene opened): the view starts at its camera.
   void follow_world();
   void render_scene(const FrameInfo& frame);
+  // What a frame is made from (SettledView): the scene's components, the view and its size, the
+  // clock, the document's versions (painted maps change them) and an open brush stroke.
+  uint64_t frame_digest(const FrameInfo& frame) const;
   void draw_ui();
   void draw_main_menu();
   // The session guard's prompt (unsaved changes, overwrite, recover) as a modal.
@@ -140,6 +145,12 @@ class EditorApp {
   void handle_shortcuts();
   bool run_app_verb(const ScriptLine& line);
   void finish_frame_requests();
+  // measure-frames: the last frame's figures into the measurement (printed once it has them all),
+  // and the view flown for the frame about to be rendered.
+  void measure_last_frame(double frame_ms);
+  void fly_measured_view(double dt_s);
+  // Whether the last frame was rendered smaller than the viewport (a moving view).
+  bool last_frame_reduced() const;
 
   EditorOptions options_;
   EditorConfig config_;
@@ -159,7 +170,10 @@ class EditorApp {
   std::string window_shot_;  // screenshot-window target, taken after this frame's UI
   bool script_failed_ = false;
   std::string open_path_, save_path_;
+  std::optional<FrameMeasurement> measure_;  // a measure-frames line in progress (the script waits)
+  int measure_rendered_ = 0;                  // frames rendered since it began
   uint64_t frame_index_ = 0;
+  double clock_s_ = 0;  // the scene's clock: advances only while the viewport's clock runs
   int laid_out_w_ = 0, laid_out_h_ = 0;  // the window size the panels were placed for
   // Each panel's last rectangle from the layout, and whether it is still there (docked): a docked
   // panel moves with the layout as other panels open and close; one the user moved stays put.
@@ -242,10 +256,20 @@ void EditorApp::render_scene(const FrameInfo& frame) {
     vp.render_error.clear();
     return;
   }
+  ctx_->stats.kept = false;
   try {
-    std::optional<Camera> view;
-    if (!vp.look_through_scene_camera) view = view_camera(*reg.get<Camera>(cam), vp.pose);
-    ctx_->stats.last = renderer_->render_frame(frame, vp.render_width, vp.render_height, view ? &*view : nullptr);
+    // Settled: nothing the frame is made from changed for a while, so it would be the last one again.
+    if (rendered_once_ && vp.render_error.empty() && vp.settled.keep(frame_digest(frame))) {
+      ctx_->stats.kept = true;
+      ctx_->stats.last.timings.clear();
+      ctx_->stats.gpu_total_ms = 0;
+      return;
+    }
+    // The scene's camera, or the editor's view from its lens; moving frames at the viewport's scale.
+    const Camera& scene_camera = *reg.get<Camera>(cam);
+    Camera view = vp.look_through_scene_camera ? scene_camera : view_camera(scene_camera, vp.pose);
+    view.moving_render_scale = vp.moving_scale.for_camera(scene_camera.moving_render_scale);
+    ctx_->stats.last = renderer_->render_frame(frame, vp.render_width, vp.render_height, &view);
     vp.render_error.clear();
     rendered_once_ = true;
   } catch (const Error& e) {
@@ -261,6 +285,17 @@ void EditorApp::render_scene(const FrameInfo& frame) {
     vp.texture_width = renderer_->output_texture().desc().width;
     vp.texture_height = renderer_->output_texture().desc().height;
   }
+}
+
+uint64_t EditorApp::frame_digest(const FrameInfo& frame) const {
+  const ViewportState& vp = ctx_->viewport;
+  uint64_t h = fnv1a_64(save_scene(doc_->world()).dump());  // every component, as the scene file has it
+  const double view[6] = {vp.pose.position_m.x, vp.pose.position_m.y, vp.pose.position_m.z, vp.pose.heading_deg,
+                          vp.pose.pitch_deg, frame.time_s};
+  const uint64_t state[8] = {uint64_t(vp.render_width), uint64_t(vp.render_height), uint64_t(vp.look_through_scene_camera),
+                             uint64_t(vp.clock_running), doc_->world_generation(), doc_->version(DocumentPart::scene),
+                             doc_->version(DocumentPart::sequence), uint64_t(ctx_->map_brush.stroking)};
+  return fnv1a_64_of(state, fnv1a_64_of(view, h));
 }
 
 void EditorApp::draw_main_menu() {
@@ -488,13 +523,34 @@ bool EditorApp::run_app_verb(const ScriptLine& line) {
     const RenderContext* rc = doc_->world().find_resource<RenderContext>();
     if (!ctx_->map_brush.viewport_target || !rc) throw Error(ErrorInfo{.message = "no map brush (use: map-brush) or no frame yet"});
     const size_t steps = doc_->history().steps().size();
-    paint_in_viewport(*ctx_, glm::dvec2(number(0) * rc->view.width, number(1) * rc->view.height));
+    paint_in_viewport(*ctx_, glm::dvec2(number(0) * ctx_->viewport.texture_width, number(1) * ctx_->viewport.texture_height));
     doc_->end_continuous_edit();
     ctx_->map_brush.stroking = false;
     if (doc_->history().steps().size() == steps) throw Error(ErrorInfo{.message = "the brush painted nothing there (off the map or the sky)"});
   } else if (v == "show-preset") {
     usage(2, "show-preset MODULE NAME");
     ctx_->preset_browser = PresetBrowserState{a[0], a[1]};
+  } else if (v == "clock") {
+    usage(1, "clock run|pause");
+    if (a[0] != "run" && a[0] != "pause") throw Error(ErrorInfo{.expected = "run or pause", .found = "'" + a[0] + "'"});
+    ctx_->viewport.clock_running = a[0] == "run";
+  } else if (v == "moving-budget") {
+    usage(1, "moving-budget MS|off");
+    const double ms = a[0] == "off" ? 0.0 : number(0);
+    if (ms < 0.0 || ms > 1e5) throw Error(ErrorInfo{.expected = "a budget from 0 to 100000 ms, or off", .found = "'" + a[0] + "'"});
+    ctx_->viewport.moving_scale = MovingScale{.budget_ms = ms};
+  } else if (v == "keep-settled") {
+    usage(1, "keep-settled FRAMES|off");
+    const double frames = a[0] == "off" ? 0.0 : number(0);
+    if ((frames < 1 && a[0] != "off") || frames > 100000 || frames != std::floor(frames))
+      throw Error(ErrorInfo{.expected = "a whole number of frames from 1 to 100000, or off", .found = "'" + a[0] + "'"});
+    ctx_->viewport.settled = SettledView{.frames = int(frames)};
+  } else if (v == "measure-frames") {
+    MeasureRequest request = parse_measure_request(a);
+    if (request.fly && ctx_->viewport.look_through_scene_camera)
+      throw Error(ErrorInfo{.message = "measure-frames flies the editor's own view: use look-through-scene-camera off first"});
+    measure_.emplace(request);
+    measure_rendered_ = 0;
   } else if (v == "close-window") {
     // What the window's close button does (GLFW's close flag): the next frame asks like quit.
     usage(0, "close-window");
@@ -508,6 +564,36 @@ bool EditorApp::run_app_verb(const ScriptLine& line) {
     return false;
   }
   return true;
+}
+
+void EditorApp::measure_last_frame(double frame_ms) {
+  if (!measure_ || measure_rendered_ == 0) return;
+  const FrameResult& last = ctx_->stats.last;
+  const ViewportState& vp = ctx_->viewport;
+  MeasuredFrame frame{.frame_ms = frame_ms, .reduced = last_frame_reduced(), .kept = ctx_->stats.kept};
+  for (const PassTiming& t : last.timings) frame.passes.push_back(MeasuredPass{t.name, t.gpu_ms});
+  measure_->add(frame);
+  if (!measure_->done()) return;
+  const std::string load = load_average();
+  const std::string report = measure_->report("viewport " + std::to_string(vp.texture_width) + "x" + std::to_string(vp.texture_height) +
+                                              (load.empty() ? "" : ", load " + load));
+  std::fputs(report.c_str(), stdout);  // like `print`: scripts read it
+  std::fflush(stdout);
+  ctx_->log.info(report.substr(0, report.find('\n')));
+  measure_.reset();
+}
+
+bool EditorApp::last_frame_reduced() const {
+  const FrameResult& last = ctx_->stats.last;
+  const ViewportState& vp = ctx_->viewport;
+  return int64_t(last.rendered_width) * last.rendered_height < int64_t(vp.texture_width) * vp.texture_height;
+}
+
+void EditorApp::fly_measured_view(double dt_s) {
+  if (!measure_) return;
+  const MeasureRequest& r = measure_->request();
+  if (r.fly) ctx_->viewport.pose = glide(ctx_->viewport.pose, r.speed_mps, r.turn_deg_s, dt_s);
+  ++measure_rendered_;
 }
 
 void EditorApp::finish_frame_requests() {
@@ -586,9 +672,12 @@ int EditorApp::run() {
     double dt = std::chrono::duration<double>(now - last).count();
     last = now;
     ctx_->stats.push(dt * 1000.0);
+    measure_last_frame(dt * 1000.0);
+    if (last_frame_reduced()) ctx_->viewport.moving_scale.after_moving_frame(dt * 1000.0);
+    if (ctx_->viewport.clock_running) clock_s_ += dt;
 
     follow_world();
-    if (script_.active()) {
+    if (script_.active() && !measure_) {
       try {
         script_.step(*ctx_, [this](const ScriptLine& line) { return run_app_verb(line); });
       } catch (const Error& e) {
@@ -619,7 +708,10 @@ int EditorApp::run() {
       tl.previewed = doc_->sequence();
     }
 
-    FrameInfo frame{.time_s = std::chrono::duration<double>(now - start).count(), .dt_s = frame_index_ ? dt : 0.0, .index = frame_index_};
+    fly_measured_view(dt);
+    // The scene's clock stands still while paused: no step, no drift.
+    const double step = ctx_->viewport.clock_running && frame_index_ ? dt : 0.0;
+    FrameInfo frame{.time_s = clock_s_, .dt_s = step, .index = frame_index_};
     render_scene(frame);
 
     ImGui_ImplOpenGL3_NewFrame();

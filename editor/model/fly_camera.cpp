@@ -35,4 +35,12 @@ ViewPose fly(const ViewPose& pose, const FlyInput& in, const FlySettings& s) {
   return out;
 }
 
+ViewPose glide(const ViewPose& pose, double speed_mps, double turn_deg_s, double dt_s) {
+  ViewPose out = pose;
+  out.heading_deg = std::fmod(pose.heading_deg + turn_deg_s * dt_s, 360.0);
+  if (out.heading_deg < 0) out.heading_deg += 360.0;
+  out.position_m += pose_forward(out) * speed_mps * dt_s;
+  return out;
+}
+
 }  // namespace welkin::editor

@@ -34,5 +34,8 @@ glm::dvec3 pose_forward(const ViewPose& pose);
 glm::dvec3 pose_right(const ViewPose& pose);
 // One frame of flight: look first, then move along the new view (up is world up).
 ViewPose fly(const ViewPose& pose, const FlyInput& input, const FlySettings& settings = {});
+// A steady flight (the measure-frames verb): turn the heading by turn_deg_s, then move along the
+// new view at speed_mps, for dt_s.
+ViewPose glide(const ViewPose& pose, double speed_mps, double turn_deg_s, double dt_s);
 
 }  // namespace welkin::editor

@@ -460,6 +460,17 @@ const char* script_verbs_help() {
   fly FORWARD RIGHT UP LOOK_DX LOOK_DY SECONDS   one step of the fly camera (WASD/QE axes, mouse px)
   show-preset MODULE NAME             show a preset's details (file, error, differing fields)
   resize WIDTH HEIGHT | wait FRAMES
+  clock run|pause                     the scene's clock (wind drift, time of day's time scale); paused
+                                      at start, so that a still view settles
+  moving-budget MS|off                moving frames render a smaller part of the viewport, sized so that
+                                      a frame takes about MS (100 at start); off: the camera's
+                                      moving_render_scale as set
+  keep-settled FRAMES|off             a still view whose scene, view and clock stay the same for FRAMES
+                                      frames (24 at start) shows its last frame instead of rendering
+  measure-frames N [still | fly SPEED_M_S TURN_DEG_S]   hold the view (still, the default) or fly it
+                                      (forward at SPEED, the heading turning at TURN, per second of wall
+                                      time) for N frames, then print their frame times (mean, median,
+                                      p90, fps), the load average and the passes' mean GPU times
   quit                                asks first when the scene or sequence has unsaved changes;
                                       a script whose last line is an unanswered quit quits without saving
   answer save|discard|cancel          the unsaved-changes prompt (save writes to the files they came from)

@@ -10,6 +10,7 @@
 #include "model/editor_document.h"
 #include "model/fly_camera.h"
 #include "model/map_painting.h"
+#include "model/viewport_cost.h"
 #include "model/preset_library.h"
 #include "model/session_guard.h"
 #include "ui/message_log.h"
@@ -27,12 +28,18 @@ struct ViewportState {
   int texture_width = 0, texture_height = 0;
   std::string render_error;               // why the last frame failed, shown in the viewport
   bool flying = false;                    // right mouse button held over the image
+  // The scene's clock (the world's frame time: the clouds' wind drift, a time of day's time_scale).
+  // Paused, a still view stops changing, so the modules keep what they drew and it costs little.
+  bool clock_running = false;
+  MovingScale moving_scale;               // how much of the viewport a moving frame renders
+  SettledView settled;                    // a still view's last frame shown instead of rendering
 };
 
 struct FrameStats {
   FrameResult last;
   double cpu_frame_ms = 0;                 // whole editor frame, main loop to main loop
   double gpu_total_ms = 0;
+  bool kept = false;                       // the last frame was shown again, not rendered (settled)
   std::array<float, 240> frame_ms_history{};  // a ring for the HUD and profiler plots
   size_t history_cursor = 0;
   void push(double frame_ms) {

@@ -126,6 +126,10 @@ void paint_in_viewport(EditorContext& ctx, glm::dvec2 pixel) {
   if (!st.viewport_target || !rc) return;
   MapTarget target;
   if (!ctx.attempt([&] { target = find_map(ctx.doc, *st.viewport_target); }) || target.file.empty()) return;
+  // The last frame's view may be smaller than the viewport (rendered while moving): its own pixels.
+  const ViewportState& vp = ctx.viewport;
+  if (vp.texture_width > 0 && vp.texture_height > 0)
+    pixel *= glm::dvec2(double(rc->view.width) / vp.texture_width, double(rc->view.height) / vp.texture_height);
   const glm::vec3 dir = pixel_direction(rc->view, pixel.x, pixel.y);
   if (auto hit = ray_at_altitude(target.frame, rc->view.camera_position_m, glm::dvec3(dir), st.altitude_m))
     st.stroking = ctx.attempt([&] { paint_at(ctx.doc, *st.viewport_target, *hit, st.brush, true); });

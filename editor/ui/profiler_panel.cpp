@@ -38,7 +38,8 @@ void draw_profiler_panel(EditorContext& ctx) {
       }
       ImGui::EndTable();
     }
-    if (st.last.timings.empty()) ImGui::TextDisabled("no frame rendered yet");
+    if (st.kept) ImGui::TextDisabled("settled: nothing changed for %d frames, the last frame is shown", ctx.viewport.settled.frames);
+    else if (st.last.timings.empty()) ImGui::TextDisabled("no frame rendered yet");
   }
   if (ImGui::CollapsingHeader("Culled passes", ImGuiTreeNodeFlags_DefaultOpen)) {
     if (st.last.culled_passes.empty()) ImGui::TextDisabled("none: every pass reaches the output");

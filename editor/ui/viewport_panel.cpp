@@ -80,6 +80,10 @@ void draw_toolbar(EditorContext& ctx, Entity camera_entity) {
     }
   }
   ImGui::SameLine();
+  ImGui::Checkbox("clock runs", &vp.clock_running);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("The scene's clock: the clouds' wind drift, a time of day's time scale. Paused, a still view settles and costs little");
+  ImGui::SameLine();
   if (ImGui::Button("screenshot")) ctx.screenshot_requests.push_back("screenshots/welkin-" + std::to_string(std::time(nullptr)) + ".png");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Writes the viewport to screenshots/ (PNG; the script verb also writes EXR)");
 }
@@ -88,11 +92,21 @@ void draw_hud(EditorContext& ctx, ImVec2 at, const ViewPose& pose) {
   const FrameStats& st = ctx.stats;
   const ViewportState& vp = ctx.viewport;
   double speed = fly_speed_mps(pose.position_m.z, vp.fly) * vp.speed_multiplier;
-  char text[320];
+  // What was cut: a moving frame renders a part of the viewport (the scale adapts to the budget).
+  char cut[160];
+  const int rw = st.last.rendered_width, rh = st.last.rendered_height;
+  if (st.kept)
+    std::snprintf(cut, sizeof cut, "settled: the last frame shown");
+  else if (int64_t(rw) * rh < int64_t(vp.texture_width) * vp.texture_height)
+    std::snprintf(cut, sizeof cut, "moving: rendered %dx%d (%.0f%%)%s", rw, rh, 100.0 * rw / std::max(vp.texture_width, 1),
+                  vp.moving_scale.budget_ms > 0 ? ", sized to the budget" : "");
+  else
+    std::snprintf(cut, sizeof cut, "whole frame");
+  char text[480];
   std::snprintf(text, sizeof text,
-                "%.2f ms  %.0f fps   GPU %.3f ms\n%dx%d   alt %.1f m   speed %.3g m/s\n%s",
+                "%.2f ms  %.0f fps   GPU %.3f ms\n%dx%d   %s   clock %s\nalt %.1f m   speed %.3g m/s\n%s",
                 st.cpu_frame_ms, st.cpu_frame_ms > 0 ? 1000.0 / st.cpu_frame_ms : 0.0, st.gpu_total_ms, vp.texture_width,
-                vp.texture_height, pose.position_m.z, speed,
+                vp.texture_height, cut, vp.clock_running ? "runs" : "paused", pose.position_m.z, speed,
                 vp.flying ? "flying: WASD, Q/E, Shift/Ctrl, wheel" : "hold right mouse to fly");
   ImDrawList* draw = ImGui::GetWindowDrawList();
   ImVec2 size = ImGui::CalcTextSize(text);

@@ -1,6 +1,10 @@
 // welkin_editor_image_check FILE.png|FILE.exr [--min-width N --min-height N]
 // Exits 0 when the image is not blank: enough distinct colours and contrast (PNG), or finite,
 // non-negative and not all zero (EXR). Prints what it measured. Used by smoke_test.sh.
+// welkin_editor_image_check A.exr --same-as B.exr --max-relative-l1 T
+// Exits 0 when both are the same size and sum |A - B| / sum |B| over the colour channels is at most
+// T (0: byte for byte). Prints the measured value and the largest difference. Used by viewport_test.sh.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -10,7 +14,39 @@
 #include "welkin/core/error.h"
 #include "welkin/gfx/image.h"
 
+namespace {
+
+int compare_exr(const std::string& a_file, const std::string& b_file, double tolerance) {
+  const welkin::ImageF a = welkin::read_exr(a_file), b = welkin::read_exr(b_file);
+  if (a.width != b.width || a.height != b.height) {
+    std::printf("%s is %dx%d, %s %dx%d\n", a_file.c_str(), a.width, a.height, b_file.c_str(), b.width, b.height);
+    return 1;
+  }
+  double diff = 0, sum = 0, largest = 0;
+  for (size_t i = 0; i < a.rgba.size(); i += 4)
+    for (size_t c = 0; c < 3; ++c) {
+      const double d = std::abs(double(a.rgba[i + c]) - double(b.rgba[i + c]));
+      diff += d;
+      sum += std::abs(double(b.rgba[i + c]));
+      largest = std::max(largest, d);
+    }
+  const double relative = sum > 0 ? diff / sum : (diff > 0 ? 1.0 : 0.0);
+  std::printf("%s against %s: relative L1 %.6g (at most %.6g), largest difference %.6g\n", a_file.c_str(), b_file.c_str(), relative,
+              tolerance, largest);
+  return std::isfinite(relative) && (tolerance > 0 ? relative <= tolerance : diff == 0) ? 0 : 1;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  if (argc == 6 && !std::strcmp(argv[2], "--same-as") && !std::strcmp(argv[4], "--max-relative-l1")) {
+    try {
+      return compare_exr(argv[1], argv[3], std::atof(argv[5]));
+    } catch (const welkin::Error& e) {
+      std::fprintf(stderr, "%s\n", welkin::format_error(e.info()).c_str());
+      return 1;
+    }
+  }
   if (argc < 2) {
     std::fprintf(stderr, "usage: %s FILE.png|FILE.exr [--min-width N] [--min-height N]\n", argv[0]);
     return 2;
