@@ -145,6 +145,11 @@ class EditorApp {
   void handle_shortcuts();
   bool run_app_verb(const ScriptLine& line);
   void finish_frame_requests();
+  // The timeline's playhead (while playing) and its preview written into the scene.
+  void advance_timeline(double dt_s);
+  // What the last frame took (dt_s, main loop to main loop): the HUD's figures, the measurement, the
+  // moving frames' scale; and the scene's clock advanced by it while it runs.
+  void account_last_frame(double dt_s);
   // measure-frames: the last frame's figures into the measurement (printed once it has them all),
   // and the view flown for the frame about to be rendered.
   void measure_last_frame(double frame_ms);
@@ -583,6 +588,13 @@ void EditorApp::measure_last_frame(double frame_ms) {
   measure_.reset();
 }
 
+void EditorApp::account_last_frame(double dt_s) {
+  ctx_->stats.push(dt_s * 1000.0);
+  measure_last_frame(dt_s * 1000.0);
+  if (last_frame_reduced()) ctx_->viewport.moving_scale.after_moving_frame(dt_s * 1000.0);
+  if (ctx_->viewport.clock_running) clock_s_ += dt_s;
+}
+
 bool EditorApp::last_frame_reduced() const {
   const FrameResult& last = ctx_->stats.last;
   const ViewportState& vp = ctx_->viewport;
@@ -594,6 +606,26 @@ void EditorApp::fly_measured_view(double dt_s) {
   const MeasureRequest& r = measure_->request();
   if (r.fly) ctx_->viewport.pose = glide(ctx_->viewport.pose, r.speed_mps, r.turn_deg_s, dt_s);
   ++measure_rendered_;
+}
+
+void EditorApp::advance_timeline(double dt_s) {
+  TimelineState& tl = ctx_->timeline;
+  double duration = doc_->sequence().duration_s;
+  if (tl.playing) {
+    tl.playhead_s += dt_s;
+    if (tl.playhead_s > duration) {
+      tl.playhead_s = tl.loop ? std::fmod(tl.playhead_s, duration) : duration;
+      tl.playing = tl.loop;
+    }
+  }
+  if (!tl.preview || doc_->sequence().tracks.empty()) {
+    tl.problems.clear();
+    tl.previewed_at_s = -1;
+  } else if (!doc_->previewing() || tl.playhead_s != tl.previewed_at_s || !(doc_->sequence() == tl.previewed)) {
+    tl.problems = doc_->preview_sequence(tl.playhead_s);
+    tl.previewed_at_s = tl.playhead_s;
+    tl.previewed = doc_->sequence();
+  }
 }
 
 void EditorApp::finish_frame_requests() {
@@ -671,10 +703,7 @@ int EditorApp::run() {
     auto now = std::chrono::steady_clock::now();
     double dt = std::chrono::duration<double>(now - last).count();
     last = now;
-    ctx_->stats.push(dt * 1000.0);
-    measure_last_frame(dt * 1000.0);
-    if (last_frame_reduced()) ctx_->viewport.moving_scale.after_moving_frame(dt * 1000.0);
-    if (ctx_->viewport.clock_running) clock_s_ += dt;
+    account_last_frame(dt);
 
     follow_world();
     if (script_.active() && !measure_) {
@@ -690,28 +719,11 @@ int EditorApp::run() {
     session_->tick(std::chrono::duration<double>(now - start).count());
     for (const GuardMessage& m : session_->take_messages()) m.error ? ctx_->log.error(m.text) : ctx_->log.info(m.text);
 
-    TimelineState& tl = ctx_->timeline;
-    double duration = doc_->sequence().duration_s;
-    if (tl.playing) {
-      tl.playhead_s += dt;
-      if (tl.playhead_s > duration) {
-        tl.playhead_s = tl.loop ? std::fmod(tl.playhead_s, duration) : duration;
-        tl.playing = tl.loop;
-      }
-    }
-    if (!tl.preview || doc_->sequence().tracks.empty()) {
-      tl.problems.clear();
-      tl.previewed_at_s = -1;
-    } else if (!doc_->previewing() || tl.playhead_s != tl.previewed_at_s || !(doc_->sequence() == tl.previewed)) {
-      tl.problems = doc_->preview_sequence(tl.playhead_s);
-      tl.previewed_at_s = tl.playhead_s;
-      tl.previewed = doc_->sequence();
-    }
+    advance_timeline(dt);
 
     fly_measured_view(dt);
-    // The scene's clock stands still while paused: no step, no drift.
-    const double step = ctx_->viewport.clock_running && frame_index_ ? dt : 0.0;
-    FrameInfo frame{.time_s = clock_s_, .dt_s = step, .index = frame_index_};
+    // The scene's clock: paused, no step and no drift.
+    FrameInfo frame{.time_s = clock_s_, .dt_s = ctx_->viewport.clock_running && frame_index_ ? dt : 0.0, .index = frame_index_};
     render_scene(frame);
 
     ImGui_ImplOpenGL3_NewFrame();
