@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <set>
 
 #include "welkin/core/error.h"
 
@@ -51,16 +52,30 @@ std::string new_map_file(const std::string& scene_path, const MapFieldSpec& spec
                                                           std::to_string(kMaxNewMapNames) + " tried)"});
 }
 
+namespace {
+// Every string the history's values hold: each name any state of the document gave a field.
+void collect_strings(const nlohmann::json& value, std::set<std::string>& out) {
+  if (value.is_string())
+    out.insert(value.get<std::string>());
+  else if (value.is_structured())
+    for (const nlohmann::json& v : value) collect_strings(v, out);
+}
+}  // namespace
+
 std::string new_map(EditorDocument& doc, const MapFieldSpec& spec, int side) {
   const MapTarget target = find_map(doc, spec);
   if (doc.scene_path().empty())
     throw Error(ErrorInfo{.path = spec.component + "/" + spec.file_field,
                           .message = "save the scene first: a new map is written beside it"});
   PaintedMaps& maps = doc.world().resource<PaintedMaps>();
-  // A name the field holds already would make no edit to undo (a scene naming a missing file).
+  // A name the field holds now would make no edit to undo, and one it held at some step (a scene
+  // naming a missing file) would be a map there when that step is undone to.
+  std::set<std::string> named{target.file};
+  for (const HistoryStep& step : doc.history().steps())
+    for (const Edit& edit : step.edits) collect_strings(edit.before, named), collect_strings(edit.after, named);
   const std::string file = new_map_file(doc.scene_path(), spec, [&](const std::string& name) {
     std::error_code ec;
-    return name == target.file || maps.holds(name) || std::filesystem::exists(name, ec) || ec;
+    return named.count(name) || maps.holds(name) || std::filesystem::exists(name, ec) || ec;
   });
   // Written at once, neutral: an autosave (which holds no texels) or a crash must never leave a
   // scene naming a map file that does not exist.

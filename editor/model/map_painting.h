@@ -39,8 +39,8 @@ inline constexpr int kMaxNewMapNames = 1000;
 std::string new_map_file(const std::string& scene_path, const MapFieldSpec& spec,
                          const std::function<bool(const std::string&)>& taken);
 // Names a new map in the component (one undoable edit): a neutral map of `side` texels, written at
-// once under a name no file, held map or the field itself has yet, so the field always changes
-// and undoing it gives back what the field named before. No file is ever replaced. Throws Error
+// once under a name no file, held map or the document's history has yet, so the field always
+// changes and undoing it gives back what the field named before. No file is ever replaced. Throws Error
 // when the scene has not been saved yet (the map has no place) or `side` is out of range.
 std::string new_map(EditorDocument& doc, const MapFieldSpec& spec, int side);
 

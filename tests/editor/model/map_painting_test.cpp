@@ -86,11 +86,13 @@ TEST_F(MapPainting, ANewMapTakesAFreeNameSoUndoGivesBackWhatTheFieldNamed) {
   EXPECT_THROW(maps.get(named), Error);  // no map, as before; the new file stays on disk
   EXPECT_TRUE(doc.redo());
   EXPECT_EQ(texels(), std::vector<uint8_t>(16 * 16, kPaintedMapNeutral));
-  // Now the first name is free again; after it, a file already there is never replaced.
-  EXPECT_EQ(new_map(doc, kWeatherMap, 32), named);
-  EXPECT_EQ(new_map(doc, kWeatherMap, 64), (dir.path() / "valley.map-3.png").string());
+  // The first name stays taken while the history holds it (undoing to it must find no map there),
+  // and a file already there is never replaced.
+  EXPECT_EQ(new_map(doc, kWeatherMap, 32), (dir.path() / "valley.map-3.png").string());
   EXPECT_EQ(maps.get(file).side, 16);
-  EXPECT_EQ(maps.get(named).side, 32);
+  EXPECT_TRUE(doc.undo() && doc.undo());
+  EXPECT_EQ(find_map(doc, kWeatherMap).file, named);
+  EXPECT_THROW(maps.get(named), Error);
 }
 
 TEST_F(MapPainting, AStrokeIsOneStepThatRestoresEveryTexel) {
