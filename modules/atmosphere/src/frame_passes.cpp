@@ -129,7 +129,7 @@ void background_system(SystemContext& sc) {
   const FrameTargets t = f.targets;
   const ResourceHandle trans = f.trans, ms = f.published(kMultiscatteringLut),
                        sky_view = f.published(kSkyViewLut);
-  const GpuUniforms& u = gpu.uniforms;
+  const FrameBlock& u = gpu.uniforms;
   const bool space = f.space;
   // The discs are hidden behind the geometry for free.
   const float pixel_angle = rc.view.vertical_fov_rad / float(std::max(rc.view.height, 1));
@@ -141,12 +141,11 @@ void background_system(SystemContext& sc) {
   // the geometry (a branch would cost every pixel on a software rasteriser).
   ShaderDefines open_sky = sky;
   open_sky["ATM_SKY_GROUND_LIGHT"] = "0";
-  const bool any_disc = u.flags.x > 0.5f || u.flags.z > 0.5f;
+  const bool any_disc = u.sun_disc > 0.5f || u.moon_disc > 0.5f;
   // Stars only while the sun is below the camera's horizon, or from space: in daylight the sky
   // outshines them, and the pass would cost every frame for nothing.
-  const glm::vec3 camera_up = glm::vec3(u.camera_km) / std::max(u.camera_km.w, 1e-6f);
-  const bool draw_stars = stars && stars->count > 0 &&
-                          (space || glm::dot(glm::vec3(u.sun_direction), camera_up) < 0.0f);
+  const glm::vec3 camera_up = u.camera_km / std::max(u.camera_radius_km, 1e-6f);
+  const bool draw_stars = stars && stars->count > 0 && (space || glm::dot(u.sun_direction, camera_up) < 0.0f);
   StarsDraw stars_draw;
   if (draw_stars) stars_draw = prepare_stars(gpu, *stars, rc.view);
   // The sky's first draw covers every pixel without blending: the frame's colour needs no clear.
@@ -159,7 +158,7 @@ void background_system(SystemContext& sc) {
   if (!draw_stars) {
     auto put = [&inputs](const auto& v) { inputs.append(reinterpret_cast<const char*>(&v), sizeof v); };
     // the sky is at infinity: the aerial-perspective volume's frustum is not its input
-    GpuUniforms sky_u = u;
+    FrameBlock sky_u = u;
     sky_u.aerial_view_projection = sky_u.aerial_inverse_view_projection = glm::mat4(0.0f);
     put(sky_u), put(gpu.sky_view_builds), put(gpu.lut_builds), put(gpu.lut_cache_reads), put(pixel_angle);
     put(rc.view.width), put(rc.view.height), put(rc.full_precision);
@@ -241,7 +240,7 @@ void background_system(SystemContext& sc) {
 // and the terrain then covered most of them.
 void ground_light_pass(SystemContext& sc, const AfterLuts& f) {
   const LightEnvironment* env = &sc.world.resource<LightEnvironment>();
-  const GpuUniforms& u = f.gpu->uniforms;
+  const FrameBlock& u = f.gpu->uniforms;
   ShaderDefines ground_only = sky_defines(sc, f);
   if (ground_only.at("ATM_SKY_GROUND_LIGHT") != "1") return;
   const PixelRect ground = ground_pixel_rect(u, f.rc->view.width, f.rc->view.height);
@@ -291,7 +290,7 @@ void sky_system(SystemContext& sc) {
   const FrameTargets t = f.targets;
   const ResourceHandle trans = f.trans, ap_s = f.published(kAerialInscattering),
                        ap_t = f.published(kAerialTransmittance);
-  const GpuUniforms& u = gp->uniforms;
+  const FrameBlock& u = gp->uniforms;
   const bool space = f.space;
   ShaderDefines ap = moon_defines(u);
   ap["ATM_AP_MODE"] = space ? "1" : "0";

@@ -6,11 +6,11 @@
 
 namespace welkin::atmosphere {
 
-bool ray_meets_ground(const GpuUniforms& u, double x, double y) {
+bool ray_meets_ground(const FrameBlock& u, double x, double y) {
   const glm::dvec4 far = glm::dmat4(u.inverse_view_projection) * glm::dvec4(x, y, 0.5, 1.0);
   const glm::dvec3 d = glm::normalize(glm::dvec3(far) / far.w);
   const glm::dvec3 o(u.camera_km);
-  const double radius = u.radii.x;
+  const double radius = u.medium.bottom_radius_km;
   // |o + t d| = radius for some t > 0: below the ground every ray meets it; above, the ray must point
   // toward the planet and pass within the radius of its centre.
   const double c = (glm::length(o) - radius) * (glm::length(o) + radius);
@@ -19,7 +19,7 @@ bool ray_meets_ground(const GpuUniforms& u, double x, double y) {
   return b < 0.0 && b * b - c >= 0.0;
 }
 
-PixelRect ground_pixel_rect(const GpuUniforms& u, int width, int height) {
+PixelRect ground_pixel_rect(const FrameBlock& u, int width, int height) {
   if (width <= 0 || height <= 0) return {};
   constexpr int kCells = 32;  // grid cells across each axis
   int x0 = width, y0 = height, x1 = -1, y1 = -1;

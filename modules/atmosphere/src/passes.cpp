@@ -21,13 +21,13 @@ namespace {
 
 // The persistent LUTs are a pure function of the medium, their sizes and step counts, the shaders
 // that build them and the GL implementation that runs them: all of it is the disk cache's key.
-std::string persistent_lut_key(const ShaderLibrary& shaders, const GpuUniforms& u) {
+std::string persistent_lut_key(const ShaderLibrary& shaders, const FrameBlock& u) {
   std::string key = "welkin atmosphere: transmittance and multi-scattering LUTs, " +
                     std::to_string(kMultiscatteringLayers) + " layers\n";
   key += current_gl_info().key();
-  key.append(reinterpret_cast<const char*>(&u), offsetof(GpuUniforms, camera_km));
-  key.append(reinterpret_cast<const char*>(&u.transmittance_size), sizeof u.transmittance_size);
-  key.append(reinterpret_cast<const char*>(&u.multiscattering_size), sizeof u.multiscattering_size);
+  const std::array<int, 6> sizes = persistent_lut_sizes(u);
+  key.append(reinterpret_cast<const char*>(&u.medium), sizeof u.medium);
+  key.append(reinterpret_cast<const char*>(sizes.data()), sizeof sizes);
   key += shaders.preprocess("atmosphere/transmittance_lut.comp", {}).text;
   for (const char* iterate : {"0", "1"})
     key += shaders.preprocess("atmosphere/multiscattering_lut.comp", {{"ATM_MS_ITERATE", iterate}}).text;
@@ -160,7 +160,7 @@ struct LutFrame {
   AtmosphereGpu* gpu;
   RenderContext* rc;
   ResolvedQuality q;
-  GpuUniforms u;
+  FrameBlock u;
   ShaderDefines moon_defs;
   ResourceHandle trans, ms, sky_view, ap_s, ap_t, irradiance;
 };
@@ -185,7 +185,7 @@ void add_persistent_lut_passes(RenderGraph& g, const LutFrame& f) {
   AtmosphereGpu* gp = f.gpu;
   RenderContext* rcp = f.rc;
   const ResolvedQuality q = f.q;
-  const GpuUniforms u = f.u;
+  const FrameBlock u = f.u;
   // Persistent outputs nobody reads this frame must still be produced: side effects.
   g.add_pass(
       "atmosphere.transmittance",
@@ -311,13 +311,13 @@ void lut_system(SystemContext& sc) {
 
   auto& rc = sc.world.resource<RenderContext>();
   auto& gpu = sc.world.resource<AtmosphereGpu>();
-  GpuUniforms u = make_uniforms(atm, sun, moon, rc.view);
+  FrameBlock u = make_uniforms(atm, sun, moon, rc.view);
   choose_aerial_frustum(u, gpu.aerial_uniforms, gpu.aerial_valid, gpu.uniforms.view_projection,
                         gpu.view_turned);
   gpu.view_turned = u.view_projection != gpu.uniforms.view_projection;
   const ResolvedQuality q = resolve_quality(atm);
   const bool resized = ensure_lut_textures(gpu, q, rc);
-  if (!gpu.uniform_buffer) gpu.uniform_buffer = std::make_unique<Buffer>(sizeof(GpuUniforms));
+  if (!gpu.uniform_buffer) gpu.uniform_buffer = std::make_unique<Buffer>(sizeof(FrameBlock));
   gpu.uniform_buffer->upload(&u, sizeof(u));
   gpu.uniforms = u;
   // The moon reaches surfaces where it lights the sky (make_uniforms): by day, on any surface, it adds

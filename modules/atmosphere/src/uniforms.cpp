@@ -12,16 +12,24 @@ namespace welkin::atmosphere {
 
 namespace {
 
-// Bruneton's two-layer form on the GPU always: one layer goes in the second slot with a zero-width
-// first slot, none leaves both at zero density.
-void pack_profile(const DensityProfile& p, glm::vec4* out) {
-  DensityLayer l0{}, l1{};
-  if (p.size() == 1) l1 = p[0];
-  if (p.size() >= 2) l0 = p[0], l1 = p[1];
-  out[0] = {l0.width_km, l0.exp_term, l0.exp_scale_per_km, l0.linear_term_per_km};
-  out[1] = {l0.constant_term, 0, 0, 0};
-  out[2] = {l1.width_km, l1.exp_term, l1.exp_scale_per_km, l1.linear_term_per_km};
-  out[3] = {l1.constant_term, 0, 0, 0};
+DensityLayerBlock pack_layer(const DensityLayer& l) {
+  DensityLayerBlock out{};
+  out.width_km = l.width_km;
+  out.exp_term = l.exp_term;
+  out.exp_scale_per_km = l.exp_scale_per_km;
+  out.linear_term_per_km = l.linear_term_per_km;
+  out.constant_term = l.constant_term;
+  return out;
+}
+
+// Bruneton's two-layer form on the GPU always: one layer goes in the upper slot with a zero-width
+// lower slot, none leaves both at zero density.
+void pack_profile(const DensityProfile& p, DensityLayerBlock (&out)[2]) {
+  DensityLayer lower{}, upper{};
+  if (p.size() == 1) upper = p[0];
+  if (p.size() >= 2) lower = p[0], upper = p[1];
+  out[0] = pack_layer(lower);
+  out[1] = pack_layer(upper);
 }
 
 glm::dvec3 any_perpendicular(const glm::dvec3& v) {
@@ -40,25 +48,33 @@ glm::dvec3 moon_light_direction(const glm::dvec3& moon, const glm::dvec3& sun, d
 
 }  // namespace
 
-GpuUniforms make_uniforms(const Atmosphere& a, const Sun* sun_in, const Moon* moon, const FrameView& view) {
-  GpuUniforms u;
+FrameBlock make_uniforms(const Atmosphere& a, const Sun* sun_in, const Moon* moon, const FrameView& view) {
+  FrameBlock u{};
   const ResolvedQuality q = resolve_quality(a);
   const double bottom = a.bottom_radius_km, top = a.top_radius_km;
   // Samples and the camera stay this far above the ground: a few float ulps at the planet's radius
   // (3 m on Earth), so a point on the ground never rounds below it, yet far below any scale height.
   const double lift = std::max(1e-5 * (top - bottom), 5e-7 * bottom);
-  u.rayleigh_scattering = glm::vec4(a.rayleigh_scattering, 0.0f);
-  u.mie_scattering = glm::vec4(a.mie_scattering, a.mie_g);
-  u.mie_extinction = glm::vec4(a.mie_extinction, float(int(a.mie_phase)));
-  u.absorption_extinction = glm::vec4(a.absorption_extinction, a.multiple_scattering_factor);
-  u.ground_albedo = glm::vec4(a.ground_albedo, float(lift));
-  u.radii = glm::vec4(float(bottom), float(top), float(std::sqrt((top - bottom) * (top + bottom))),
-                      float(top - bottom));
-  pack_profile(a.rayleigh_density, &u.density[0]);
-  pack_profile(a.mie_density, &u.density[4]);
-  pack_profile(a.absorption_density, &u.density[8]);
+  auto& m = u.medium;
+  m.rayleigh_scattering = a.rayleigh_scattering;
+  m.mie_scattering = a.mie_scattering;
+  m.mie_g = a.mie_g;
+  m.mie_extinction = a.mie_extinction;
+  m.mie_phase = float(int(a.mie_phase));
+  m.absorption_extinction = a.absorption_extinction;
+  m.multiple_scattering_factor = a.multiple_scattering_factor;
+  m.ground_albedo = a.ground_albedo;
+  m.lift_km = float(lift);
+  m.bottom_radius_km = float(bottom);
+  m.top_radius_km = float(top);
+  m.horizon_distance_km = float(std::sqrt((top - bottom) * (top + bottom)));
+  m.thickness_km = float(top - bottom);
+  pack_profile(a.rayleigh_density, m.rayleigh_density);
+  pack_profile(a.mie_density, m.mie_density);
+  pack_profile(a.absorption_density, m.absorption_density);
   const glm::dvec2 moments = mie_legendre_moments(a.mie_phase, a.mie_g);
-  u.mie_moments = glm::vec4(float(moments.x), float(moments.y), 0.0f, 0.0f);
+  m.mie_moment_1 = float(moments.x);
+  m.mie_moment_2 = float(moments.y);
 
   // Camera relative to the planet in double, rounded to float only once: stable at any distance.
   glm::dvec3 cam = (view.camera_position_m - planet_center_m(a)) * 1e-3;
@@ -67,25 +83,32 @@ GpuUniforms make_uniforms(const Atmosphere& a, const Sun* sun_in, const Moon* mo
     cam = (r > 0.0 ? cam / r : glm::dvec3(0, 0, 1)) * (bottom + lift);
     r = bottom + lift;
   }
-  u.camera_km = glm::vec4(glm::vec3(cam), float(r));
+  u.camera_km = glm::vec3(cam);
+  u.camera_radius_km = float(r);
 
   const Sun sun = sun_in ? *sun_in : Sun{};
   const glm::dvec3 sun_dir = direction_from_azimuth_elevation(sun.azimuth_deg, sun.elevation_deg);
   const double sun_radius = glm::radians(double(sun.angular_radius_deg));
-  u.sun_direction = glm::vec4(glm::vec3(sun_dir), float(std::cos(sun_radius)));
-  u.sun_illuminance = glm::vec4(sun.color * sun.illuminance_lux * sun.visible_fraction, float(sun_radius));
-  u.flags = glm::vec4(sun.disc ? 1.0f : 0.0f, sun.limb_darkening ? 1.0f : 0.0f, 0.0f, 0.0f);
+  u.sun_direction = glm::vec3(sun_dir);
+  u.sun_cos_angular_radius = float(std::cos(sun_radius));
+  u.sun_illuminance = sun.color * sun.illuminance_lux * sun.visible_fraction;
+  u.sun_angular_radius_rad = float(sun_radius);
+  u.sun_disc = sun.disc ? 1.0f : 0.0f;
+  u.sun_limb_darkening = sun.limb_darkening ? 1.0f : 0.0f;
   if (moon) {
     const glm::dvec3 moon_dir = direction_from_azimuth_elevation(moon->azimuth_deg, moon->elevation_deg);
     const double moon_radius = glm::radians(double(moon->angular_radius_deg));
-    u.moon_direction = glm::vec4(glm::vec3(moon_dir), float(std::cos(moon_radius)));
-    u.moon_illuminance = glm::vec4(moon->color * moon->illuminance_lux, float(moon_radius));
-    u.moon_light = glm::vec4(glm::vec3(moon_light_direction(moon_dir, sun_dir, moon->illuminated_fraction)),
-                             moon->illuminated_fraction);
-    u.flags.z = moon->disc ? 1.0f : 0.0f;
-    u.flags.w = moon->lights_sky ? 1.0f : 0.0f;
+    u.moon_direction = glm::vec3(moon_dir);
+    u.moon_cos_angular_radius = float(std::cos(moon_radius));
+    u.moon_illuminance = moon->color * moon->illuminance_lux;
+    u.moon_angular_radius_rad = float(moon_radius);
+    u.moon_sunlit_direction = glm::vec3(moon_light_direction(moon_dir, sun_dir, moon->illuminated_fraction));
+    u.moon_illuminated_fraction = moon->illuminated_fraction;
+    u.moon_disc = moon->disc ? 1.0f : 0.0f;
+    u.moon_lights_sky = moon->lights_sky ? 1.0f : 0.0f;
   } else {
-    u.moon_direction = glm::vec4(0, 0, -1, 1);
+    u.moon_direction = glm::vec3(0, 0, -1);
+    u.moon_cos_angular_radius = 1.0f;
   }
 
   u.inverse_view_projection = view.inverse_view_projection;
@@ -99,11 +122,11 @@ GpuUniforms make_uniforms(const Atmosphere& a, const Sun* sun_in, const Moon* mo
   // inside the atmosphere the sky it lights is thousands of times brighter than anything a moon of at
   // most 1/1000 of the sun's illuminance adds, and the second light doubles the cost of every march
   // (a shader permutation without it, passes.cpp), so it is left out.
-  if (moon && u.flags.w > 0.5f && r < top && glm::dot(sun_dir, up) > 0.0) {
+  if (moon && u.moon_lights_sky > 0.5f && r < top && glm::dot(sun_dir, up) > 0.0) {
     const glm::vec3 sc = sun.color, mc = moon->color;
     const double sun_lux = double(sun.illuminance_lux) * sun.visible_fraction * std::min({sc.r, sc.g, sc.b});
     const double moon_lux = double(moon->illuminance_lux) * std::max({mc.r, mc.g, mc.b});
-    if (moon_lux <= 1e-3 * sun_lux) u.flags.w = 0.0f;
+    if (moon_lux <= 1e-3 * sun_lux) u.moon_lights_sky = 0.0f;
   }
   glm::dvec3 x = sun_dir - up * glm::dot(sun_dir, up);
   x = glm::length(x) > 1e-9 ? glm::normalize(x) : any_perpendicular(up);
@@ -111,36 +134,48 @@ GpuUniforms make_uniforms(const Atmosphere& a, const Sun* sun_in, const Moon* mo
   u.sky_frame = glm::mat4(glm::vec4(glm::vec3(x), 0), glm::vec4(glm::vec3(y), 0), glm::vec4(glm::vec3(up), 0),
                           glm::vec4(0, 0, 0, 1));
 
-  u.transmittance_size = {q.transmittance_width, q.transmittance_height, q.transmittance_steps, 0};
-  u.multiscattering_size = {q.multiscattering_size, q.multiscattering_steps, q.multiscattering_iterations, 0};
-  u.sky_view_size = {q.sky_view_width, q.sky_view_height, q.sky_view_steps, 0};
-  u.aerial_size = {q.aerial_perspective_width, q.aerial_perspective_height, q.aerial_perspective_slices,
-                   q.aerial_perspective_steps_per_slice};
-  u.aerial_params = {a.aerial_perspective_distance_km, float(q.raymarch_steps), r >= top ? 1.0f : 0.0f,
-                     float(q.raymarch_light_steps)};
+  u.transmittance_width = q.transmittance_width;
+  u.transmittance_height = q.transmittance_height;
+  u.transmittance_steps = q.transmittance_steps;
+  u.multiscattering_size = q.multiscattering_size;
+  u.multiscattering_steps = q.multiscattering_steps;
+  u.multiscattering_iterations = q.multiscattering_iterations;
+  u.sky_view_width = q.sky_view_width;
+  u.sky_view_height = q.sky_view_height;
+  u.sky_view_steps = q.sky_view_steps;
+  u.aerial_width = q.aerial_perspective_width;
+  u.aerial_height = q.aerial_perspective_height;
+  u.aerial_slices = q.aerial_perspective_slices;
+  u.aerial_steps_per_slice = q.aerial_perspective_steps_per_slice;
+  u.aerial_distance_km = a.aerial_perspective_distance_km;
+  u.raymarch_steps = float(q.raymarch_steps);
+  u.camera_in_space = r >= top ? 1.0f : 0.0f;
+  u.raymarch_light_steps = float(q.raymarch_light_steps);
   // The sky-view LUT's horizon for this camera (common.glsl, atm_sky_view_uv_local), once per frame in
   // double rather than per pixel.
   const SkyViewMapping sv = sky_view_mapping(r, bottom);
   const double n = q.sky_view_height;
-  u.sky_view_params = {float(std::sin(sv.beta)), float(std::cos(sv.beta)),
-                       float(1.0 / std::tan(0.5 * sv.zenith_horizon)), float(1.0 / std::tan(0.5 * sv.beta))};
+  u.sky_view_sin_beta = float(std::sin(sv.beta));
+  u.sky_view_cos_beta = float(std::cos(sv.beta));
+  u.sky_view_inv_tan_half_zenith_horizon = float(1.0 / std::tan(0.5 * sv.zenith_horizon));
+  u.sky_view_inv_tan_half_beta = float(1.0 / std::tan(0.5 * sv.beta));
   // v's texel mapping, unit_to_sub_uv(v, n) = v (n - 1) / n + 0.5 / n, as a scale and an offset.
-  u.sky_view_params_v = {float((n - 1.0) / n), float(0.5 / n), float(sv.zenith_horizon),
-                         float(sv.beta)};
+  u.sky_view_v_scale = float((n - 1.0) / n);
+  u.sky_view_v_offset = float(0.5 / n);
+  u.sky_view_zenith_horizon = float(sv.zenith_horizon);
+  u.sky_view_beta = float(sv.beta);
   return u;
 }
 
-bool luts_differ(const GpuUniforms& a, const GpuUniforms& b) {
-  // Everything up to the camera is the medium: exactly what the persistent LUTs depend on.
-  const size_t medium_bytes = offsetof(GpuUniforms, camera_km);
-  return std::memcmp(&a, &b, medium_bytes) != 0 || a.transmittance_size != b.transmittance_size ||
-         a.multiscattering_size != b.multiscattering_size;
+bool luts_differ(const FrameBlock& a, const FrameBlock& b) {
+  return std::memcmp(&a.medium, &b.medium, sizeof a.medium) != 0 ||
+         persistent_lut_sizes(a) != persistent_lut_sizes(b);
 }
 
 namespace {
 
 // b with a's view: what remains differs only where the frames differ in anything else.
-GpuUniforms with_view_of(const GpuUniforms& a, GpuUniforms b) {
+FrameBlock with_view_of(const FrameBlock& a, FrameBlock b) {
   b.inverse_view_projection = a.inverse_view_projection;
   b.view_projection = a.view_projection;
   return b;
@@ -161,27 +196,34 @@ bool frustum_inside(const glm::mat4& view_projection, const glm::mat4& inverse_v
 
 }  // namespace
 
-bool sky_view_differs(const GpuUniforms& a, const GpuUniforms& b) {
-  GpuUniforms view_free = with_view_of(a, b);
+bool sky_view_differs(const FrameBlock& a, const FrameBlock& b) {
+  FrameBlock view_free = with_view_of(a, b);
   view_free.aerial_inverse_view_projection = a.aerial_inverse_view_projection;
   view_free.aerial_view_projection = a.aerial_view_projection;
-  view_free.aerial_size = a.aerial_size;
-  view_free.aerial_params = a.aerial_params;
-  return std::memcmp(&a, &view_free, sizeof(GpuUniforms)) != 0;
+  view_free.aerial_width = a.aerial_width;
+  view_free.aerial_height = a.aerial_height;
+  view_free.aerial_slices = a.aerial_slices;
+  view_free.aerial_steps_per_slice = a.aerial_steps_per_slice;
+  view_free.aerial_distance_km = a.aerial_distance_km;
+  // the sky's per-pixel march does not read the LUT (camera_in_space follows the camera, compared)
+  view_free.raymarch_steps = a.raymarch_steps;
+  view_free.camera_in_space = a.camera_in_space;
+  view_free.raymarch_light_steps = a.raymarch_light_steps;
+  return std::memcmp(&a, &view_free, sizeof(FrameBlock)) != 0;
 }
 
-bool aerial_perspective_differs(const GpuUniforms& a, const GpuUniforms& b) {
-  const GpuUniforms view_free = with_view_of(a, b);
-  return std::memcmp(&a, &view_free, sizeof(GpuUniforms)) != 0;
+bool aerial_perspective_differs(const FrameBlock& a, const FrameBlock& b) {
+  const FrameBlock view_free = with_view_of(a, b);
+  return std::memcmp(&a, &view_free, sizeof(FrameBlock)) != 0;
 }
 
-void choose_aerial_frustum(GpuUniforms& u, const GpuUniforms& kept, bool kept_valid,
+void choose_aerial_frustum(FrameBlock& u, const FrameBlock& kept, bool kept_valid,
                            const glm::mat4& previous_view_projection, bool turned_before) {
   u.aerial_view_projection = u.view_projection;
   u.aerial_inverse_view_projection = u.inverse_view_projection;
   const bool turning = u.view_projection != previous_view_projection;
   if (!kept_valid || !turning) return;  // a still view: fitted to it (remade once a turn stops)
-  GpuUniforms same_frustum = u;
+  FrameBlock same_frustum = u;
   same_frustum.aerial_view_projection = kept.aerial_view_projection;
   same_frustum.aerial_inverse_view_projection = kept.aerial_inverse_view_projection;
   if (aerial_perspective_differs(same_frustum, kept)) return;  // the camera or anything else moved

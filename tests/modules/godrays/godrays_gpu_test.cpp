@@ -8,16 +8,16 @@
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
-#include <tuple>
 #include <nlohmann/json.hpp>
+#include <tuple>
 
-#include "reference/single_scattering.h"
 #include "frame_block.h"
+#include "golden.h"
 #include "gpu_block_readback.h"
+#include "reference/single_scattering.h"
 #include "shafts.h"
 #include "validation/reference_model.h"
 #include "welkin/atmosphere/components.h"
-#include "welkin/atmosphere/gpu.h"
 #include "welkin/core/files.h"
 #include "welkin/core/module.h"
 #include "welkin/core/world.h"
@@ -25,7 +25,6 @@
 #include "welkin/gfx/light_environment.h"
 #include "welkin/gfx/renderer.h"
 #include "welkin/godrays/components.h"
-#include "golden.h"
 #include "welkin/scene/json_fields.h"
 #include "welkin/scene/scene_file.h"
 
@@ -110,7 +109,8 @@ double exact_case_error(int steps) {
   World& w = *with.world;
   const auto& atm = *w.registry().get<atmosphere::Atmosphere>(w.registry().first<atmosphere::Atmosphere>());
   const ref::AtmosphereModel model = atmosphere::to_reference(atm);
-  const glm::vec3 e_sun = glm::vec3(w.resource<atmosphere::AtmosphereGpu>().uniforms.sun_illuminance);
+  const auto& sun_light = *w.registry().get<atmosphere::Sun>(w.registry().first<atmosphere::Sun>());
+  const glm::vec3 e_sun = sun_light.color * sun_light.illuminance_lux * sun_light.visible_fraction;
   const glm::dvec3 sun = glm::dvec3(*scene_sun_direction(w));
   const FrameView& view = w.resource<RenderContext>().view;
   const glm::dvec3 camera_km(0.0, 0.0, model.bottom_radius_km + 0.3);

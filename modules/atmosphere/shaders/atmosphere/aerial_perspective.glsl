@@ -13,8 +13,8 @@ struct AtmosphereAerialPerspective {
 };
 
 vec3 atmosphere_point_km(vec3 camera_relative_m) { return atm_camera() + camera_relative_m * 1e-3; }
-vec3 atmosphere_sun_direction() { return atm_sun_direction.xyz; }
-vec3 atmosphere_moon_direction() { return atm_moon_direction.xyz; }
+vec3 atmosphere_sun_direction() { return atm.sun_direction; }
+vec3 atmosphere_moon_direction() { return atm.moon_direction; }
 
 // Froxels inside the atmosphere; from space (no froxels there: they would cover vacuum) the path is
 // marched. The atmosphere's own pass picks one at compile time (ATM_AP_MODE 0 froxels, 1 march);
@@ -22,18 +22,18 @@ vec3 atmosphere_moon_direction() { return atm_moon_direction.xyz; }
 AtmosphereAerialPerspective atm_aerial_perspective_march(vec3 camera_relative_m) {
   float d_km = length(camera_relative_m) * 1e-3;
   vec3 dir = camera_relative_m / max(length(camera_relative_m), 1e-9);
-  AtmMarch m = atm_march_to_surface(atm_camera(), dir, d_km, int(atm_aerial_params.y), atm_sun_light(),
+  AtmMarch m = atm_march_to_surface(atm_camera(), dir, d_km, int(atm.raymarch_steps), atm_sun_light(),
                                     atm_moon_light_source());
   return AtmosphereAerialPerspective(m.luminance, m.transmittance);
 }
 
 AtmosphereAerialPerspective atm_aerial_perspective_froxels(vec3 camera_relative_m) {
   float d_km = length(camera_relative_m) * 1e-3;
-  vec4 clip = atm_aerial_view_projection * vec4(camera_relative_m, 1.0);
+  vec4 clip = atm.aerial_view_projection * vec4(camera_relative_m, 1.0);
   vec2 uv = clip.w > 0.0 ? clip.xy / clip.w * 0.5 + 0.5 : vec2(0.5);
-  float w = sqrt(d_km / atm_aerial_params.x);
+  float w = sqrt(d_km / atm.aerial_distance_km);
   // Slice 0's centre is at w = 0.5 / N; closer than that, fade towards no air at all.
-  float fade = clamp(w * float(atm_aerial_size.z) * 2.0, 0.0, 1.0);
+  float fade = clamp(w * float(atm.aerial_slices) * 2.0, 0.0, 1.0);
   // Level 0 named: the volume has no other, and a shader that samples it sparsely (the clouds'
   // march, one pixel in four or sixteen) must read what a dense one reads.
   vec3 s = textureLod(atm_aerial_inscattering, vec3(uv, w), 0.0).rgb;
@@ -57,16 +57,16 @@ vec3 atmosphere_light_irradiance(vec3 camera_relative_m, vec3 direction, vec3 il
                                  float angular_radius) {
   vec3 p = atmosphere_point_km(camera_relative_m);
   float len = length(p);
-  float r = max(len, atm_bottom() + atm_ground_albedo.w);
+  float r = max(len, atm_bottom() + atm.medium.lift_km);
   return illuminance * atm_transmittance_to_light(r, dot(p / max(len, 1e-20), direction), angular_radius);
 }
 vec3 atmosphere_sun_irradiance(vec3 camera_relative_m) {
-  return atmosphere_light_irradiance(camera_relative_m, atm_sun_direction.xyz, atm_sun_illuminance.rgb,
-                                     atm_sun_illuminance.w);
+  return atmosphere_light_irradiance(camera_relative_m, atm.sun_direction, atm.sun_illuminance,
+                                     atm.sun_angular_radius_rad);
 }
 vec3 atmosphere_moon_irradiance(vec3 camera_relative_m) {
-  return atmosphere_light_irradiance(camera_relative_m, atm_moon_direction.xyz, atm_moon_illuminance.rgb,
-                                     atm_moon_illuminance.w);
+  return atmosphere_light_irradiance(camera_relative_m, atm.moon_direction, atm.moon_illuminance,
+                                     atm.moon_angular_radius_rad);
 }
 
 // Irradiance from the sky (no sun or moon disc) on a surface with world normal n, from the L1

@@ -13,7 +13,7 @@ void main() {
   if (!screen_pixel(pixel)) return;
   float depth = texelFetch(u_depth, pixel, 0).r;
   if (depth <= 0.0) return;
-  vec4 p = atm_inverse_view_projection * vec4(screen_ndc(pixel, imageSize(u_color)), depth, 1.0);
+  vec4 p = atm.inverse_view_projection * vec4(screen_ndc(pixel, imageSize(u_color)), depth, 1.0);
   AtmosphereAerialPerspective ap = atmosphere_aerial_perspective(p.xyz / p.w);
   vec4 c = imageLoad(u_color, pixel);
   imageStore(u_color, pixel, vec4(c.rgb * ap.transmittance + atm_fit_half(ap.inscattering), c.a));

@@ -9,7 +9,7 @@ uniform sampler2D u_depth;
 
 void main() {
   float depth = texelFetch(u_depth, ivec2(gl_FragCoord.xy), 0).r;
-  vec4 p = atm_inverse_view_projection * vec4(v_ndc, depth, 1.0);
+  vec4 p = atm.inverse_view_projection * vec4(v_ndc, depth, 1.0);
   AtmosphereAerialPerspective ap = atmosphere_aerial_perspective(p.xyz / p.w);
   o_inscattering = vec4(atm_fit_half(ap.inscattering), 0.0);
   o_transmittance = vec4(ap.transmittance, 1.0);

@@ -11,26 +11,26 @@ layout(ATM_RADIANCE_FORMAT, binding = 1) uniform writeonly image3D o_transmittan
 
 void main() {
   ivec2 column = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(column, atm_aerial_size.xy))) return;
-  vec2 ndc = (vec2(column) + 0.5) / vec2(atm_aerial_size.xy) * 2.0 - 1.0;
-  vec4 far_point = atm_aerial_inverse_view_projection * vec4(ndc, 0.5, 1.0);
+  ivec2 columns = ivec2(atm.aerial_width, atm.aerial_height);
+  if (any(greaterThanEqual(column, columns))) return;
+  vec2 ndc = (vec2(column) + 0.5) / vec2(columns) * 2.0 - 1.0;
+  vec4 far_point = atm.aerial_inverse_view_projection * vec4(ndc, 0.5, 1.0);
   vec3 dir = normalize(far_point.xyz / far_point.w);
   vec3 origin = atm_camera();
   AtmLight sun = atm_sun_light(), moon = atm_moon_light_source();
   AtmMarch m = atm_march_start();
-  int slices = atm_aerial_size.z;
+  int slices = atm.aerial_slices, steps = atm.aerial_steps_per_slice;
+  float depth_km = atm.aerial_distance_km;
   // The ground does not stop the march: geometry seen there (terrain below the ideal sphere) is in
   // front of it, and its air is ground-level air (atm_medium clamps the altitude). Each slice goes on
   // from the sample where the previous one ended.
   float w0 = 0.5 / float(slices);
-  atm_march_segment(m, origin, dir, 0.0, atm_aerial_params.x * w0 * w0, atm_aerial_size.w, false, sun, moon,
-                    atm_ms_factor());
+  atm_march_segment(m, origin, dir, 0.0, depth_km * w0 * w0, steps, false, sun, moon, atm_ms_factor());
   imageStore(o_inscattering, ivec3(column, 0), vec4(atm_fit_half(m.luminance), 1.0));
   imageStore(o_transmittance, ivec3(column, 0), vec4(m.transmittance, 1.0));
   for (int k = 1; k < slices; ++k) {
     float w = (float(k) + 0.5) / float(slices);
-    atm_march_segment_resume(m, origin, dir, atm_aerial_params.x * w * w, atm_aerial_size.w, sun, moon,
-                             atm_ms_factor());
+    atm_march_segment_resume(m, origin, dir, depth_km * w * w, steps, sun, moon, atm_ms_factor());
     imageStore(o_inscattering, ivec3(column, k), vec4(atm_fit_half(m.luminance), 1.0));
     imageStore(o_transmittance, ivec3(column, k), vec4(m.transmittance, 1.0));
   }

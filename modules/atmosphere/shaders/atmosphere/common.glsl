@@ -1,39 +1,13 @@
 #pragma once
-// Everything the atmosphere shaders share: the uniform block (src/uniforms.h mirrors it), the LUT
+// Everything the atmosphere shaders share: the uniform block (blocks.glsl.h, C++ includes it too), the LUT
 // samplers at the units the runtime's light environment assigned (WELKIN_UNIT_*), the medium, phase
 // functions, ray geometry and the LUT parameterisations. Lengths are km in a planet-centred frame whose axes
 // are the scene's (x east, y north, z up).
 #define ATM_PI 3.14159265358979
 
-layout(std140, binding = WELKIN_BLOCK_ATMOSPHERE) uniform WelkinAtmosphere {
-  vec4 atm_rayleigh_scattering;    // rgb 1/km
-  vec4 atm_mie_scattering;         // rgb 1/km; w: g
-  vec4 atm_mie_extinction;         // rgb 1/km; w: phase (0 Cornette-Shanks, 1 Henyey-Greenstein)
-  vec4 atm_absorption_extinction;  // rgb 1/km; w: multiple-scattering factor
-  vec4 atm_ground_albedo;          // rgb; w: lift keeping samples above the ground (km)
-  vec4 atm_radii;                  // bottom, top, sqrt(top^2 - bottom^2), top - bottom
-  vec4 atm_density[12];            // Rayleigh, Mie, ozone: per layer (width, exp, scale, linear), (constant)
-  vec4 atm_mie_moments;            // Legendre moments of the Mie phase, l = 1 and 2 (Funk-Hecke)
-  vec4 atm_camera_km;              // planet-centred camera; w: its radius
-  vec4 atm_sun_direction;          // w: cos of the angular radius
-  vec4 atm_sun_illuminance;        // lux outside the atmosphere; w: angular radius (rad)
-  vec4 atm_moon_direction;
-  vec4 atm_moon_illuminance;
-  vec4 atm_moon_light;             // sunlight direction on the moon's face; w: illuminated fraction
-  vec4 atm_flags;                  // sun disc, limb darkening, moon disc, moon lights the sky
-  mat4 atm_inverse_view_projection;
-  mat4 atm_view_projection;
-  mat4 atm_aerial_inverse_view_projection;  // the aerial-perspective volume's frustum (gpu.h)
-  mat4 atm_aerial_view_projection;
-  mat4 atm_sky_frame;              // sky-view LUT frame: x towards the sun's azimuth, z up at the camera
-  ivec4 atm_transmittance_size;    // width, height, steps
-  ivec4 atm_multiscattering_size;  // size, steps, iterations
-  ivec4 atm_sky_view_size;         // width, height, steps
-  ivec4 atm_aerial_size;           // width, height, slices, steps per slice
-  vec4 atm_aerial_params;          // distance (km), raymarch steps, 1 when in space, raymarch light steps
-  vec4 atm_sky_view_params;        // sky-view LUT mapping for the camera (atm_sky_view_uv_local)
-  vec4 atm_sky_view_params_v;
-};
+#include "atmosphere/blocks.glsl.h"
+
+layout(std140, binding = WELKIN_BLOCK_ATMOSPHERE) uniform WelkinAtmosphere { AtmosphereFrameGpu atm; };
 
 layout(binding = WELKIN_UNIT_ATMOSPHERE_TRANSMITTANCE) uniform sampler2D atm_transmittance_lut;
 layout(binding = WELKIN_UNIT_ATMOSPHERE_MULTISCATTERING) uniform sampler2D atm_multiscattering_lut;
@@ -42,18 +16,16 @@ layout(binding = WELKIN_UNIT_ATMOSPHERE_AERIAL_INSCATTERING) uniform sampler3D a
 layout(binding = WELKIN_UNIT_ATMOSPHERE_AERIAL_TRANSMITTANCE) uniform sampler3D atm_aerial_transmittance;
 layout(binding = WELKIN_UNIT_ATMOSPHERE_SKY_IRRADIANCE) uniform sampler2D atm_sky_irradiance_sh;
 
-float atm_bottom() { return atm_radii.x; }
-float atm_top() { return atm_radii.y; }
-bool atm_camera_in_space() { return atm_aerial_params.z > 0.5; }
+float atm_bottom() { return atm.medium.bottom_radius_km; }
+float atm_top() { return atm.medium.top_radius_km; }
+bool atm_camera_in_space() { return atm.camera_in_space > 0.5; }
 
 // What the marching loops read of the block, loaded into registers once per invocation: software
 // rasterisers reload uniform-block values at every use inside a loop, which made the medium alone
 // cost four times its arithmetic. Functions taking an AtmParams are the loops' versions; those
 // without load it themselves (for one-off use by materials).
 struct AtmProfileParams {
-  vec4 lower;      // layer 0: width, exp term, exp scale, linear term
-  vec4 upper;      // layer 1
-  vec2 constants;  // constant terms of layers 0 and 1
+  AtmosphereDensityLayerGpu lower, upper;
 };
 
 struct AtmParams {
@@ -67,31 +39,29 @@ struct AtmParams {
   vec2 mie_moments;
 };
 
-AtmProfileParams atm_profile_params(int p) {
-  return AtmProfileParams(atm_density[p * 4 + 0], atm_density[p * 4 + 2],
-                          vec2(atm_density[p * 4 + 1].x, atm_density[p * 4 + 3].x));
-}
-
 AtmParams atm_params() {
-  return AtmParams(atm_profile_params(0), atm_profile_params(1), atm_profile_params(2),
-                   atm_rayleigh_scattering.rgb, atm_mie_scattering.rgb, atm_mie_extinction.rgb,
-                   atm_absorption_extinction.rgb, atm_radii.x, atm_radii.y, atm_radii.z, atm_radii.w,
-                   atm_ground_albedo.w, atm_absorption_extinction.w, vec2(atm_transmittance_size.xy),
-                   float(atm_multiscattering_size.x), atm_mie_moments.xy);
+  AtmosphereMediumGpu m = atm.medium;
+  return AtmParams(AtmProfileParams(m.rayleigh_density[0], m.rayleigh_density[1]),
+                   AtmProfileParams(m.mie_density[0], m.mie_density[1]),
+                   AtmProfileParams(m.absorption_density[0], m.absorption_density[1]), m.rayleigh_scattering,
+                   m.mie_scattering, m.mie_extinction, m.absorption_extinction, m.bottom_radius_km,
+                   m.top_radius_km, m.horizon_distance_km, m.thickness_km, m.lift_km,
+                   m.multiple_scattering_factor, vec2(atm.transmittance_width, atm.transmittance_height),
+                   float(atm.multiscattering_size), vec2(m.mie_moment_1, m.mie_moment_2));
 }
 
 // ---- Medium ------------------------------------------------------------------------------------
 
-float atm_layer(vec4 l, float constant_term, float h) {
+float atm_layer(AtmosphereDensityLayerGpu l, float h) {
   // min(.., 80) keeps exp finite, so an absent exponential (exp_term 0) adds exactly 0; the clamp
   // bounds the rest. No branch: software rasterisers run both sides of one.
-  return clamp(l.w * h + constant_term + l.y * exp(min(l.z * h, 80.0)), 0.0, 1.0);
+  float exponential = l.exp_term * exp(min(l.exp_scale_per_km * h, 80.0));
+  return clamp(l.linear_term_per_km * h + l.constant_term + exponential, 0.0, 1.0);
 }
 
 // The layer is chosen before evaluating it: one exp per profile instead of two.
 float atm_profile(AtmProfileParams p, float h) {
-  bool lower = h < p.lower.x;
-  return atm_layer(lower ? p.lower : p.upper, lower ? p.constants.x : p.constants.y, h);
+  return atm_layer(h < p.lower.width_km ? p.lower : p.upper, h);
 }
 
 struct AtmMedium {
@@ -127,8 +97,8 @@ float atm_hg_phase(float g, float c) {
 }
 
 float atm_mie_phase(float c) {
-  float g = atm_mie_scattering.w;
-  if (atm_mie_extinction.w > 0.5) return atm_hg_phase(g, c);
+  float g = atm.medium.mie_g;
+  if (atm.medium.mie_phase > 0.5) return atm_hg_phase(g, c);
   // Cornette-Shanks: HG times 3/2 (1 + c^2) / (2 + g^2), still normalised.
   return atm_hg_phase(g, c) * 1.5 * (1.0 + c * c) / (2.0 + g * g);
 }
@@ -184,9 +154,9 @@ vec2 atm_transmittance_uv(AtmParams P, float r, float mu) {
 }
 
 vec2 atm_transmittance_r_mu(vec2 uv) {
-  float x_mu = atm_sub_uv_to_unit(uv.x, float(atm_transmittance_size.x));
-  float x_r = atm_sub_uv_to_unit(uv.y, float(atm_transmittance_size.y));
-  float H = atm_radii.z, b = atm_bottom();
+  float x_mu = atm_sub_uv_to_unit(uv.x, float(atm.transmittance_width));
+  float x_r = atm_sub_uv_to_unit(uv.y, float(atm.transmittance_height));
+  float H = atm.medium.horizon_distance_km, b = atm_bottom();
   float rho = H * x_r;
   float r = sqrt(rho * rho + b * b);
   float d_min = atm_top() - r, d_max = rho + H;
@@ -308,25 +278,24 @@ vec3 atm_multiscattering_ground(AtmParams P, float mu_s) {
 //      over its value at the zenith (above) or the nadir (below);
 //   u: the azimuth phi from the sun as q = 1 - x / (|x| + |y|), which runs from 0 to 2 as phi runs
 //      from 0 to pi and is linear near 0.
-// atm_sky_view_params: sin beta and cos beta (beta: the horizon's angle from the nadir), 1 / tan of
-// half the horizon-to-zenith and horizon-to-nadir angles; _v: v's texel scale and offset, zenith
-// angle of the horizon, beta. lut_mapping.h mirrors this on the CPU.
+// The block's sky_view_* fields hold the mapping's constants for this camera (beta: the horizon's
+// angle from the nadir). lut_mapping.h mirrors this on the CPU.
 vec2 atm_sky_view_uv_local(vec3 d) {  // d in the LUT's frame, any length
   float h = length(d.xy), len = length(d);
-  float sin_e = atm_sky_view_params.x * d.z + atm_sky_view_params.y * h;  // times |d|
-  float cos_e = atm_sky_view_params.x * h - atm_sky_view_params.y * d.z;
+  float sin_e = atm.sky_view_sin_beta * d.z + atm.sky_view_cos_beta * h;  // times |d|
+  float cos_e = atm.sky_view_sin_beta * h - atm.sky_view_cos_beta * d.z;
   float k = sin_e / max(len + cos_e, 1e-30);
-  k *= k >= 0.0 ? atm_sky_view_params.z : atm_sky_view_params.w;
+  k *= k >= 0.0 ? atm.sky_view_inv_tan_half_zenith_horizon : atm.sky_view_inv_tan_half_beta;
   float v = 0.5 - 0.5 * sign(k) * sqrt(min(abs(k), 1.0));
   float q = 1.0 - d.x / max(abs(d.x) + abs(d.y), 1e-30);
   float u = 0.5 + (d.y < 0.0 ? -0.5 : 0.5) * sqrt(0.5 * q);
-  return vec2(u, v * atm_sky_view_params_v.x + atm_sky_view_params_v.y);
+  return vec2(u, v * atm.sky_view_v_scale + atm.sky_view_v_offset);
 }
 
 // Inverse of atm_sky_view_uv_local for a texel: (cos zenith, azimuth).
 vec2 atm_sky_view_direction(vec2 uv) {
-  float zenith_horizon = atm_sky_view_params_v.z, beta = atm_sky_view_params_v.w;
-  float c = 1.0 - 2.0 * atm_sub_uv_to_unit(uv.y, float(atm_sky_view_size.y));  // > 0 above the horizon
+  float zenith_horizon = atm.sky_view_zenith_horizon, beta = atm.sky_view_beta;
+  float c = 1.0 - 2.0 * atm_sub_uv_to_unit(uv.y, float(atm.sky_view_height));  // > 0 above the horizon
   float e = 2.0 * atan(c * abs(c) * tan(0.5 * (c >= 0.0 ? zenith_horizon : beta)));
   float s = 2.0 * uv.x - 1.0;
   float x = 1.0 - 2.0 * s * s;
@@ -337,7 +306,7 @@ vec2 atm_sky_view_direction(vec2 uv) {
 vec3 atm_sky_view_world_direction(float cos_zenith, float azimuth) {
   float sin_zenith = sqrt(max(0.0, 1.0 - cos_zenith * cos_zenith));
   vec3 local = vec3(cos(azimuth) * sin_zenith, sin(azimuth) * sin_zenith, cos_zenith);
-  return normalize(mat3(atm_sky_frame) * local);
+  return normalize(mat3(atm.sky_frame) * local);
 }
 
 // Luminance of the sky-view LUT along a direction (any length) in the LUT's frame (x towards the sun).
@@ -346,7 +315,7 @@ vec3 atm_sky_view_lookup_local(vec3 local) {
 }
 
 vec3 atm_sky_view_lookup(vec3 world_dir) {
-  return atm_sky_view_lookup_local(transpose(mat3(atm_sky_frame)) * world_dir);
+  return atm_sky_view_lookup_local(transpose(mat3(atm.sky_frame)) * world_dir);
 }
 
 // (1 - exp(-x)) / x without the cancellation at small x; the per-step energy-conserving integral.

@@ -16,15 +16,15 @@ float atm_cone_solid_angle(float radius) {
 }
 
 vec3 atm_sun_disc(vec3 v, float pixel_angle) {
-  if (atm_flags.x < 0.5) return vec3(0.0);
-  float radius = atm_sun_illuminance.w;
-  float c = dot(v, atm_sun_direction.xyz);
+  if (atm.sun_disc < 0.5) return vec3(0.0);
+  float radius = atm.sun_angular_radius_rad;
+  float c = dot(v, atm.sun_direction);
   if (c < cos(min(radius + pixel_angle, ATM_PI))) return vec3(0.0);  // cheap rejection, most pixels
   float angle = acos(clamp(c, -1.0, 1.0));
   float cover = atm_disc_coverage(angle, radius, pixel_angle);
   if (cover <= 0.0) return vec3(0.0);
-  vec3 l = atm_sun_illuminance.rgb / atm_cone_solid_angle(radius);
-  if (atm_flags.y > 0.5) {
+  vec3 l = atm.sun_illuminance / atm_cone_solid_angle(radius);
+  if (atm.sun_limb_darkening > 0.5) {
     // Limb darkening I(mu)/I(1) = mu^a with a per channel (Neckel & Labs 1994 fit used by Hillaire),
     // times (a + 2) / 2, its inverse disc average, so the illuminance is unchanged.
     const vec3 a = vec3(0.397, 0.503, 0.652);
@@ -35,12 +35,12 @@ vec3 atm_sun_disc(vec3 v, float pixel_angle) {
   return l * cover;
 }
 
-// The moon as a sphere lit from atm_moon_light (its phase); the lit part of the disc carries all of
-// the phase-dependent illuminance.
+// The moon as a sphere lit from atm.moon_sunlit_direction (its phase); the lit part of the disc
+// carries all of the phase-dependent illuminance.
 vec3 atm_moon_disc(vec3 v, float pixel_angle) {
-  if (atm_flags.z < 0.5) return vec3(0.0);
-  float radius = atm_moon_illuminance.w;
-  vec3 m = atm_moon_direction.xyz;
+  if (atm.moon_disc < 0.5) return vec3(0.0);
+  float radius = atm.moon_angular_radius_rad;
+  vec3 m = atm.moon_direction;
   float c = dot(v, m);
   if (c < cos(min(radius + pixel_angle, ATM_PI))) return vec3(0.0);
   float angle = acos(clamp(c, -1.0, 1.0));
@@ -51,7 +51,7 @@ vec3 atm_moon_disc(vec3 v, float pixel_angle) {
   float x = clamp(length(off) / max(sin(radius), 1e-7), 0.0, 1.0);
   vec3 side = length(off) > 0.0 ? normalize(off) : vec3(0.0);
   vec3 n = side * x - m * sqrt(max(0.0, 1.0 - x * x));
-  float lit = smoothstep(-0.03, 0.03, dot(n, atm_moon_light.xyz));
-  float fraction = max(atm_moon_light.w, 1e-3);
-  return atm_moon_illuminance.rgb / (atm_cone_solid_angle(radius) * fraction) * lit * cover;
+  float lit = smoothstep(-0.03, 0.03, dot(n, atm.moon_sunlit_direction));
+  float fraction = max(atm.moon_illuminated_fraction, 1e-3);
+  return atm.moon_illuminance / (atm_cone_solid_angle(radius) * fraction) * lit * cover;
 }

@@ -59,7 +59,7 @@ vec3 atm_log_mean(vec3 a, vec3 b) {
 
 // Weight of the multi-scattering LUT's term in a march: the scene's multiple-scattering factor for
 // what is seen; 0 and 1 while the LUT itself is built (multiscattering_lut.comp).
-float atm_ms_factor() { return atm_absorption_extinction.w; }
+float atm_ms_factor() { return atm.medium.multiple_scattering_factor; }
 
 // Light of `l` reaching radius r and scattered towards the camera: single scattering through the
 // transmittance LUT and the planet's shadow, higher orders through the multi-scattering LUT.
@@ -148,14 +148,14 @@ void atm_march_segment_resume(inout AtmMarch m, vec3 origin, vec3 dir, float t1,
 // Lambertian ground at planet-centred point p, lit directly by the lights (Hillaire 2020's ground).
 vec3 atm_ground_luminance(vec3 p, AtmLight l0, AtmLight l1) {
   vec3 n = normalize(p);
-  float r = atm_bottom() + atm_ground_albedo.w;
+  float r = atm_bottom() + atm.medium.lift_km;
   float mu0 = dot(n, l0.direction);
   vec3 e = l0.illuminance * atm_transmittance_to_light(r, mu0, l0.angular_radius) * max(mu0, 0.0);
 #if ATM_MOON_LIGHT
   float mu1 = dot(n, l1.direction);
   e += l1.illuminance * atm_transmittance_to_light(r, mu1, l1.angular_radius) * max(mu1, 0.0);
 #endif
-  return atm_ground_albedo.rgb / ATM_PI * e;
+  return atm.medium.ground_albedo / ATM_PI * e;
 }
 
 // Light of the higher orders reflected by the Lambertian ground at planet-centred point p (the
@@ -167,7 +167,7 @@ vec3 atm_ground_sky_light(vec3 p, AtmLight l0, AtmLight l1) {
 #if ATM_MOON_LIGHT
   if (atm_light_on(l1)) e += l1.illuminance * atm_multiscattering_ground(P, dot(n, l1.direction));
 #endif
-  return atm_ground_albedo.rgb * e;
+  return atm.medium.ground_albedo * e;
 }
 
 // The part of a ray inside the atmosphere: x = start, y = end (km), z = 1 when it ends on the ground.
@@ -199,7 +199,7 @@ AtmMarch atm_march_ray(vec3 origin, vec3 dir, float max_t, int steps, bool quadr
     // The ground's sky light of the higher orders, and its share of Hillaire's transfer f_ms next to
     // the air's T sigma_s: a Lambertian ground under a uniform radiance field L returns albedo L.
     if (ms_weight > 0.0) m.luminance += m.transmittance * ms_weight * atm_ground_sky_light(g, l0, l1);
-    m.ms_transfer += m.transmittance * atm_ground_albedo.rgb;
+    m.ms_transfer += m.transmittance * atm.medium.ground_albedo;
   }
   return m;
 }
@@ -216,12 +216,12 @@ AtmMarch atm_march_to_surface(vec3 origin, vec3 dir, float t, int steps, AtmLigh
 
 // The scene's lights from the uniform block (the moon only when it lights the sky).
 AtmLight atm_sun_light() {
-  return AtmLight(atm_sun_direction.xyz, atm_sun_illuminance.rgb, atm_sun_illuminance.w);
+  return AtmLight(atm.sun_direction, atm.sun_illuminance, atm.sun_angular_radius_rad);
 }
 AtmLight atm_moon_light_source() {
-  return AtmLight(atm_moon_direction.xyz, atm_flags.w > 0.5 ? atm_moon_illuminance.rgb : vec3(0.0),
-                  atm_moon_illuminance.w);
+  return AtmLight(atm.moon_direction, atm.moon_lights_sky > 0.5 ? atm.moon_illuminance : vec3(0.0),
+                  atm.moon_angular_radius_rad);
 }
 
 // Camera position used by marches: moved up to the ground when under it.
-vec3 atm_camera() { return atm_camera_km.xyz; }
+vec3 atm_camera() { return atm.camera_km; }

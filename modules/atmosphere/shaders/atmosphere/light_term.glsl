@@ -19,6 +19,6 @@ vec3 atmosphere_term_medium(vec3 camera_relative_m, vec3 view_dir, int light, ou
   float r = max(length(atmosphere_point_km(camera_relative_m)), P.bottom + P.lift);
   AtmMedium med = atm_medium(P, r - P.bottom);
   extinction = med.extinction * 1e-3;
-  float c = dot(view_dir, light == 0 ? atm_sun_direction.xyz : atm_moon_direction.xyz);
+  float c = dot(view_dir, light == 0 ? atm.sun_direction : atm.moon_direction);
   return (med.rayleigh * atm_rayleigh_phase(c) + med.mie * atm_mie_phase(c)) * 1e-3;
 }

@@ -44,12 +44,12 @@ shared vec3 s_upper[MS_D];
 
 void main() {
   ivec2 texel = ivec2(gl_WorkGroupID.xy);
-  int size = atm_multiscattering_size.x;
+  int size = atm.multiscattering_size;
   float n = float(size);
   vec2 uv = (vec2(texel) + 0.5) / n;
   float mu_s = clamp(atm_multiscattering_unit_to_mu_s(atm_sub_uv_to_unit(uv.x, n)), -1.0, 1.0);
-  float r = atm_bottom() + atm_ground_albedo.w + clamp(atm_sub_uv_to_unit(uv.y, n), 0.0, 1.0) *
-                                               (atm_radii.w - atm_ground_albedo.w);
+  float r = atm_bottom() + atm.medium.lift_km + clamp(atm_sub_uv_to_unit(uv.y, n), 0.0, 1.0) *
+                                               (atm.medium.thickness_km - atm.medium.lift_km);
   vec3 origin = vec3(0.0, 0.0, r);
   AtmLight sun = AtmLight(vec3(0.0, sqrt(max(0.0, 1.0 - mu_s * mu_s)), mu_s), vec3(1.0), 0.0);
   AtmLight none = AtmLight(vec3(0.0, 0.0, 1.0), vec3(0.0), 0.0);
@@ -70,7 +70,7 @@ void main() {
 
   // Weight 0 while estimating: the pass writes the LUT it would read. Weight 1 while iterating:
   // the LUT bound for reading is the previous pass's output, never this one's.
-  AtmMarch m = atm_march_ray(origin, dir, 1e30, atm_multiscattering_size.y, false, true, sun, none,
+  AtmMarch m = atm_march_ray(origin, dir, 1e30, atm.multiscattering_steps, false, true, sun, none,
                              float(ATM_MS_ITERATE));
   // The march's direction is where its light comes from. Its projections on the harmonics of
   // degrees 0 to 2 that are even across the sun's vertical plane: L(w) = c0 + a.w + w^T Q w,

@@ -23,7 +23,7 @@ vec3 lut_transmittance(vec3 origin, vec3 dir) {
 void main() {
   vec3 dir = normalize(u_direction);
 #if ATM_SKY_MODE == 2
-  vec3 t = atm_raymarch(atm_camera(), dir, int(atm_aerial_params.y), int(atm_aerial_params.w),
+  vec3 t = atm_raymarch(atm_camera(), dir, int(atm.raymarch_steps), int(atm.raymarch_light_steps),
                         atm_sun_light(), atm_moon_light_source()).transmittance;
 #else
   vec3 t = lut_transmittance(atm_camera(), dir);

@@ -74,7 +74,7 @@ AtmMarch atm_raymarch(vec3 origin, vec3 dir, int steps, int light_steps, AtmLigh
       e += l1.illuminance * atm_light_march_transmittance(P, r, mu1, l1.angular_radius, light_steps) *
            max(mu1, 0.0);
 #endif
-    vec3 ground = atm_ground_albedo.rgb / ATM_PI * e + P.ms_factor * atm_ground_sky_light(g, l0, l1);
+    vec3 ground = atm.medium.ground_albedo / ATM_PI * e + P.ms_factor * atm_ground_sky_light(g, l0, l1);
     m.luminance += m.transmittance * ground;
   }
   return m;

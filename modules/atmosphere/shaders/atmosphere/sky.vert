@@ -20,9 +20,9 @@ uniform float u_pixel_angle;
 void main() {
 #if ATM_SKY_DISCS
   bool sun = gl_InstanceID == 0;
-  vec3 d = sun ? atm_sun_direction.xyz : atm_moon_direction.xyz;
-  float radius = sun ? atm_sun_illuminance.w : atm_moon_illuminance.w;
-  bool on = sun ? atm_flags.x > 0.5 : atm_flags.z > 0.5;
+  vec3 d = sun ? atm.sun_direction : atm.moon_direction;
+  float radius = sun ? atm.sun_angular_radius_rad : atm.moon_angular_radius_rad;
+  bool on = sun ? atm.sun_disc > 0.5 : atm.moon_disc > 0.5;
   // Two pixels of margin for the anti-aliased edge; half-angles beyond 80 degrees are not discs.
   float half_size = tan(min(radius + 2.0 * u_pixel_angle, radians(80.0)));
   vec3 t = normalize(cross(d, abs(d.z) < 0.9 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0)));
@@ -32,7 +32,7 @@ void main() {
   vec2 c = corners[gl_VertexID % 6];
   vec3 dir = d + (c.x * t + c.y * b) * half_size;
   v_dir = dir;
-  gl_Position = on ? atm_view_projection * vec4(dir, 0.0) : vec4(0.0);
+  gl_Position = on ? atm.view_projection * vec4(dir, 0.0) : vec4(0.0);
 #else
   vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2) * 2.0 - 1.0;
   v_dir = sky_direction(p);

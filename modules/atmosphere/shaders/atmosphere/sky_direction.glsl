@@ -6,10 +6,10 @@
 #include "atmosphere/common.glsl"
 
 vec3 sky_direction(vec2 ndc) {
-  vec4 far_point = atm_inverse_view_projection * vec4(ndc, 0.5, 1.0);
+  vec4 far_point = atm.inverse_view_projection * vec4(ndc, 0.5, 1.0);
   vec3 dir = far_point.xyz / far_point.w;
 #if ATM_SKY_MODE == 0 && !ATM_SKY_DISCS && !ATM_SKY_GROUND_LIGHT
-  dir = transpose(mat3(atm_sky_frame)) * dir;
+  dir = transpose(mat3(atm.sky_frame)) * dir;
 #endif
   return dir;
 }

@@ -30,11 +30,11 @@ vec3 sky_luminance(vec3 v) {
 #if ATM_SKY_MODE == 0
   return atm_sky_view_lookup(v);
 #elif ATM_SKY_MODE == 1
-  return atm_march_ray(atm_camera(), v, 1e30, int(atm_aerial_params.y), false, true, atm_sun_light(),
+  return atm_march_ray(atm_camera(), v, 1e30, int(atm.raymarch_steps), false, true, atm_sun_light(),
                        atm_moon_light_source(), atm_ms_factor()).luminance;
 #else
-  return atm_raymarch(atm_camera(), v, int(atm_aerial_params.y), int(atm_aerial_params.w), atm_sun_light(),
-                      atm_moon_light_source()).luminance;
+  return atm_raymarch(atm_camera(), v, int(atm.raymarch_steps), int(atm.raymarch_light_steps),
+                      atm_sun_light(), atm_moon_light_source()).luminance;
 #endif
 }
 
@@ -51,7 +51,7 @@ vec3 ground_light_change(vec3 v) {
   vec3 g = o + v * iv.y;  // km, planet-centred
   vec3 n = normalize(g);
   vec3 p = v * (iv.y * 1000.0);  // camera-relative metres
-  float r_c = length(o), r_g = atm_bottom() + atm_ground_albedo.w;
+  float r_c = length(o), r_g = atm_bottom() + atm.medium.lift_km;
   vec3 t_view =
       min(atm_transmittance(r_g, -dot(n, v)) / max(atm_transmittance(r_c, -dot(o / r_c, v)), vec3(1e-12)),
           vec3(1.0));
@@ -64,9 +64,9 @@ vec3 ground_light_change(vec3 v) {
   vec3 e_moon = l1.illuminance * atm_transmittance_to_light(r_g, mu1, l1.angular_radius) * max(mu1, 0.0);
   e_direct_taken += e_moon * (1.0 - welkin_light_visibility(p, n, 1));
 #endif
-  vec3 taken = atm_ground_albedo.rgb / ATM_PI * e_direct_taken +
+  vec3 taken = atm.medium.ground_albedo / ATM_PI * e_direct_taken +
                atm_ms_factor() * atm_ground_sky_light(g, l0, l1) * (1.0 - welkin_sky_visibility(p, n));
-  vec3 added = atm_ground_albedo.rgb / ATM_PI * welkin_added_irradiance(p, n);
+  vec3 added = atm.medium.ground_albedo / ATM_PI * welkin_added_irradiance(p, n);
   return t_view * (added - taken);
 }
 #endif

@@ -9,11 +9,12 @@ layout(ATM_RADIANCE_FORMAT, binding = 0) uniform writeonly image2D o_lut;
 
 void main() {
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(texel, atm_sky_view_size.xy))) return;
-  vec2 uv = (vec2(texel) + 0.5) / vec2(atm_sky_view_size.xy);
+  ivec2 size = ivec2(atm.sky_view_width, atm.sky_view_height);
+  if (any(greaterThanEqual(texel, size))) return;
+  vec2 uv = (vec2(texel) + 0.5) / vec2(size);
   vec2 zenith_azimuth = atm_sky_view_direction(uv);
   vec3 dir = atm_sky_view_world_direction(zenith_azimuth.x, zenith_azimuth.y);
-  AtmMarch m = atm_march_ray(atm_camera(), dir, 1e30, atm_sky_view_size.z, true, true, atm_sun_light(),
+  AtmMarch m = atm_march_ray(atm_camera(), dir, 1e30, atm.sky_view_steps, true, true, atm_sun_light(),
                              atm_moon_light_source(), atm_ms_factor());
   imageStore(o_lut, texel, vec4(atm_fit_half(m.luminance), 1.0));
 }

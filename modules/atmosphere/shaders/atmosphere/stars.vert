@@ -18,8 +18,8 @@ flat out vec2 v_center;
 void main() {
   AtmStar s = atm_stars[gl_VertexID];
   vec3 d = normalize(u_celestial_to_world * s.direction_illuminance.xyz);
-  vec4 clip = atm_view_projection * vec4(d, 0.0);
-  vec3 t = atm_transmittance_to_space(atm_camera_km.xyz, d);
+  vec4 clip = atm.view_projection * vec4(d, 0.0);
+  vec3 t = atm_transmittance_to_space(atm.camera_km, d);
   if (clip.w <= 0.0 || all(equal(t, vec3(0.0)))) {
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // behind the camera or below the horizon: clipped away
     gl_PointSize = 1.0;

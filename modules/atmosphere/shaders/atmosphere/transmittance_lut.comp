@@ -23,12 +23,12 @@ vec3 optical_depth(float r, float mu, float len, int n) {
 
 void main() {
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
-  ivec2 size = atm_transmittance_size.xy;
+  ivec2 size = ivec2(atm.transmittance_width, atm.transmittance_height);
   if (any(greaterThanEqual(texel, size))) return;
   vec2 r_mu = atm_transmittance_r_mu((vec2(texel) + 0.5) / vec2(size));
   float r = r_mu.x, mu = r_mu.y;
   float len = atm_distance_to_top(r, mu);
-  int steps = atm_transmittance_size.z;
+  int steps = atm.transmittance_steps;
   vec3 depth;
   float t_low = -r * mu;  // distance to the lowest point of a descending ray
   if (mu >= 0.0 || steps < 2) {

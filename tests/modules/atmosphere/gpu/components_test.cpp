@@ -135,21 +135,21 @@ TEST(AtmosphereUniforms, CameraRelativeToAnyPlanetCentre) {
   a.planet_center_m = {1.0e9, -2.0e9, -6360000.0};
   Camera c;
   c.position_m = {1.0e9, -2.0e9, 100.0};
-  GpuUniforms u = make_uniforms(a, nullptr, nullptr, make_frame_view(c, 16, 16));
+  FrameBlock u = make_uniforms(a, nullptr, nullptr, make_frame_view(c, 16, 16));
   EXPECT_NEAR(u.camera_km.z, 6360.1, 1e-3);
   EXPECT_NEAR(u.camera_km.x, 0.0, 1e-6);
-  EXPECT_EQ(u.aerial_params.z, 0.0f);  // inside the atmosphere
+  EXPECT_EQ(u.camera_in_space, 0.0f);  // inside the atmosphere
 }
 
 TEST(AtmosphereUniforms, CameraUnderGroundIsLiftedAndSpaceIsDetected) {
   Atmosphere a;
   Camera c;
   c.position_m = {0, 0, -5000};
-  GpuUniforms u = make_uniforms(a, nullptr, nullptr, make_frame_view(c, 16, 16));
-  EXPECT_GT(u.camera_km.w, a.bottom_radius_km);
+  FrameBlock u = make_uniforms(a, nullptr, nullptr, make_frame_view(c, 16, 16));
+  EXPECT_GT(u.camera_radius_km, a.bottom_radius_km);
   c.position_m = {0, 0, 400000};
   u = make_uniforms(a, nullptr, nullptr, make_frame_view(c, 16, 16));
-  EXPECT_EQ(u.aerial_params.z, 1.0f);
+  EXPECT_EQ(u.camera_in_space, 1.0f);
 }
 
 TEST(AtmosphereUniforms, QualityPresetsAndCustom) {
@@ -316,18 +316,18 @@ TEST(AtmosphereUniforms, MoonLightsTheSkyOnlyWhereItCanShow) {
   Sun sun;
   Moon moon;
   sun.elevation_deg = -20.0f;
-  EXPECT_EQ(make_uniforms(a, &sun, &moon, view).flags.w, 1.0f) << "night";
+  EXPECT_EQ(make_uniforms(a, &sun, &moon, view).moon_lights_sky, 1.0f) << "night";
   sun.elevation_deg = 0.5f;
-  EXPECT_EQ(make_uniforms(a, &sun, &moon, view).flags.w, 0.0f) << "day";
+  EXPECT_EQ(make_uniforms(a, &sun, &moon, view).moon_lights_sky, 0.0f) << "day";
   // A moon bright against its sun (another planet's, or an artist's) keeps its light.
   sun.illuminance_lux = 10000.0f;
   moon.illuminance_lux = 100.0f;
-  EXPECT_EQ(make_uniforms(a, &sun, &moon, view).flags.w, 1.0f) << "bright moon";
+  EXPECT_EQ(make_uniforms(a, &sun, &moon, view).moon_lights_sky, 1.0f) << "bright moon";
   // From space the planet's night side is in view whatever the sun does.
   sun.illuminance_lux = 120000.0f;
   moon.illuminance_lux = 0.25f;
   c.position_m = {0, 0, 400000};
-  EXPECT_EQ(make_uniforms(a, &sun, &moon, make_frame_view(c, 16, 16)).flags.w, 1.0f) << "space";
+  EXPECT_EQ(make_uniforms(a, &sun, &moon, make_frame_view(c, 16, 16)).moon_lights_sky, 1.0f) << "space";
 }
 
 TEST(AtmosphereFrame, DaylightDrownsTheFullMoonsSky) {

@@ -26,7 +26,7 @@ TEST(GroundRegion, HoldsEveryPixelWhoseRayMeetsTheGround) {
     Camera cam;
     cam.position_m = c.position_m;
     cam.heading_deg = c.heading_deg, cam.pitch_deg = c.pitch_deg, cam.vertical_fov_deg = c.fov_deg;
-    const GpuUniforms u = make_uniforms(a, nullptr, nullptr, make_frame_view(cam, width, height));
+    const FrameBlock u = make_uniforms(a, nullptr, nullptr, make_frame_view(cam, width, height));
     const PixelRect r = ground_pixel_rect(u, width, height);
     int x0 = width, y0 = height, x1 = -1, y1 = -1, inside = 0;
     for (int y = 0; y < height; ++y)

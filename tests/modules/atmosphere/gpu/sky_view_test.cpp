@@ -37,7 +37,7 @@ SkyError sky_view_error(int steps, double sun_elevation_deg, const json& extra =
   auto r = test::render(test::scene({{"position_m", {0, 0, 200}}}, atm, sun), 8, 8);
   const Atmosphere a = *r.world->registry().get<Atmosphere>(r.world->registry().first<Atmosphere>());
   const reference::AtmosphereModel model = to_reference(a);
-  const GpuUniforms& u = r.gpu().uniforms;
+  const FrameBlock& u = r.gpu().uniforms;
   const glm::dvec3 camera(u.camera_km), sun_dir(u.sun_direction);
   const glm::dmat3 frame(u.sky_frame);
   ImageF lut = read_texture_float(*r.gpu().sky_view);

@@ -1,6 +1,7 @@
 #pragma once
 // The atmosphere's GPU side: the uniform block every atmosphere shader and material sees, the LUTs
 // a world keeps between frames, and the render system that fills them through the frame graph.
+#include <array>
 #include <glm/glm.hpp>
 #include <memory>
 #include <string>
@@ -10,6 +11,7 @@
 #include "welkin/atmosphere/stars.h"
 #include "welkin/gfx/camera.h"
 #include "welkin/gfx/gl_objects.h"
+#include "welkin/gfx/gpu_block.h"
 
 namespace welkin {
 class World;
@@ -18,51 +20,35 @@ struct SystemContext;
 
 namespace welkin::atmosphere {
 
-// std140 mirror of the WelkinAtmosphere block (vec4/mat4/ivec4 only, so no hidden padding).
-struct GpuUniforms {
-  glm::vec4 rayleigh_scattering{0.0f};
-  glm::vec4 mie_scattering{0.0f};         // w: g
-  glm::vec4 mie_extinction{0.0f};         // w: phase kind
-  glm::vec4 absorption_extinction{0.0f};  // w: multiple-scattering factor
-  glm::vec4 ground_albedo{0.0f};          // w: lift above the ground (km)
-  glm::vec4 radii{0.0f};                  // bottom, top, sqrt(top^2 - bottom^2), top - bottom
-  glm::vec4 density[12]{};
-  glm::vec4 mie_moments{0.0f};  // Legendre moments of the Mie phase: l = 1, 2
-  glm::vec4 camera_km{0.0f};
-  glm::vec4 sun_direction{0.0f};
-  glm::vec4 sun_illuminance{0.0f};
-  glm::vec4 moon_direction{0.0f};
-  glm::vec4 moon_illuminance{0.0f};
-  glm::vec4 moon_light{0.0f};
-  glm::vec4 flags{0.0f};
-  glm::mat4 inverse_view_projection{1.0f};
-  glm::mat4 view_projection{1.0f};
-  // The aerial-perspective volume's own frustum: the view's, or a wider one kept while the view turns
-  // inside it (choose_aerial_frustum).
-  glm::mat4 aerial_inverse_view_projection{1.0f};
-  glm::mat4 aerial_view_projection{1.0f};
-  glm::mat4 sky_frame{1.0f};
-  glm::ivec4 transmittance_size{0};
-  glm::ivec4 multiscattering_size{0};  // size, steps, iterations
-  glm::ivec4 sky_view_size{0};
-  glm::ivec4 aerial_size{0};
-  glm::vec4 aerial_params{0.0f};  // distance km, raymarch steps, camera in space, raymarch light steps
-  glm::vec4 sky_view_params{0.0f};    // horizon zenith angle, beta, 1 / horizon zenith, 1 / beta
-  glm::vec4 sky_view_params_v{0.0f};  // unit v to texel-centred v: scale, offset
-};
-static_assert(sizeof(GpuUniforms) == 848, "GpuUniforms must match the std140 WelkinAtmosphere block");
+// The uniform block WelkinAtmosphere (std140), declared once in shaders/atmosphere/blocks.glsl.h for
+// both languages (welkin/gfx/gpu_block.h). Value-initialise it (`FrameBlock u{};`).
+namespace gpu_blocks {
+using namespace welkin::gpu_block_types;
+#include "atmosphere/blocks.glsl.h"
+}  // namespace gpu_blocks
+using FrameBlock = gpu_blocks::AtmosphereFrameGpu;
+using DensityLayerBlock = gpu_blocks::AtmosphereDensityLayerGpu;
+static_assert(sizeof(FrameBlock) == 848, "FrameBlock: the std140 WelkinAtmosphere block's size");
+static_assert(sizeof(DensityLayerBlock) == 32 && sizeof(gpu_blocks::AtmosphereMediumGpu) == 304,
+              "whole 16-byte rows: std140 rounds a struct up to them");
 
 // The block for one frame. Sun and moon may be null (a default sun; no moon). Pure CPU.
-GpuUniforms make_uniforms(const Atmosphere& atmosphere, const Sun* sun, const Moon* moon,
-                          const FrameView& view);
-// True when two frames' uniforms need different transmittance/multi-scattering LUTs.
-bool luts_differ(const GpuUniforms& a, const GpuUniforms& b);
+FrameBlock make_uniforms(const Atmosphere& atmosphere, const Sun* sun, const Moon* moon,
+                         const FrameView& view);
+// The persistent LUTs' sizes and step counts: with the medium, what they are made from.
+inline std::array<int, 6> persistent_lut_sizes(const FrameBlock& u) {
+  return {u.transmittance_width,  u.transmittance_height,  u.transmittance_steps,
+          u.multiscattering_size, u.multiscattering_steps, u.multiscattering_iterations};
+}
+// True when two frames' uniforms need different transmittance/multi-scattering LUTs: their media or
+// the LUTs' sizes differ.
+bool luts_differ(const FrameBlock& a, const FrameBlock& b);
 // True when they need a different sky-view LUT: everything but the view's orientation and the
 // aerial-perspective volume's settings (the LUT is laid out around the camera's position and the sun).
-bool sky_view_differs(const GpuUniforms& a, const GpuUniforms& b);
+bool sky_view_differs(const FrameBlock& a, const FrameBlock& b);
 // True when they need a different aerial-perspective volume: anything but the view itself differs
 // (the volume's frustum is its own, aerial_view_projection).
-bool aerial_perspective_differs(const GpuUniforms& a, const GpuUniforms& b);
+bool aerial_perspective_differs(const FrameBlock& a, const FrameBlock& b);
 
 // A turning view (the camera in place, only its orientation changing) keeps its aerial-perspective
 // volume while the view stays inside the volume's frustum; the volume it makes then is wider than
@@ -75,7 +61,7 @@ inline constexpr float kAerialTurningMargin = 1.25f;
 // so that what reads the volume, the clouds' kept march, starts over once). `kept` is what the volume
 // was last made from (when `kept_valid`), `previous_view_projection` the last frame's view, and
 // `turned_before` whether that frame's view had turned from the one before it.
-void choose_aerial_frustum(GpuUniforms& u, const GpuUniforms& kept, bool kept_valid,
+void choose_aerial_frustum(FrameBlock& u, const FrameBlock& kept, bool kept_valid,
                            const glm::mat4& previous_view_projection, bool turned_before);
 
 // Layers of the multi-scattering LUT, side by side (multiscattering_lut.comp, common.glsl): the mean
@@ -92,14 +78,14 @@ struct AtmosphereGpu {
   std::unique_ptr<Buffer> stars;                     // the star catalogue (stars.h), when drawn
   Stars stars_built_from;                            // what `stars` was made from
   std::unique_ptr<Buffer> uniform_buffer;
-  GpuUniforms uniforms;      // as last uploaded
-  GpuUniforms lut_uniforms;  // what the persistent LUTs were built from
+  FrameBlock uniforms{};      // as last uploaded
+  FrameBlock lut_uniforms{};  // what the persistent LUTs were built from
   bool luts_valid = false;
   int lut_builds = 0;       // transmittance + multi-scattering regenerations (tests, stats)
   int lut_cache_reads = 0;  // the same, read from the disk cache instead
   // The per-frame LUTs are kept while nothing they depend on changed (a still camera, a still sun):
   // reusing them is exact, not an approximation.
-  GpuUniforms sky_view_uniforms, aerial_uniforms;
+  FrameBlock sky_view_uniforms{}, aerial_uniforms{};
   bool view_turned = false;  // the last frame's view differed from the one before (choose_aerial_frustum)
   bool sky_view_valid = false, aerial_valid = false;
   int sky_view_builds = 0, aerial_builds = 0;

@@ -12,9 +12,9 @@ namespace welkin::atmosphere {
 // rays through a grid of the frame and along its border are tested, and the box around those that
 // meet the ground is widened by a grid cell (the ground's image is convex: the projection of a ball).
 // Empty when no ray of the frame meets the ground.
-PixelRect ground_pixel_rect(const GpuUniforms& u, int width, int height);
+PixelRect ground_pixel_rect(const FrameBlock& u, int width, int height);
 
 // Whether the ray through normalised device coordinates (x, y) meets the ground sphere.
-bool ray_meets_ground(const GpuUniforms& u, double x, double y);
+bool ray_meets_ground(const FrameBlock& u, double x, double y);
 
 }  // namespace welkin::atmosphere
