@@ -51,8 +51,9 @@ std::vector<Star> make_star_catalogue(const Stars& s) {
       pick -= c.share;
     }
     tint /= glm::dot(tint, glm::dvec3(0.2126, 0.7152, 0.0722));
-    out.push_back({glm::vec4(float(q * std::cos(phi)), float(q * std::sin(phi)), float(z), float(lux)),
-                   glm::vec4(glm::vec3(tint), 0.0f)});
+    out.push_back({.direction = glm::vec3(float(q * std::cos(phi)), float(q * std::sin(phi)), float(z)),
+                   .illuminance_lux = float(lux),
+                   .color = glm::vec3(tint)});
   }
   return out;
 }

@@ -1,8 +1,9 @@
 #pragma once
-// The atmosphere's GPU block, declared once for GLSL (common.glsl includes this file) and C++
-// (include/welkin/atmosphere/gpu.h includes it inside a namespace; welkin/gfx/gpu_block.h says how).
+// The atmosphere's GPU blocks, declared once for GLSL (common.glsl includes this file) and C++
+// (include/welkin/atmosphere/gpu_blocks.h includes it inside a namespace; welkin/gfx/gpu_block.h
+// says how).
 // Fields come in rows of 16 bytes (a vec4, four scalars, a vec3 and one scalar, or a mat4; a struct
-// is a whole number of rows), so that std140 lays them out as C++ does;
+// is a whole number of rows), so that std140 and std430 lay them out as C++ does;
 // tests/modules/atmosphere/gpu/gpu_blocks_test.cpp reads every field back in a shader. No #include
 // and no initialisers here. Lengths are km in a planet-centred frame whose axes are the scene's
 // (x east, y north, z up); coefficients are per km.
@@ -106,4 +107,13 @@ struct AtmosphereFrameGpu {
   float sky_view_v_offset;
   float sky_view_zenith_horizon;  // the horizon's zenith angle (rad)
   float sky_view_beta;
+};
+
+// One star of the star catalogue: the storage buffer AtmStars (src/stars.cpp makes them), read by
+// stars.vert.
+struct AtmosphereStarGpu {
+  vec3 direction;         // on the celestial sphere: x towards the vernal equinox, z the celestial north pole
+  float illuminance_lux;  // outside the atmosphere, on a surface facing the star
+  vec3 color;             // linear Rec.709, luminance 1
+  float unused_0;         // (padding)
 };

@@ -4,11 +4,7 @@
 // the pixel's solid angle, which for a pinhole camera is cos^3 theta / f^2 (f in pixels).
 #include "atmosphere/common.glsl"
 
-struct AtmStar {
-  vec4 direction_illuminance;  // celestial frame; lux outside the atmosphere
-  vec4 color;                  // luminance 1
-};
-layout(std430, binding = 0) readonly buffer AtmStars { AtmStar atm_stars[]; };
+layout(std430, binding = 0) readonly buffer AtmStars { AtmosphereStarGpu atm_stars[]; };
 uniform mat3 u_celestial_to_world;
 uniform vec2 u_viewport;   // pixels
 uniform float u_focal_px;  // focal length in pixels
@@ -16,8 +12,8 @@ flat out vec3 v_radiance;
 flat out vec2 v_center;
 
 void main() {
-  AtmStar s = atm_stars[gl_VertexID];
-  vec3 d = normalize(u_celestial_to_world * s.direction_illuminance.xyz);
+  AtmosphereStarGpu s = atm_stars[gl_VertexID];
+  vec3 d = normalize(u_celestial_to_world * s.direction);
   vec4 clip = atm.view_projection * vec4(d, 0.0);
   vec3 t = atm_transmittance_to_space(atm.camera_km, d);
   if (clip.w <= 0.0 || all(equal(t, vec3(0.0)))) {
@@ -29,7 +25,7 @@ void main() {
   v_center = (ndc * 0.5 + 0.5) * u_viewport;
   // clip.w = d . forward = cos theta for a unit direction.
   float pixel_solid_angle = clip.w * clip.w * clip.w / (u_focal_px * u_focal_px);
-  v_radiance = s.direction_illuminance.w * s.color.rgb * t / pixel_solid_angle;
+  v_radiance = s.illuminance_lux * s.color * t / pixel_solid_angle;
   gl_Position = vec4(ndc, 0.0, 1.0);
   gl_PointSize = 2.0;
 }

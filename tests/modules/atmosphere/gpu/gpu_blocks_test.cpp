@@ -1,4 +1,4 @@
-// The atmosphere's GPU block, declared once for C++ and GLSL (shaders/atmosphere/blocks.glsl.h), read
+// The atmosphere's GPU blocks, declared once for C++ and GLSL (shaders/atmosphere/blocks.glsl.h), read
 // back field by field in a shader: every 32-bit word written from C++ must come back where C++ put it,
 // through the nested medium and each element of its density-profile arrays.
 #include <gtest/gtest.h>
@@ -35,6 +35,17 @@ TEST(AtmosphereGpuBlocks, EveryWordOfTheFrameBlockReadsBackFromAStd140UniformBlo
   EXPECT_EQ(welkin::test::read_back_block(blocks_header(), "AtmosphereFrameGpu", &block, sizeof(FrameBlock),
                                           1, true),
             words_of(&block, sizeof(FrameBlock)));
+}
+
+TEST(AtmosphereGpuBlocks, EveryWordOfEachStarReadsBackFromAStd430Buffer) {
+  test::gl_context().make_current();
+  std::vector<Star> stars(3);
+  std::vector<float> words(stars.size() * sizeof(Star) / 4);
+  for (size_t i = 0; i < words.size(); ++i) words[i] = 1.5f * float(i + 1);
+  std::memcpy(static_cast<void*>(stars.data()), words.data(), words.size() * 4);
+  EXPECT_EQ(welkin::test::read_back_block(blocks_header(), "AtmosphereStarGpu", stars.data(),
+                                          stars.size() * sizeof(Star), 3, false),
+            words_of(stars.data(), stars.size() * sizeof(Star)));
 }
 
 // The block a frame uploads, made from a scene's atmosphere: the named fields hold what the shaders

@@ -44,11 +44,12 @@ TEST(Stars, CatalogueIsDeterministicUniformAndFollowsTheMagnitudeCounts) {
   glm::dvec3 mean(0.0);
   int brighter_than_3_5 = 0;
   for (size_t i = 0; i < a.size(); ++i) {
-    EXPECT_EQ(a[i].direction_illuminance, b[i].direction_illuminance);
-    const glm::dvec3 d(a[i].direction_illuminance);
+    EXPECT_EQ(a[i].direction, b[i].direction);
+    EXPECT_EQ(a[i].illuminance_lux, b[i].illuminance_lux);
+    const glm::dvec3 d(a[i].direction);
     EXPECT_NEAR(glm::length(d), 1.0, 1e-6);
     mean += d;
-    const double magnitude = -2.5 * std::log10(a[i].direction_illuminance.w / 2.54e-6);
+    const double magnitude = -2.5 * std::log10(a[i].illuminance_lux / 2.54e-6);
     EXPECT_GE(magnitude, -1.46 - 1e-3);
     EXPECT_LE(magnitude, 6.5 + 1e-3);
     brighter_than_3_5 += magnitude < 3.5;
@@ -59,7 +60,7 @@ TEST(Stars, CatalogueIsDeterministicUniformAndFollowsTheMagnitudeCounts) {
   // N(< m) ~ 10^(0.48 m): 10^(-1.44) = 3.6% of the stars are brighter than 3.5.
   EXPECT_NEAR(brighter_than_3_5 / double(a.size()), std::pow(10.0, -1.44), 0.005);
   s.seed = 2;
-  EXPECT_NE(make_star_catalogue(s)[0].direction_illuminance, a[0].direction_illuminance);
+  EXPECT_NE(make_star_catalogue(s)[0].direction, a[0].direction);
 }
 
 // A night scene without air (so the transmittance is 1), looking at one star from `count` = 1.
@@ -76,8 +77,8 @@ OneStar one_star_above(double min_elevation_deg, float latitude_deg = 46.5f) {
   for (int seed = 1;; ++seed) {
     o.stars.seed = seed;
     const Star s = make_star_catalogue(o.stars)[0];
-    o.local = celestial_to_local(o.stars.local_sidereal_time_deg, o.stars.latitude_deg) *
-              glm::dvec3(s.direction_illuminance);
+    o.local =
+        celestial_to_local(o.stars.local_sidereal_time_deg, o.stars.latitude_deg) * glm::dvec3(s.direction);
     if (o.local.z > std::sin(glm::radians(min_elevation_deg))) return o;
   }
 }
@@ -122,12 +123,11 @@ TEST(Stars, ARenderedStarDeliversItsIlluminance) {
   const glm::dvec3 east = glm::normalize(glm::cross(glm::dvec3(0, 0, 1), o.local));
   const glm::dvec3 look = glm::normalize(o.local + 0.0031 * east + 0.0017 * glm::cross(o.local, east));
   const glm::dvec3 flux = rendered_flux(stars_json(o.stars), look, -30.0, no_air());
-  std::printf("star of %.4g lux: rendered flux %.6g %.6g %.6g, expected %.6g %.6g %.6g\n",
-              s.direction_illuminance.w, flux.x, flux.y, flux.z, s.direction_illuminance.w * s.color.r,
-              s.direction_illuminance.w * s.color.g, s.direction_illuminance.w * s.color.b);
+  std::printf("star of %.4g lux: rendered flux %.6g %.6g %.6g, expected %.6g %.6g %.6g\n", s.illuminance_lux,
+              flux.x, flux.y, flux.z, s.illuminance_lux * s.color.r, s.illuminance_lux * s.color.g,
+              s.illuminance_lux * s.color.b);
   for (int ch = 0; ch < 3; ++ch)
-    EXPECT_NEAR(flux[ch], double(s.direction_illuminance.w) * s.color[ch], 0.005 * s.direction_illuminance.w)
-        << ch;
+    EXPECT_NEAR(flux[ch], double(s.illuminance_lux) * s.color[ch], 0.005 * s.illuminance_lux) << ch;
 }
 
 TEST(Stars, TheGroundHidesAStarBelowTheHorizonAndDaylightSkipsThem) {
@@ -137,7 +137,7 @@ TEST(Stars, TheGroundHidesAStarBelowTheHorizonAndDaylightSkipsThem) {
   EXPECT_GT(rendered_flux(stars_json(o.stars), o.local, -30.0, no_air()).y, 0.0) << "the control";
   o.stars.local_sidereal_time_deg += 180.0f;
   const glm::dvec3 below = celestial_to_local(o.stars.local_sidereal_time_deg, o.stars.latitude_deg) *
-                           glm::dvec3(make_star_catalogue(o.stars)[0].direction_illuminance);
+                           glm::dvec3(make_star_catalogue(o.stars)[0].direction);
   ASSERT_LT(below.z, -0.3);
   EXPECT_EQ(rendered_flux(stars_json(o.stars), below, -30.0, no_air()), glm::dvec3(0.0));
   // By day the field is not drawn at all: the same frame with and without it is identical.

@@ -8,10 +8,10 @@
 #include <string_view>
 
 #include "welkin/atmosphere/components.h"
+#include "welkin/atmosphere/gpu_blocks.h"
 #include "welkin/atmosphere/stars.h"
 #include "welkin/gfx/camera.h"
 #include "welkin/gfx/gl_objects.h"
-#include "welkin/gfx/gpu_block.h"
 
 namespace welkin {
 class World;
@@ -19,18 +19,6 @@ struct SystemContext;
 }  // namespace welkin
 
 namespace welkin::atmosphere {
-
-// The uniform block WelkinAtmosphere (std140), declared once in shaders/atmosphere/blocks.glsl.h for
-// both languages (welkin/gfx/gpu_block.h). Value-initialise it (`FrameBlock u{};`).
-namespace gpu_blocks {
-using namespace welkin::gpu_block_types;
-#include "atmosphere/blocks.glsl.h"
-}  // namespace gpu_blocks
-using FrameBlock = gpu_blocks::AtmosphereFrameGpu;
-using DensityLayerBlock = gpu_blocks::AtmosphereDensityLayerGpu;
-static_assert(sizeof(FrameBlock) == 848, "FrameBlock: the std140 WelkinAtmosphere block's size");
-static_assert(sizeof(DensityLayerBlock) == 32 && sizeof(gpu_blocks::AtmosphereMediumGpu) == 304,
-              "whole 16-byte rows: std140 rounds a struct up to them");
 
 // The block for one frame. Sun and moon may be null (a default sun; no moon). Pure CPU.
 FrameBlock make_uniforms(const Atmosphere& atmosphere, const Sun* sun, const Moon* moon,
@@ -117,13 +105,13 @@ void add_light_term(World& world);
 // through LightEnvironment::bind; the atmosphere's own passes and tools call it directly).
 void bind_for_materials(const AtmosphereGpu& gpu);
 
-// Render phase, before geometry (order -100): transmittance and multi-scattering LUTs when the
+// Stage::tables, before geometry: transmittance and multi-scattering LUTs when the
 // medium changed, the sky-view LUT, the aerial-perspective volume, sky irradiance.
 void lut_system(SystemContext& sc);
-// Render phase, before geometry and after the light environment's inputs (order -10): the sky, its
+// Stage::background, before geometry and after the light environment's inputs: the sky, its
 // discs and stars over the whole target (the geometry drawn after covers them).
 void background_system(SystemContext& sc);
-// Render phase, after geometry (order 100): aerial perspective over the depth buffer.
+// Stage::aerial_perspective, after geometry: aerial perspective over the depth buffer.
 void sky_system(SystemContext& sc);
 
 }  // namespace welkin::atmosphere

@@ -4,10 +4,10 @@
 #pragma once
 
 #include <glm/mat3x3.hpp>
-#include <glm/vec4.hpp>
 #include <string_view>
 #include <vector>
 
+#include "welkin/atmosphere/gpu_blocks.h"
 #include "welkin/core/reflection.h"
 
 namespace welkin::atmosphere {
@@ -23,17 +23,10 @@ struct Stars {
 };
 void describe(TypeBuilder<Stars>& t);
 
-// One star: direction on the celestial sphere (x towards the vernal equinox, z the celestial north
-// pole) and its illuminance outside the atmosphere (lux, on a surface facing it); its colour, linear
-// Rec.709 with luminance 1. Laid out as the shader's storage buffer reads it.
-struct Star {
-  glm::vec4 direction_illuminance;
-  glm::vec4 color;
-};
-
-// Deterministic for a given count, seed, faintest magnitude and brightness. Magnitudes follow the
-// observed counts, about three times as many stars per magnitude fainter (N(<m) ~ 10^(0.48 m)), with
-// illuminance 2.54e-6 lux x 10^(-0.4 m), no star brighter than Sirius (-1.46).
+// The stars as the shader's storage buffer reads them (Star: gpu_blocks.h), deterministic for a given
+// count, seed, faintest magnitude and brightness. Magnitudes follow the observed counts, about three
+// times as many stars per magnitude fainter (N(<m) ~ 10^(0.48 m)), with illuminance
+// 2.54e-6 lux x 10^(-0.4 m), no star brighter than Sirius (-1.46).
 std::vector<Star> make_star_catalogue(const Stars& stars);
 
 // Rotation from the celestial frame to the scene's (x east, y north, z up) at a latitude and local
