@@ -1,6 +1,6 @@
 // The mapping from a report to the sky. Thicknesses and densities are typical of each genus as a
-// report implies it (a report gives bases, not tops): fair-weather cumulus about 1 km deep, towering
-// cumulus 4 km, cumulonimbus up to the tropopause (about 11 km), sheets a few hundred metres.
+// report implies it (a report gives bases, not tops): the genus table's (welkin/clouds/genera.h),
+// towering cumulus 4 km, cumulonimbus up to the tropopause (about 11 km).
 #include "welkin/weather/sky_from_metar.h"
 
 #include <algorithm>
@@ -8,45 +8,14 @@
 #include <iterator>
 #include <numbers>
 
+#include "welkin/clouds/genera.h"
+
 namespace welkin::weather {
 
 namespace {
 
 constexpr double kMetresPerFoot = 0.3048;
 constexpr float kTropopauseM = 11000.0f;
-
-struct GenusLook {
-  float thickness_m;
-  float density_per_m;
-  bool casts_shadow;
-};
-
-GenusLook look_of(clouds::Genus g) {
-  using clouds::Genus;
-  switch (g) {
-    case Genus::cumulus:
-      return {1000.0f, 0.05f, true};
-    case Genus::stratus:
-      return {400.0f, 0.03f, true};
-    case Genus::stratocumulus:
-      return {600.0f, 0.04f, true};
-    case Genus::cumulonimbus:
-      return {9000.0f, 0.08f, true};
-    case Genus::altocumulus:
-      return {500.0f, 0.02f, true};
-    case Genus::altostratus:
-      return {1200.0f, 0.005f, true};
-    case Genus::nimbostratus:
-      return {2500.0f, 0.04f, true};
-    case Genus::cirrus:
-      return {800.0f, 0.002f, false};
-    case Genus::cirrostratus:
-      return {600.0f, 0.0008f, false};
-    case Genus::cirrocumulus:
-      return {300.0f, 0.004f, false};
-  }
-  return {1000.0f, 0.05f, true};
-}
 
 bool precipitating(const MetarReport& r) {
   return r.has_weather("RA") || r.has_weather("SN") || r.has_weather("DZ") || r.has_weather("PL");
@@ -123,7 +92,7 @@ SkyFromReport sky_from_metar(const MetarReport& r) {
   for (const MetarCloud& c : r.clouds) {
     clouds::CloudLayer layer;
     layer.genus = genus_of(c, r);
-    GenusLook look = look_of(layer.genus);
+    const clouds::GenusTraits& look = clouds::kGenera[int(layer.genus)];  // genus_of gives a row
     float base_m = float(c.base_ft * kMetresPerFoot);
     layer.base_altitude_m = c.cover == CloudCover::vertical_visibility ? 0.0f : base_m;
     layer.thickness_m = look.thickness_m;

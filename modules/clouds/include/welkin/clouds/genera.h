@@ -5,27 +5,30 @@
 // table against the preset folder.
 #include <cstddef>
 
-// X(name, dome, weather_frequency, cluster_form)
+// X(name, dome, weather_frequency, cluster_form, thickness_m, density_per_m, casts_shadow)
 //   dome: 0 a sheet .. 1 domes with flat bases; weather_frequency: the layer's weather frequency
-//   relative to VolumetricClouds::weather_period_m; cluster_form: how mesh clusters place its puffs.
-#define WELKIN_CLOUD_GENERA(X)        \
-  X(cumulus, 1.0f, 2.5f, heaps)       \
-  X(stratus, 0.0f, 0.5f, sheets)      \
-  X(stratocumulus, 0.4f, 1.6f, heaps) \
-  X(cumulonimbus, 1.0f, 0.4f, heaps)  \
-  X(altocumulus, 0.5f, 4.0f, heaps)   \
-  X(altostratus, 0.0f, 0.7f, sheets)  \
-  X(nimbostratus, 0.1f, 0.4f, sheets) \
-  X(cirrus, 0.2f, 2.5f, streaks)      \
-  X(cirrostratus, 0.0f, 0.5f, sheets) \
-  X(cirrocumulus, 0.3f, 8.0f, heaps)
+//   relative to VolumetricClouds::weather_period_m; cluster_form: how mesh clusters place its puffs;
+//   thickness_m, density_per_m, casts_shadow: a typical layer of the genus where only its base is
+//   known (a weather report gives bases, not tops: fair-weather cumulus about 1 km deep, sheets a few
+//   hundred metres; the weather module builds its layers from them).
+#define WELKIN_CLOUD_GENERA(X)                                \
+  X(cumulus, 1.0f, 2.5f, heaps, 1000.0f, 0.05f, true)         \
+  X(stratus, 0.0f, 0.5f, sheets, 400.0f, 0.03f, true)         \
+  X(stratocumulus, 0.4f, 1.6f, heaps, 600.0f, 0.04f, true)    \
+  X(cumulonimbus, 1.0f, 0.4f, heaps, 9000.0f, 0.08f, true)    \
+  X(altocumulus, 0.5f, 4.0f, heaps, 500.0f, 0.02f, true)      \
+  X(altostratus, 0.0f, 0.7f, sheets, 1200.0f, 0.005f, true)   \
+  X(nimbostratus, 0.1f, 0.4f, sheets, 2500.0f, 0.04f, true)   \
+  X(cirrus, 0.2f, 2.5f, streaks, 800.0f, 0.002f, false)       \
+  X(cirrostratus, 0.0f, 0.5f, sheets, 600.0f, 0.0008f, false) \
+  X(cirrocumulus, 0.3f, 8.0f, heaps, 300.0f, 0.004f, false)
 
 namespace welkin::clouds {
 
 // The genus picks the shape model of a layer (domes with flat bases, sheets, rolls, streaks) and the
 // defaults of its preset file. Values are the rows' order.
 enum class Genus : int {
-#define WELKIN_GENUS_ENUMERATOR(name, dome, weather_frequency, cluster_form) name,
+#define WELKIN_GENUS_ENUMERATOR(name, ...) name,
   WELKIN_CLOUD_GENERA(WELKIN_GENUS_ENUMERATOR)
 #undef WELKIN_GENUS_ENUMERATOR
 };
@@ -39,11 +42,14 @@ struct GenusTraits {
   float dome;               // 0 a sheet .. 1 domes with flat bases
   float weather_frequency;  // relative to the weather's period
   ClusterForm cluster_form;
+  float thickness_m;  // a typical layer's
+  float density_per_m;
+  bool casts_shadow;
 };
 
 inline constexpr GenusTraits kGenera[] = {
-#define WELKIN_GENUS_ROW(name, dome, weather_frequency, cluster_form) \
-  {Genus::name, #name, dome, weather_frequency, ClusterForm::cluster_form},
+#define WELKIN_GENUS_ROW(name, dome, frequency, form, thickness, density, shadow) \
+  {Genus::name, #name, dome, frequency, ClusterForm::form, thickness, density, shadow},
     WELKIN_CLOUD_GENERA(WELKIN_GENUS_ROW)
 #undef WELKIN_GENUS_ROW
 };
