@@ -10,7 +10,9 @@
 //
 // The header holds no #include and no initialisers (GLSL has neither in a struct). The C++ types have
 // GLSL's sizes but not its alignments, so the fields come in rows of 16 bytes that std140 and std430
-// lay out as C++ does: a vec4, four scalars, a vec3 and then one scalar, or a mat4 (after whole rows).
+// lay out as C++ does: a vec4, four scalars, a vec3 and then one scalar, or a mat4 (after whole rows);
+// a struct the header declares is a whole number of rows, and so is an array's element (no float[N]:
+// std140 strides it by 16 bytes).
 // A test writes every field from C++ and reads it back in a shader (tests/.../gpu_blocks_test.cpp).
 // Value-initialise a block in C++ (`Block b{};`): its fields are then zero, as the padding is.
 #include <cstdint>
