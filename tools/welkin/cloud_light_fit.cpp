@@ -35,7 +35,8 @@ constexpr Constant kConstants[] = {
 constexpr const char* kTerms[] = {"CLOUDS_MS_W0", "CLOUDS_MS_W1", "CLOUDS_MS_W2", "CLOUDS_MS_W3",
                                   "CLOUDS_MS_W4", "CLOUDS_MS_W5", "CLOUDS_MS_W6", "CLOUDS_MS_W7",
                                   "CLOUDS_MS_W8", "CLOUDS_MS_W9", "CLOUDS_MS_W10", "CLOUDS_MS_W11",
-                                  "CLOUDS_MS_W12", "CLOUDS_MS_W13", "CLOUDS_MS_W14", "CLOUDS_MS_W15"};
+                                  "CLOUDS_MS_W12", "CLOUDS_MS_W13", "CLOUDS_MS_W14", "CLOUDS_MS_W15",
+                                  "CLOUDS_MS_W16", "CLOUDS_MS_W17"};
 constexpr const char* kTermMeaning[] = {
     "D = T_d(tau) - T(tau): the diffuse light beyond the direct beam, toward the light",
     "D S(tau_b): ... gathered from the cloud below",
@@ -52,7 +53,9 @@ constexpr const char* kTermMeaning[] = {
     "mu_0 T_d(tau_A): the light let down through the body above",
     "T_d(tau) S(tau_B)",
     "mu_0 T_d(tau_A) S(tau_B)",
-    "exp(-tau / 16) S(tau_B)"};
+    "exp(-tau / 16) S(tau_B)",
+    "mu_0 (1 + 2k tau_B) / (1 + k (tau_A + tau_B)): the diffuse light in a lit slab",
+    "mu_0 (1 + 2k tau_b) / (1 + k (tau_a + tau_b)): the same with the sample's own depths"};
 constexpr size_t kTermCount = std::size(kTerms);
 
 Coefficients constants() {

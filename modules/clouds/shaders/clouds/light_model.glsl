@@ -54,6 +54,13 @@ float clouds_powder(float sigma_t) {
 //   8  exp(-tau / 4)            octaves (Wrenninge): light scattered a few times sees a fraction of
 //   9  exp(-tau / 16)           the optical depth
 //  10  exp(-tau / 4) p_2(mu)    ... with half the anisotropy
+//  11-15                        terms 1, 3, 6, 4 and 9 with the cloud's body (tau_B, tau_A) for tau_b, tau_a
+//  16  mu_0 (1 + 2k tau_B) / (1 + k (tau_A + tau_B))
+//                               the diffuse light inside a conservative plane-parallel slab lit from
+//                               above (diffusion theory: it falls linearly with depth, from about
+//                               2 mu_0 at a thick slab's top to mu_0 T_d(tau_A + tau_B) at its
+//                               base): a deck's dark base, whatever the slant path toward a low sun
+//  17  the same with the sample's own tau_a, tau_b
 // All fade where the cloud around the sample is thin (its outskirts, wisps: little light has been
 // scattered toward it by neighbours, the physical side of Schneider's "powder"), by
 // 1 - exp(-n sigma_t l_1), l_1 the first light step.
@@ -96,6 +103,10 @@ float clouds_multiple_scattering(float mu, CloudsLightInputs s, vec3 l, vec3 up)
   float body_above = max(dot(l, up), 0.0) * clouds_slab_diffuse(s.column_above);
   sum += body_reflection * (CLOUDS_MS_W11 * beyond + CLOUDS_MS_W13 * s.diffuse + CLOUDS_MS_W15 * s.octave16) +
          body_above * (CLOUDS_MS_W12 + CLOUDS_MS_W14 * body_reflection);
+  float k = clouds_two_stream_k(), mu_0 = max(dot(l, up), 0.0);
+  float slab_body = (1.0 + 2.0 * k * s.column_below) / (1.0 + k * (s.column_above + s.column_below));
+  float slab = (1.0 + 2.0 * k * tau_below) / (1.0 + k * (tau_above + tau_below));
+  sum += mu_0 * (CLOUDS_MS_W16 * slab_body + CLOUDS_MS_W17 * slab);
   return sum * (1.0 - exp(-CLOUDS_MS_POWDER * s.sigma_t * cl.light_step_m));
 }
 

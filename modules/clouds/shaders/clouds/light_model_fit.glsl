@@ -64,3 +64,11 @@
 #ifndef CLOUDS_MS_W15  // exp(-tau / 16) S(tau_B)
 #define CLOUDS_MS_W15 0.0408996
 #endif
+// Candidates added after this fit (the slab of diffusion theory); the same fit run again with them
+// (cumulus case, 2026-11-27) keeps them at 0: only decks in training choose them (clouds-light.md).
+#ifndef CLOUDS_MS_W16  // mu_0 (1 + 2k tau_B) / (1 + k (tau_A + tau_B)): the diffuse light in a lit slab
+#define CLOUDS_MS_W16 0.0
+#endif
+#ifndef CLOUDS_MS_W17  // mu_0 (1 + 2k tau_b) / (1 + k (tau_a + tau_b)): the same with the sample's own depths
+#define CLOUDS_MS_W17 0.0
+#endif
