@@ -1,7 +1,5 @@
 #include "host_scene.h"
 
-#include <stdexcept>
-
 std::vector<HostObject> host_objects() {
   return {
       {{0.0, 0.0, -1.0}, {3000.0f, 3000.0f, 1.0f}, {0.22f, 0.24f, 0.16f}},  // the ground: its top at z = 0
@@ -31,29 +29,12 @@ void main() {
 }
 )";
 
-const char* kFragmentMain = R"(
-#line 1 1
-in vec3 v_position;
+const char* kFragmentMain = R"(in vec3 v_position;
 in vec3 v_normal;
 out vec4 o_color;
 uniform vec3 u_albedo;
 void main() { o_color = vec4(shade_lambert(u_albedo, normalize(v_normal), v_position), 1.0); }
 )";
-
-GLuint compile(GLenum stage, const std::string& source) {
-  GLuint s = glCreateShader(stage);
-  const char* text = source.c_str();
-  glShaderSource(s, 1, &text, nullptr);
-  glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[4096];
-    glGetShaderInfoLog(s, sizeof log, nullptr, log);
-    throw std::runtime_error(std::string("host shader: ") + log);
-  }
-  return s;
-}
 
 // A unit cube's 36 corners, counter-clockwise seen from outside, with the face normals.
 std::vector<float> cube_vertices() {
@@ -110,25 +91,12 @@ HostScene::HostScene() {
 }
 
 HostScene::~HostScene() {
-  glDeleteProgram(program_);
   glDeleteVertexArrays(1, &vao_);
   glDeleteBuffers(1, &vertices_);
 }
 
-void HostScene::build_program(const std::string& lighting_glsl) {
-  GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader),
-         fs = compile(GL_FRAGMENT_SHADER, lighting_glsl + kFragmentMain);
-  GLuint p = glCreateProgram();
-  glAttachShader(p, vs);
-  glAttachShader(p, fs);
-  glLinkProgram(p);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint ok = 0;
-  glGetProgramiv(p, GL_LINK_STATUS, &ok);
-  if (!ok) throw std::runtime_error("host program failed to link");
-  glDeleteProgram(program_);
-  program_ = p;
+void HostScene::build_program(welkin::host::Sky& sky) {
+  program_ = sky.material_program(kVertexShader, kFragmentMain);
 }
 
 void HostScene::draw(const HostTargets& t, const glm::mat4& rotation_projection, const glm::dvec3& camera_m,
@@ -143,15 +111,14 @@ void HostScene::draw(const HostTargets& t, const glm::mat4& rotation_projection,
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(reversed_depth ? GL_GREATER : GL_LESS);
   glEnable(GL_CULL_FACE);
-  glUseProgram(program_);
+  program_.use();
   glBindVertexArray(vao_);
-  glUniformMatrix4fv(glGetUniformLocation(program_, "u_rotation_projection"), 1, GL_FALSE,
-                     &rotation_projection[0][0]);
+  program_.set("u_rotation_projection", rotation_projection);
   for (const HostObject& o : objects_) {
     const glm::vec3 center(o.center_m - camera_m);  // camera-relative in double, then float
-    glUniform3fv(glGetUniformLocation(program_, "u_center"), 1, &center[0]);
-    glUniform3fv(glGetUniformLocation(program_, "u_half_extent"), 1, &o.half_extent_m[0]);
-    glUniform3fv(glGetUniformLocation(program_, "u_albedo"), 1, &o.albedo[0]);
+    program_.set("u_center", center);
+    program_.set("u_half_extent", o.half_extent_m);
+    program_.set("u_albedo", o.albedo);
     glDrawArrays(GL_TRIANGLES, 0, 36);
   }
 }

@@ -4,8 +4,9 @@
 #include <epoxy/gl.h>
 
 #include <glm/glm.hpp>
-#include <string>
 #include <vector>
+
+#include "welkin/host/sky.h"
 
 struct HostObject {
   glm::dvec3 center_m;
@@ -30,9 +31,9 @@ class HostScene {
   ~HostScene();
   HostScene(const HostScene&) = delete;
   HostScene& operator=(const HostScene&) = delete;
-  // The fragment shader lights its surfaces with Welkin's material functions (`lighting_glsl`,
-  // from Sky::material_glsl); the vertex shader is the host's alone.
-  void build_program(const std::string& lighting_glsl);
+  // The fragment shader lights its surfaces with Welkin's material functions (Sky::material_program);
+  // the vertex shader is the host's alone. Again when Sky::lighting_version changes.
+  void build_program(welkin::host::Sky& sky);
   // Clears and draws the objects; `rotation_projection` is projection x rotation-only view, the
   // objects are placed relative to `camera_m` in double precision.
   void draw(const HostTargets& targets, const glm::mat4& rotation_projection, const glm::dvec3& camera_m,
@@ -40,5 +41,6 @@ class HostScene {
 
  private:
   std::vector<HostObject> objects_ = host_objects();
-  GLuint program_ = 0, vao_ = 0, vertices_ = 0;
+  welkin::Program program_;
+  GLuint vao_ = 0, vertices_ = 0;
 };

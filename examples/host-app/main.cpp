@@ -107,7 +107,7 @@ int run(const Options& o) {
     welkin::host::Sky sky(world);
     FlyCamera camera = initial_camera(sky);
     HostScene scene;
-    scene.build_program(sky.material_glsl());
+    scene.build_program(sky);
     uint64_t lighting = sky.lighting_version();
     std::unique_ptr<HostTargets> targets;
     double time_s = 0.0;
@@ -134,13 +134,15 @@ int run(const Options& o) {
       }
       if (!targets || targets->width != w || targets->height != h)
         targets = std::make_unique<HostTargets>(w, h);
-      if (sky.lighting_version() != lighting)
-        scene.build_program(sky.material_glsl()), lighting = sky.lighting_version();
 
       const bool reversed = !o.forward_depth;
       const glm::mat4 projection = camera.projection(double(w) / h, reversed);
-      sky.bind_material_lighting();  // the sun, sky and shadows the host's materials read
-      scene.draw(*targets, projection * camera.rotation(), camera.position, reversed);
+      // Welkin calls it once this frame's sun, sky and shadows are bound for the host's materials
+      // (recompiled first where the lighting changed: a module added, the moon set by day).
+      auto draw = [&] {
+        if (sky.lighting_version() != lighting) scene.build_program(sky), lighting = sky.lighting_version();
+        scene.draw(*targets, projection * camera.rotation(), camera.position, reversed);
+      };
       welkin::host::Frame frame;
       frame.view = {.view = camera.view(),
                     .projection = projection,
@@ -152,7 +154,7 @@ int run(const Options& o) {
                        .width = w,
                        .height = h};
       frame.time_s = time_s, frame.dt_s = dt, frame.index = i;
-      sky.render(frame);
+      sky.render(frame, draw);
 
       if (window) {
         GLuint read = 0;

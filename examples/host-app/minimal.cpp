@@ -10,11 +10,11 @@
 
 // A 20 km ground 2 m below the camera, which stays at the origin (so positions are camera-relative).
 const char* kVertex =
-    "#version 450 core\nlayout(location = 0) uniform mat4 u_view_projection;\nout vec3 v_p;\n"
+    "#version 450 core\nuniform mat4 u_view_projection;\nout vec3 v_p;\n"
     "void main() { v_p = vec3(vec2(gl_VertexID & 1, gl_VertexID >> 1) * 2e4 - 1e4, -2.0);\n"
     "  gl_Position = u_view_projection * vec4(v_p, 1.0); }\n";
-const char* kFragment =
-    "in vec3 v_p;\nout vec4 o;\n"  // after sky.material_glsl(): shade_lambert is Welkin's
+const char* kFragment =  // after Welkin's material functions: shade_lambert lights it as Welkin would
+    "in vec3 v_p;\nout vec4 o;\n"
     "void main() { o = vec4(shade_lambert(vec3(0.2), vec3(0, 0, 1), v_p), 1.0); }\n";
 
 int main(int argc, char** argv) {
@@ -29,16 +29,7 @@ int main(int argc, char** argv) {
   world.modules().add_search_dir(WELKIN_MODULE_DIR);
   welkin::load_scene_file(world, argc > 1 ? argv[1] : "scene.json");  // atmosphere, clock, clouds...
   welkin::host::Sky sky(world);
-  GLuint program = glCreateProgram(), vao = 0, fb = 0, out_fb = 0;
-  for (auto [stage, text] : {std::pair{GL_VERTEX_SHADER, std::string(kVertex)},
-                             std::pair{GL_FRAGMENT_SHADER, sky.material_glsl() + kFragment}}) {
-    GLuint s = glCreateShader(stage);
-    const char* src = text.c_str();
-    glShaderSource(s, 1, &src, nullptr);
-    glCompileShader(s);
-    glAttachShader(program, s);
-  }
-  glLinkProgram(program);
+  const welkin::Program ground = sky.material_program(kVertex, kFragment);
   auto texture = [&](GLenum format, GLuint t = 0) {
     glCreateTextures(GL_TEXTURE_2D, 1, &t);
     glTextureStorage2D(t, 1, format, w, h);
@@ -46,6 +37,7 @@ int main(int argc, char** argv) {
   };
   const GLuint color = texture(GL_RGBA16F), depth = texture(GL_DEPTH_COMPONENT32F);
   const GLuint output = texture(GL_RGBA8);  // Welkin's exposed, tone-mapped sRGB frame
+  GLuint vao = 0, fb = 0, out_fb = 0;
   glCreateVertexArrays(1, &vao);
   glCreateFramebuffers(1, &fb);
   glCreateFramebuffers(1, &out_fb);
@@ -58,16 +50,17 @@ int main(int argc, char** argv) {
   const welkin::host::Targets targets{
       .color = color, .depth = depth, .output = output, .width = w, .height = h};
   for (uint64_t i = 0; !glfwWindowShouldClose(window); ++i) {
-    glBindFramebuffer(GL_FRAMEBUFFER, fb);
-    glEnable(GL_DEPTH_TEST);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    glUseProgram(program);
-    sky.bind_material_lighting();  // the sun and sky light the host's materials read
-    glUniformMatrix4fv(0, 1, GL_FALSE, &(projection * glm::mat4(view))[0][0]);
-    glBindVertexArray(vao);
-    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-    sky.render(
-        {.view = host_view, .targets = targets, .time_s = glfwGetTime(), .dt_s = 1 / 60.0, .index = i});
+    const welkin::host::Frame frame{
+        .view = host_view, .targets = targets, .time_s = glfwGetTime(), .dt_s = 1 / 60.0, .index = i};
+    sky.render(frame, [&] {  // the host's geometry, once this frame's lights are bound for its materials
+      glBindFramebuffer(GL_FRAMEBUFFER, fb);
+      glEnable(GL_DEPTH_TEST);
+      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+      ground.use();
+      ground.set("u_view_projection", projection * glm::mat4(view));
+      glBindVertexArray(vao);
+      glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    });
     glBlitNamedFramebuffer(out_fb, 0, 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
     glfwSwapBuffers(window);
     glfwPollEvents();

@@ -95,7 +95,9 @@ void GlStateGuard::save() {
 void GlStateGuard::restore() const {
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(draw_fb_));
   glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(read_fb_));
-  glUseProgram(GLuint(program_));
+  // A program deleted while current stays current until another is used; Welkin's passes used others,
+  // so it is gone now and no program is current, as the host would find after its next use of one.
+  glUseProgram(glIsProgram(GLuint(program_)) ? GLuint(program_) : 0);
   glBindVertexArray(GLuint(vao_));
   glBindBuffer(GL_ARRAY_BUFFER, GLuint(array_buffer_));
   glBindBuffer(GL_PIXEL_PACK_BUFFER, GLuint(pack_buffer_));

@@ -22,7 +22,20 @@ struct HostInput {
   bool forward = false;
   glm::vec2 depth_terms{0.0f};
   uint64_t serial = 0;  // changes every frame: the host's geometry is never known unchanged
+  // The host's drawing of its geometry (render's draw_geometry; null when drawn before), and its GL
+  // state as render found it, put back around the call.
+  const std::function<void()>* draw = nullptr;
+  const GlStateGuard* host_state = nullptr;
 };
+
+// The host draws its geometry into its own targets with this frame's lights bound and its own GL
+// state; Welkin's state is put back after.
+void draw_host_geometry(const HostInput& input, World& world) {
+  GlStateGuard welkin_state;
+  input.host_state->restore();
+  world.resource<LightEnvironment>().bind();
+  (*input.draw)();
+}
 
 // The host's geometry is the frame's geometry, drawn where the engine's own is (order 0: after the
 // sky behind it, before the aerial perspective and the clouds over it), depth-tested against
@@ -41,7 +54,8 @@ void host_geometry_system(SystemContext& sc) {
         b.read(t.depth);
         b.write(t.depth);
       },
-      [&rc, input, t](PassContext& pc) {
+      [&rc, &world = sc.world, input, t](PassContext& pc) {
+        if (input.draw) draw_host_geometry(input, world);
         Framebuffer fb(&pc.texture(t.color), &pc.texture(t.depth));
         fb.bind();
         glEnable(GL_DEPTH_TEST);
@@ -198,7 +212,7 @@ void Sky::copy(const Texture& from, GLuint to, int width, int height) {
   glNamedFramebufferTexture(copy_framebuffers_[1], GL_COLOR_ATTACHMENT0, 0, 0);
 }
 
-FrameResult Sky::render(const Frame& frame) {
+FrameResult Sky::render(const Frame& frame, const std::function<void()>& draw_geometry) {
   const Targets& t = frame.targets;
   check_targets(t);
   Camera camera;
@@ -216,7 +230,9 @@ FrameResult Sky::render(const Frame& frame) {
                     .sampler = sampler_,
                     .forward = frame.view.depth == DepthConvention::forward,
                     .depth_terms = depth_terms(frame.view.projection),
-                    .serial = ++serial_};
+                    .serial = ++serial_,
+                    .draw = draw_geometry ? &draw_geometry : nullptr,
+                    .host_state = &guard};
   struct Deactivate {
     HostInput& input;
     ~Deactivate() { input.active = false; }
@@ -240,6 +256,16 @@ nlohmann::json Sky::get(std::string_view component, std::string_view path) {
 std::string Sky::material_glsl() {
   renderer_->prepare_shaders();
   return renderer_->context().shaders.preprocess("welkin/shading.glsl", {}).text;
+}
+
+Program Sky::material_program(std::string_view vertex, std::string_view fragment) {
+  renderer_->prepare_shaders();
+  ShaderSource fs = renderer_->context().shaders.preprocess("welkin/shading.glsl", {});
+  fs.text += "#line 1 " + std::to_string(fs.files.size()) + "\n";
+  fs.text += fragment;
+  fs.files.push_back("the host's fragment code");
+  const ShaderSource vs{.text = std::string(vertex), .files = {"the host's vertex shader"}};
+  return link_program({{GL_VERTEX_SHADER, vs}, {GL_FRAGMENT_SHADER, fs}});
 }
 
 uint64_t Sky::lighting_version() const {

@@ -23,9 +23,8 @@ endif()
 # examples/host-app, a program with its own window, camera, geometry and shaders and Welkin inside,
 # built against the installed package and run headless with both depth conventions. Its frame must
 # match `welkin render` of the same scene with the host's objects as debug shapes (host_objects.json).
-# Tolerance, over the third frame (the host's materials read the lights of Welkin's last frame, so they
-# lag a frame where the lights change, as they do between the first two frames here: the second frame
-# differs by 0.42 steps on the boxes' faces; from the third on the lights hold): a mean
+# Tolerance, over the third frame (the reference is `welkin render --frames 3`'s; the host draws
+# through render's draw_geometry, so its materials read the frame's own lights from the first): a mean
 # colour difference of at most 0.25 steps of 255, and at most 0.2% of the pixels (28 of 160x90, one
 # box's silhouette) with a channel more than 3 steps apart. Measured on llvmpipe: 0 and 0 (the frames
 # are byte for byte the same, both depth conventions). The allowance is for what differs in kind: the

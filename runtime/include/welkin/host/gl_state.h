@@ -21,6 +21,8 @@ class GlStateGuard {
   ~GlStateGuard();  // restores
   GlStateGuard(const GlStateGuard&) = delete;
   GlStateGuard& operator=(const GlStateGuard&) = delete;
+  // Puts the saved state back now (the host's, for its geometry drawn in the middle of Welkin's frame).
+  void restore() const;
 
  private:
   struct BufferRange {
@@ -31,7 +33,6 @@ class GlStateGuard {
     GLint texture = 0, level = 0, layered = 0, layer = 0, access = GL_READ_ONLY, format = GL_R8;
   };
   void save();
-  void restore() const;
 
   GLint draw_fb_ = 0, read_fb_ = 0, program_ = 0, vao_ = 0, array_buffer_ = 0, pack_buffer_ = 0,
         unpack_buffer_ = 0;

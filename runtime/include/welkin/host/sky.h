@@ -17,6 +17,7 @@
 #include <epoxy/gl.h>
 
 #include <cstdint>
+#include <functional>
 #include <glm/glm.hpp>
 #include <memory>
 #include <nlohmann/json_fwd.hpp>
@@ -70,7 +71,12 @@ class Sky {
 
   // Composes the frame over the host's targets. Throws welkin::Error naming the bad input (a target
   // that is not a 2D texture of the size and kind above, a projection that is not perspective).
-  FrameResult render(const Frame& frame);
+  // `draw_geometry`, when given, draws the host's geometry into its targets: Welkin calls it once,
+  // in the middle of the frame, once this frame's lights are computed (the sky's tables, the
+  // shadows) and bound as bind_material_lighting binds them, with the host's GL state as it was
+  // when render was called. So the host's materials are lit by this frame's sun and sky, the first
+  // frame included. Without it the targets hold what the host drew before the call.
+  FrameResult render(const Frame& frame, const std::function<void()>& draw_geometry = {});
 
   // Sets a scene field by its component's name and path, e.g. the time of day:
   // set("timeofday.TimeOfDay", "local_time_h", 17.5). Throws Error naming the path.
@@ -83,9 +89,14 @@ class Sky {
   // the scene's (sun, moon, sky, shadows of the modules loaded); positions are world minus camera.
   // Recompile when lighting_version() changes (a module or a term was added).
   std::string material_glsl();
+  // The host's vertex shader and its fragment code after material_glsl(), compiled and linked: a
+  // program the host owns. Throws Error naming the host's code, with the compiler's log (the
+  // fragment code's lines counted from its own first line).
+  Program material_program(std::string_view vertex, std::string_view fragment);
   uint64_t lighting_version() const;
   // Binds what material_glsl's functions read (texture units from 8 and uniform blocks from 4 up;
-  // units 0..7 and blocks 0..3 stay the host's). Reflects the last rendered frame's lights.
+  // units 0..7 and blocks 0..3 stay the host's). render's draw_geometry is called with them bound;
+  // outside it they reflect the last rendered frame's lights (none before the first frame).
   void bind_material_lighting();
 
   World& world() { return world_; }
