@@ -510,4 +510,22 @@ TEST(HostSky, LeavesTheHostsGlStateAsItFoundIt) {
   glDeleteBuffers(3, buffers);
 }
 
+// A program deleted while current (GL keeps it until another is used) is gone once Welkin used its
+// own: render's draw_geometry and its return find no program current, and no GL error.
+TEST(HostSky, AProgramDeletedWhileCurrentComesBackAsNone) {
+  auto world = host_world();
+  Sky sky(*world);
+  HostTargets t;
+  const glm::mat4 p = reversed_infinite(1.0f, float(kW) / kH, 0.5f);
+  glUseProgram(trivial_program());
+  GLint current = get_int(GL_CURRENT_PROGRAM);
+  glDeleteProgram(GLuint(current));
+  EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+  GLint inside = -1;
+  sky.render(frame_of(t, p, DepthConvention::reversed, 0), [&] { inside = get_int(GL_CURRENT_PROGRAM); });
+  EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+  EXPECT_EQ(inside, 0);
+  EXPECT_EQ(get_int(GL_CURRENT_PROGRAM), 0);
+}
+
 }  // namespace
