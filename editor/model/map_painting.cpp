@@ -6,6 +6,7 @@
 #include <set>
 
 #include "welkin/core/error.h"
+#include "welkin/scene/scene_file.h"
 
 namespace welkin::editor {
 
@@ -68,9 +69,10 @@ std::string new_map(EditorDocument& doc, const MapFieldSpec& spec, int side) {
     throw Error(ErrorInfo{.path = spec.component + "/" + spec.file_field,
                           .message = "save the scene first: a new map is written beside it"});
   PaintedMaps& maps = doc.world().resource<PaintedMaps>();
-  // A name the field holds now would make no edit to undo, and one it held at some step (a scene
-  // naming a missing file) would be a map there when that step is undone to.
-  std::set<std::string> named{target.file};
+  // A name the scene holds now (this field's would make no edit to undo; another's would find a map
+  // it did not have) or held at some step of the history (a map there when that step is undone to).
+  std::set<std::string> named;
+  collect_strings(save_scene(doc.world()), named);
   for (const HistoryStep& step : doc.history().steps())
     for (const Edit& edit : step.edits) collect_strings(edit.before, named), collect_strings(edit.after, named);
   const std::string file = new_map_file(doc.scene_path(), spec, [&](const std::string& name) {

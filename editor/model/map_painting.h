@@ -39,9 +39,10 @@ inline constexpr int kMaxNewMapNames = 1000;
 std::string new_map_file(const std::string& scene_path, const MapFieldSpec& spec,
                          const std::function<bool(const std::string&)>& taken);
 // Names a new map in the component (one undoable edit): a neutral map of `side` texels, written at
-// once under a name no file, held map or the document's history has yet, so the field always
-// changes and undoing it gives back what the field named before. No file is ever replaced. Throws Error
-// when the scene has not been saved yet (the map has no place) or `side` is out of range.
+// once under a name no file, held map, value of the scene or of its history has yet, so the field
+// always changes and undoing or redoing never finds a map where there was none. No file is ever
+// replaced. Throws Error when the scene has not been saved yet (the map has no place) or `side` is
+// out of range.
 std::string new_map(EditorDocument& doc, const MapFieldSpec& spec, int side);
 
 // One stamp at a world point (the map is read along the planet's radius, so any altitude serves).
