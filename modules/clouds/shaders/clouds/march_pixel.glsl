@@ -112,32 +112,40 @@ void march_segment(vec3 dir, vec2 segment, float start, float jitter, inout Accu
   // orbit) would otherwise get one or two, and the jitter would decide whether the cloud is there.
   float longest_m = max(min(cl.max_step_m, (segment.y - segment.x) * 0.125), cl.min_step_m);
   while (t < segment.y && acc.steps < int(cl.max_steps) && acc.transmittance > 0.01) {
-    // Steps grow with distance (a pixel's footprint grows with it), within [min, max].
-    float step_m = clamp(cl.min_step_m + t * cl.step_growth, cl.min_step_m, longest_m);
-    if (first) step_m *= jitter, first = false;
-    step_m = min(step_m, segment.y - t);
-    vec3 x = dir * (t + 0.5 * step_m);
-    ++acc.steps;
-    clouds_footprint_m = (t + 0.5 * step_m) * cl.pixel_angle_rad;
-    clouds_system_g = mix(system0, system1, clamp((t + 0.5 * step_m - segment.x) * inverse_length, 0.0, 1.0));
-    // Whole blocks of empty weather are skipped without reading the noise.
-    float skip = clouds_empty_skip(x, dir);
-    if (skip > 0.0) {
-      if (acc.depth_weight == 0.0) acc.clear_m = t + 0.5 * step_m;
-      t += 0.5 * step_m + skip;  // from the sample to past the block's side
-      continue;
-    }
-    bool empty;
-    clouds_view_sample = true;
-    float density = clouds_density(x, detail, false, empty);
-    clouds_view_sample = false;
-    if (density <= 0.0) {
+    // On to the next cloud sample. The empty samples are stepped over in a loop of their own: a
+    // software rasteriser runs a loop's body for its whole group of pixels as long as any of them
+    // needs it, so the light march below runs once per cloud sample of the group's pixels, not once
+    // per step of its longest ray.
+    float step_m = 0.0, density = 0.0;
+    vec3 x = vec3(0.0);
+    while (t < segment.y && acc.steps < int(cl.max_steps)) {
+      // Steps grow with distance (a pixel's footprint grows with it), within [min, max].
+      step_m = clamp(cl.min_step_m + t * cl.step_growth, cl.min_step_m, longest_m);
+      if (first) step_m *= jitter, first = false;
+      step_m = min(step_m, segment.y - t);
+      x = dir * (t + 0.5 * step_m);
+      ++acc.steps;
+      clouds_footprint_m = (t + 0.5 * step_m) * cl.pixel_angle_rad;
+      clouds_system_g =
+          mix(system0, system1, clamp((t + 0.5 * step_m - segment.x) * inverse_length, 0.0, 1.0));
+      // Whole blocks of empty weather are skipped without reading the noise.
+      float skip = clouds_empty_skip(x, dir);
+      if (skip > 0.0) {
+        if (acc.depth_weight == 0.0) acc.clear_m = t + 0.5 * step_m;
+        t += 0.5 * step_m + skip;  // from the sample to past the block's side
+        continue;
+      }
+      bool empty;
+      clouds_view_sample = true;
+      density = clouds_density(x, detail, false, empty);
+      clouds_view_sample = false;
+      if (density > 0.0) break;
       if (acc.depth_weight == 0.0) acc.clear_m = t + 0.5 * step_m;
       // Empty space: skip ahead by up to a quarter of the weather's texel (the weather cannot rise
       // from nothing to cloud much faster); where the noise eroded the cloud, the usual step.
       t += empty ? max(step_m, min(cl.max_step_m, cl.empty_step_m)) : step_m;
-      continue;
     }
+    if (density <= 0.0) break;
     {
       // Before the light march evaluates other points.
       CloudsSampleGeometry geometry = clouds_sample_geometry();
