@@ -366,7 +366,8 @@ int run_accuracy(const AccuracyOptions& options) {
                                  .frames = o.frames, .quick = o.quick, .json = o.json});
   if (o.technique == "clusters")
     return run_cluster_accuracy({.out = o.out, .size = o.size.empty() ? "320x180" : o.size,
-                                 .scene = o.scene.empty() ? ClusterAccuracyOptions{}.scene : o.scene, .frames = o.frames, .json = o.json});
+                                 .scene = o.scene.empty() ? ClusterAccuracyOptions{}.scene : o.scene, .frames = o.frames,
+                                 .quick = o.quick, .json = o.json});
   if (o.technique == "billboards")
     return run_billboard_accuracy({.out = o.out, .size = o.size.empty() ? "320x180" : o.size,
                                    .scene = o.scene.empty() ? BillboardAccuracyOptions{}.scene : o.scene,

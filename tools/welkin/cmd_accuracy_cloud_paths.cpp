@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "comparison_panels.h"
 #include "session.h"
 #include "welkin/core/error.h"
 #include "welkin/core/files.h"
@@ -86,7 +87,8 @@ struct Consistency {
   double cover_volumetric = 0.0, cover_path = 0.0, cover_mismatch = 0.0;
 };
 Consistency consistency_at_switch(const PathScene& p, const SceneRender& scene, int width, int height, double band_lo,
-                                  double band_hi, const ImageF& clear, const ImageF& volumetric, const ImageF& path) {
+                                  double band_hi, const ImageF& clear, const ImageF& volumetric, const ImageF& path,
+                                  const std::string& png) {
   World& world = *scene.world;
   const Entity ce = world.registry().first<Camera>();
   const FrameView view = make_frame_view(*world.registry().get<Camera>(ce), width, height);
@@ -100,6 +102,9 @@ Consistency consistency_at_switch(const PathScene& p, const SceneRender& scene, 
   double sum_v = 0.0, sum_c = 0.0, abs_diff = 0.0;
   int cloudy_v = 0, cloudy_c = 0, cloudy_either_differ = 0;
   Consistency c;
+  // The picture: the path above the volumetric path, their difference below (outside the band: none).
+  ComparisonPanels panels{width, height};
+  std::vector<size_t> in_band;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const glm::dvec3 d = glm::dvec3(pixel_direction(view, x + 0.5, y + 0.5));
@@ -108,6 +113,7 @@ Consistency consistency_at_switch(const PathScene& p, const SceneRender& scene, 
       const double t = -b + std::sqrt(disc);  // from below the base: where the ray rises through it
       if (!(t >= band_lo && t <= band_hi)) continue;
       const size_t i = (size_t(y) * size_t(width) + size_t(x)) * 4;  // rows top down, as pixel_direction's y
+      in_band.push_back(i / 4);
       const double yv = luminance(&volumetric.rgba[i]), yc = luminance(&path.rgba[i]), y0 = luminance(&clear.rgba[i]);
       ++c.band;
       sum_v += yv, sum_c += yc, abs_diff += std::abs(yc - yv);
@@ -117,6 +123,14 @@ Consistency consistency_at_switch(const PathScene& p, const SceneRender& scene, 
   if (c.band == 0)
     throw Error(ErrorInfo{.file = p.file, .expected = "a view in which some rays meet the layer's base within the hand-over band",
                           .found = "none"});
+  for (size_t i = 0; i < size_t(width) * size_t(height); ++i) {
+    panels.approximation.emplace_back(path.rgba[i * 4], path.rgba[i * 4 + 1], path.rgba[i * 4 + 2]);
+    panels.reference.emplace_back(volumetric.rgba[i * 4], volumetric.rgba[i * 4 + 1], volumetric.rgba[i * 4 + 2]);
+    panels.relative.push_back(0.0);
+  }
+  for (size_t i : in_band)
+    panels.relative[i] = (luminance(&path.rgba[i * 4]) - luminance(&volumetric.rgba[i * 4])) / (sum_v / c.band);
+  write_comparison_panels(png, panels, 2, 1.0);
   c.luminance_difference = (sum_c - sum_v) / sum_v;
   c.pixel_difference = abs_diff / sum_v;
   c.cover_volumetric = double(cloudy_v) / c.band, c.cover_path = double(cloudy_c) / c.band;
@@ -187,7 +201,8 @@ int run_cluster_accuracy(const ClusterAccuracyOptions& o) {
   }();
   const double near_m = p.settings->value("near_m", 8000.0), crossfade_m = p.settings->value("crossfade_m", 2000.0);
   const Consistency switch_figures = consistency_at_switch(p, clusters_scene, width, height, std::max(near_m - crossfade_m, 0.0),
-                                                           near_m + crossfade_m, clear, volumetric, clusters);
+                                                           near_m + crossfade_m, clear, volumetric, clusters,
+                                                           (fs::path(o.out) / "switch-clusters.png").string());
 
   // The light's quadrature against 16 samples, with the clusters' GPU time.
   std::ostringstream csv;
@@ -195,7 +210,7 @@ int run_cluster_accuracy(const ClusterAccuracyOptions& o) {
   nlohmann::json results = nlohmann::json::array();
   std::printf("\nthe light's quadrature against 16 samples (luminance RMSE over the frame, relative to the clouds' mean difference from the clear sky)\n");
   std::printf("| samples | clusters ms | x copy | RMSE |\n|---|---|---|---|\n");
-  for (int samples : {1, 2, 3, 4, 8}) {
+  for (int samples : o.quick ? std::vector<int>{3} : std::vector<int>{1, 2, 3, 4, 8}) {
     SceneRender s = load(p, {}, {"samples=" + std::to_string(samples)});
     const double rmse = relative_rmse(still(s, width, height), reference, clear);
     const auto [ms, copy_ms] = passes_cost(*s.renderer, "clouds.clusters_", width, height, o.frames);
@@ -265,7 +280,8 @@ int run_billboard_accuracy(const BillboardAccuracyOptions& o) {
   const double near_m = p.settings->value("near_m", 25000.0), crossfade_m = p.settings->value("crossfade_m", 3000.0);
   std::printf("\n");
   const Consistency switch_figures = consistency_at_switch(p, billboards_scene, width, height, std::max(near_m - crossfade_m, 0.0),
-                                                           near_m + crossfade_m, clear, volumetric, billboards);
+                                                           near_m + crossfade_m, clear, volumetric, billboards,
+                                                           (fs::path(o.out) / "switch-billboards.png").string());
   const std::string csv_file = (fs::path(o.out) / "accuracy-billboards.csv").string();
   write_file_atomically(csv_file, csv.str());
   if (o.json) {

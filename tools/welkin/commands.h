@@ -58,6 +58,7 @@ struct ClusterAccuracyOptions {
   std::string out = "out/accuracy", size = "320x180";
   std::string scene = "assets/scenes/clouds-clusters.json";
   int frames = 5;
+  bool quick = false;  // the consistency at the switch alone (no quadrature sweep)
   bool json = false;
 };
 int run_cluster_accuracy(const ClusterAccuracyOptions& options);
