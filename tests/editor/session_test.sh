@@ -11,23 +11,8 @@ SOURCE_DIR=${2:-$(cd "$(dirname "$0")/../.." && pwd)}
 TIMEOUT=${WELKIN_EDITOR_SESSION_TIMEOUT:-120}
 SESSIONS="$SOURCE_DIR/tests/editor/sessions"
 
-command -v Xvfb > /dev/null || { echo "session_test: Xvfb not installed; skipping"; exit 77; }
-
-OUT=$(mktemp -d "${TMPDIR:-/tmp}/welkin-editor-session.XXXXXX")
-XVFB_PID=""
-cleanup() {
-  [ -n "$XVFB_PID" ] && kill "$XVFB_PID" 2> /dev/null && wait "$XVFB_PID" 2> /dev/null
-  if [ "${KEEP_SESSION_OUTPUT:-0}" = 1 ]; then echo "session_test: output kept in $OUT"; else rm -rf "$OUT"; fi
-}
-trap cleanup EXIT
-
-fail() {
-  echo "session_test: FAIL: $*" >&2
-  exit 1
-}
-
 . "$(dirname "$0")/xvfb_display.sh"
-start_private_xvfb "$OUT" 1280x800x24 || fail "no display"
+editor_test_begin session_test 1280x800x24 KEEP_SESSION_OUTPUT
 export SESSION_OUT="$OUT"
 cd "$SOURCE_DIR" || fail "no source dir $SOURCE_DIR"
 

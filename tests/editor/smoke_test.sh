@@ -11,23 +11,8 @@ IMAGE_CHECK=${2:?usage: smoke_test.sh EDITOR IMAGE_CHECK [SOURCE_DIR]}
 SOURCE_DIR=${3:-$(cd "$(dirname "$0")/../.." && pwd)}
 TIMEOUT=${WELKIN_EDITOR_SMOKE_TIMEOUT:-180}
 
-command -v Xvfb > /dev/null || { echo "smoke_test: Xvfb not installed; skipping"; exit 77; }
-
-OUT=$(mktemp -d "${TMPDIR:-/tmp}/welkin-editor-smoke.XXXXXX")
-XVFB_PID=""
-cleanup() {
-  [ -n "$XVFB_PID" ] && kill "$XVFB_PID" 2> /dev/null && wait "$XVFB_PID" 2> /dev/null
-  if [ "${KEEP_SMOKE_OUTPUT:-0}" = 1 ]; then echo "smoke_test: output kept in $OUT"; else rm -rf "$OUT"; fi
-}
-trap cleanup EXIT
-
-fail() {
-  echo "smoke_test: FAIL: $*" >&2
-  exit 1
-}
-
 . "$(dirname "$0")/xvfb_display.sh"
-start_private_xvfb "$OUT" 1600x900x24 || fail "no display"
+editor_test_begin smoke_test 1600x900x24 KEEP_SMOKE_OUTPUT
 echo "smoke_test: Xvfb on $DISPLAY"
 
 # The editor state goes to the scratch folder, never to the user's config.

@@ -16,20 +16,8 @@ TIMEOUT=${WELKIN_EDITOR_SMOKE_TIMEOUT:-180}
 # The settled frame after a flight against a fresh one: relative L1 over the colour channels.
 SETTLED_TOLERANCE=0.02
 
-command -v Xvfb > /dev/null || { echo "viewport_test: Xvfb not installed; skipping"; exit 77; }
-OUT=$(mktemp -d "${TMPDIR:-/tmp}/welkin-editor-viewport.XXXXXX")
-XVFB_PID=""
-cleanup() {
-  [ -n "$XVFB_PID" ] && kill "$XVFB_PID" 2> /dev/null && wait "$XVFB_PID" 2> /dev/null
-  if [ "${KEEP_SMOKE_OUTPUT:-0}" = 1 ]; then echo "viewport_test: output kept in $OUT"; else rm -rf "$OUT"; fi
-}
-trap cleanup EXIT
-fail() {
-  echo "viewport_test: FAIL: $*" >&2
-  exit 1
-}
 . "$(dirname "$0")/xvfb_display.sh"
-start_private_xvfb "$OUT" 1024x768x24 || fail "no display"
+editor_test_begin viewport_test 1024x768x24 KEEP_SMOKE_OUTPUT
 export XDG_CONFIG_HOME="$OUT/config" WELKIN_VIEWPORT_OUT="$OUT"
 cd "$SOURCE_DIR" || fail "no source dir $SOURCE_DIR"
 run_editor() {  # run_editor LOG ARGS...

@@ -14,3 +14,28 @@ start_private_xvfb() {
   [ -s "$dir/display" ] || { echo "Xvfb gave no display number" >&2; return 1; }
   export DISPLAY=":$(head -n1 "$dir/display")"
 }
+
+# editor_test_begin NAME SCREEN KEEP_VARIABLE: the start of each editor test script. Skips (exit 77)
+# without Xvfb, makes the scratch folder $OUT (kept, and its path printed, when $KEEP_VARIABLE is 1,
+# else removed on exit), defines `fail MESSAGE` (prints "NAME: FAIL: MESSAGE", exits 1), stops Xvfb
+# on exit and starts it on a private display.
+editor_test_begin() {
+  EDITOR_TEST_NAME=$1 EDITOR_TEST_KEEP=$3
+  command -v Xvfb > /dev/null || { echo "$EDITOR_TEST_NAME: Xvfb not installed; skipping"; exit 77; }
+  OUT=$(mktemp -d "${TMPDIR:-/tmp}/welkin-editor-$EDITOR_TEST_NAME.XXXXXX")
+  XVFB_PID=""
+  trap editor_test_end EXIT
+  start_private_xvfb "$OUT" "$2" || fail "no display"
+}
+editor_test_end() {
+  [ -n "$XVFB_PID" ] && kill "$XVFB_PID" 2> /dev/null && wait "$XVFB_PID" 2> /dev/null
+  if [ "${!EDITOR_TEST_KEEP:-0}" = 1 ]; then
+    echo "$EDITOR_TEST_NAME: output kept in $OUT"
+  else
+    rm -rf "$OUT"
+  fi
+}
+fail() {
+  echo "$EDITOR_TEST_NAME: FAIL: $*" >&2
+  exit 1
+}
