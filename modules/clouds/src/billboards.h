@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "placement.h"
+#include "welkin/gfx/gpu_block.h"
 
 namespace welkin {
 class World;
@@ -13,16 +14,14 @@ struct SystemContext;
 
 namespace welkin::clouds {
 
-// std430 mirror of Billboard (shaders/clouds/billboards.glsl): one billboard, written by the
-// placement each frame.
-struct BillboardGpu {
-  glm::vec4 centre;  // camera-relative m (the archetype box's centre); w: optical-depth scale (0: none)
-  glm::vec4 light;   // irradiance of the marched light at the centre; w: distance m
-  glm::vec4 sky;     // sky irradiance on a horizontal plane; w: archetype index
-  glm::vec4 ap_inscattering;  // w: the archetype's turn about the vertical (radians)
-  glm::vec4 ap_transmittance;
-};
-static_assert(sizeof(BillboardGpu) == 80, "BillboardGpu must match the std430 Billboard struct");
+// One billboard (std430), declared once in shaders/clouds/billboard_block.glsl.h for both languages
+// (welkin/gfx/gpu_block.h): written by the placement compute each frame, read by the billboards' draw.
+namespace gpu_blocks {
+using namespace welkin::gpu_block_types;
+#include "clouds/billboard_block.glsl.h"
+}  // namespace gpu_blocks
+using BillboardGpu = gpu_blocks::Billboard;
+static_assert(sizeof(BillboardGpu) == 80, "BillboardGpu: the std430 Billboard struct's size");
 
 // What an atlas was baked from: a frame whose key equals it reuses the atlas.
 struct BillboardBakeKey {

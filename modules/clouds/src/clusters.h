@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "placement.h"
+#include "welkin/gfx/gpu_block.h"
 
 namespace welkin {
 class World;
@@ -13,21 +14,14 @@ struct SystemContext;
 
 namespace welkin::clouds {
 
-// std430 mirror of ClusterPuff (shaders/clouds/clusters.glsl): one puff, written by the placement
-// compute each frame, read by the puffs' draw.
-struct ClusterPuffGpu {
-  glm::vec4 centre;  // camera-relative m; w: peak extinction 1/m (0: no puff)
-  glm::vec4 radii;   // along the clusters' axes (wind, across, up) m; w: optical depth toward the light
-                     // through the cluster's other puffs
-  glm::vec4 light;   // irradiance of the marched light at the centre; w: distance from the camera m
-  glm::vec4 sky;     // sky irradiance on a horizontal plane at the centre; w: the centre's height above the
-                     // cluster's base m
-  glm::vec4 ap_inscattering;  // the air between the camera and the centre
-  glm::vec4 ap_transmittance;
-  glm::vec4
-      light_gradient;  // how that optical depth changes across the puff: per unit of its normalised axes
-};
-static_assert(sizeof(ClusterPuffGpu) == 112, "ClusterPuffGpu must match the std430 ClusterPuff struct");
+// One puff (std430), declared once in shaders/clouds/puff_block.glsl.h for both languages
+// (welkin/gfx/gpu_block.h): written by the placement compute each frame, read by the puffs' draw.
+namespace gpu_blocks {
+using namespace welkin::gpu_block_types;
+#include "clouds/puff_block.glsl.h"
+}  // namespace gpu_blocks
+using ClusterPuffGpu = gpu_blocks::ClusterPuff;
+static_assert(sizeof(ClusterPuffGpu) == 112, "ClusterPuffGpu: the std430 ClusterPuff struct's size");
 
 // The mesh clusters' GPU state (src/clusters.cpp).
 struct ClustersGpu {

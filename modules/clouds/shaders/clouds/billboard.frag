@@ -55,8 +55,8 @@ void main() {
   float phase_single = clouds_phase(mu, 1.0);
   float t_end = ray_end(dir);
   Billboard b = bb_billboards[v_billboard];
-  int archetype = int(b.sky.w);
-  vec3 o = to_local(-b.centre.xyz), d = to_local(dir);
+  int archetype = int(b.archetype);
+  vec3 o = to_local(-b.centre), d = to_local(dir);
   vec2 span = billboard_box_span(o, d);
   span.x = max(span.x, 0.0), span.y = min(span.y, t_end);
   if (span.y <= span.x) discard;
@@ -72,7 +72,7 @@ void main() {
     float below_m = max(p.z + u_volume.y, 0.0), above_m = max(u_box.y - p.z, 0.0);
     light += transmittance * step_opacity *
              clouds_sample_source(mu, phase_single, tau, sigma, below_m, above_m, u_light_dir, v_up,
-                                  b.light.rgb, b.sky.rgb);
+                                  b.light, b.sky);
     if (transmittance > 0.5 && transmittance * (1.0 - step_opacity) <= 0.5) front = t;
     transmittance *= 1.0 - step_opacity;
   }
@@ -120,13 +120,13 @@ void main() {
   vec3 source = clouds_diffusion_model
       ? clouds_light_source(mu, phase_single,
                             clouds_light_inputs(tau, sigma * scale, max(height, 0.0), above_m), u_light_dir,
-                            v_up, b.light.rgb, b.sky.rgb)
+                            v_up, b.light, b.sky)
       : clouds_sample_source(mu, phase_single, tau, sigma * scale, max(height, 0.0), above_m,
-                             u_light_dir, v_up, b.light.rgb, b.sky.rgb);
+                             u_light_dir, v_up, b.light, b.sky);
   light = opacity * source;
   if (opacity > 0.5) front = t_half;
 #endif
   if (opacity < 1e-5) discard;
-  o_color = vec4(b.ap_transmittance.rgb * light + b.ap_inscattering.rgb * opacity, opacity);
+  o_color = vec4(b.ap_transmittance * light + b.ap_inscattering * opacity, opacity);
   o_front = front;
 }

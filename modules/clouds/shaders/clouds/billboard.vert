@@ -21,16 +21,16 @@ flat out float v_scale;    // its optical-depth scale
 void main() {
   int billboard = int(bb_order[gl_InstanceID].y);
   Billboard b = bb_billboards[billboard];
-  vec3 c = b.centre.xyz;
+  vec3 c = b.centre;
   v_billboard = billboard;
-  v_scale = b.centre.w;
+  v_scale = b.depth_scale;
   v_up = normalize(u_up_radius.xyz * u_up_radius.w + c);
   // The archetype's frame: the wind's direction where it stands, turned by its hash.
   vec3 wind = normalize(u_axis_wind - v_up * dot(u_axis_wind, v_up)), across = cross(v_up, wind);
-  float turn = b.ap_inscattering.w;
+  float turn = b.turn_rad;
   v_wind = cos(turn) * wind + sin(turn) * across;
   v_across = cross(v_up, v_wind);
-  if (b.centre.w <= 0.0) {
+  if (b.depth_scale <= 0.0) {
     v_position = vec3(0.0);
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
     return;
@@ -49,7 +49,7 @@ void main() {
     v_plane[i] = vec4(n, dot(c, n));
     v_axis_a[i] = vec4(a, 0.5 - dot(c, a));
     v_axis_b[i] = vec4(e, 0.5 - dot(c, e));
-    v_layers[i] = float(2 * (int(b.sky.w) * u_atlas.x * u_atlas.y + v));
+    v_layers[i] = float(2 * (int(b.archetype) * u_atlas.x * u_atlas.y + v));
   }
   // The box that holds the cloud (its window's cylinder), not its bounding sphere: a cloud seen from
   // the side covers a band, a third of the sphere's square.

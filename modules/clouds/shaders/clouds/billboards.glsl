@@ -15,15 +15,7 @@
 //           scatter is found from it toward the light, at any time of day; the direct beam is taken
 //           from the optical depth it stands for.
 
-// src/billboards.cpp mirrors it (BillboardGpu, std430).
-struct Billboard {
-  vec4 centre;            // camera-relative m (the archetype box's centre); w: optical-depth scale (0: none)
-  vec4 light;             // irradiance of the marched light at the centre; w: distance from the camera m
-  vec4 sky;               // sky irradiance on a horizontal plane at the centre; w: archetype index
-  vec4 ap_inscattering;   // the air between the camera and the centre; w: the archetype's turn about the
-                          // vertical (radians)
-  vec4 ap_transmittance;
-};
+#include "clouds/billboard_block.glsl.h"
 
 uniform ivec4 u_atlas;  // view azimuths, view elevations, archetypes, texels per side
 uniform vec4 u_box;     // half width m, half height m, bounding radius m, volume slices per archetype

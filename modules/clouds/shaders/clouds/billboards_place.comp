@@ -32,9 +32,10 @@ void main() {
   }
   CloudLayerGpu L = cl_layers[u_layer];
   Billboard b;
-  b.centre = vec4(0.0);
-  b.light = b.sky = b.ap_inscattering = vec4(0.0);
-  b.ap_transmittance = vec4(1.0);
+  b.centre = b.light = b.sky = b.ap_inscattering = vec3(0.0);
+  b.depth_scale = b.distance_m = b.turn_rad = b.transmittance_unused = 0.0;
+  b.archetype = 0u;
+  b.ap_transmittance = vec3(1.0);
   float key = -1.0;
   int cell = bb_chosen[id];
   if (cell >= 0) {
@@ -60,13 +61,14 @@ void main() {
     float scale = u_density_scale * fade * weather;
     if (scale > 0.0) {
       vec3 up = normalize(cl.up * cl.camera_radius_m + c);
-      b.centre = vec4(c, scale);
-      b.light = vec4(u_light == 1 ? welkin_moon_irradiance(c) : welkin_sun_irradiance(c), rho);
-      b.sky = vec4(welkin_sky_irradiance(up), float(archetype));
-      vec3 t;
-      // w: its turn about the vertical
-      b.ap_inscattering = vec4(welkin_aerial_perspective(c, t), 6.2831853 * u.w);
-      b.ap_transmittance = vec4(t, 0.0);
+      b.centre = c;
+      b.depth_scale = scale;
+      b.light = u_light == 1 ? welkin_moon_irradiance(c) : welkin_sun_irradiance(c);
+      b.distance_m = rho;
+      b.sky = welkin_sky_irradiance(up);
+      b.archetype = uint(archetype);
+      b.ap_inscattering = welkin_aerial_perspective(c, b.ap_transmittance);
+      b.turn_rad = 6.2831853 * u.w;
       key = rho;
     }
   }

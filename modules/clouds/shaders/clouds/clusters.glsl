@@ -5,18 +5,7 @@
 // the optical depth of any stretch has a closed form; it is written about the chord's middle so that
 // a puff 50 km away keeps its precision in float.
 
-// src/clusters.cpp mirrors it (ClusterPuffGpu, std430).
-struct ClusterPuff {
-  vec4 centre;            // camera-relative m; w: peak extinction 1/m (0: no puff)
-  vec4 radii;  // along the clusters' axes (wind, across, up) m; w: optical depth toward the light through the
-               // cluster's other puffs
-  vec4 light;             // irradiance of the marched light at the centre; w: distance from the camera m
-  vec4 sky;  // sky irradiance on a horizontal plane at the centre; w: the centre's height above the cluster's
-             // base m
-  vec4 ap_inscattering;   // the air between the camera and the centre
-  vec4 ap_transmittance;
-  vec4 light_gradient;    // how that optical depth changes across the puff: per unit of its normalised axes
-};
+#include "clouds/puff_block.glsl.h"
 
 // The clusters' axes (camera-relative): along the wind, across it, and up at the camera.
 uniform vec3 u_axis_wind, u_axis_across, u_axis_up;

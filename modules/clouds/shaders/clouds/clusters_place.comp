@@ -93,11 +93,13 @@ void main() {
   int cluster = id / u_puffs, index = id % u_puffs;
   int cell = cp_chosen[cluster];
   ClusterPuff puff;
-  puff.centre = vec4(0.0);
-  puff.radii = vec4(1.0, 1.0, 1.0, 0.0);
-  puff.light = puff.sky = puff.ap_inscattering = vec4(0.0);
-  puff.ap_transmittance = vec4(1.0);
-  puff.light_gradient = vec4(0.0);
+  puff.centre = vec3(0.0);
+  puff.extinction_per_m = 0.0;
+  puff.radii = vec3(1.0);
+  puff.light_depth = puff.distance_m = puff.height_m = 0.0;
+  puff.light = puff.sky = puff.ap_inscattering = puff.light_depth_gradient = vec3(0.0);
+  puff.ap_transmittance = vec3(1.0);
+  puff.inscattering_unused = puff.transmittance_unused = puff.gradient_unused = 0.0;
   if (cell >= 0) {
     ivec2 global_cell = u_first_cell + ivec2(cell % u_grid, cell / u_grid);
     vec4 u = random4(global_cell, index, 0u), v = random4(global_cell, index, 1u);
@@ -125,9 +127,10 @@ void main() {
     field = max(field, field_at(layer_point(puff_en - 0.5 * radii.x * u_wind_en, weather_base + height)));
     float sigma = field * (cl.scattering + cl.absorption) * u_genus.z * fade;
     if (sigma > 0.0) {
-      puff.centre = vec4(x, sigma);
-      puff.radii = vec4(radii, 0.0);
-      puff.sky.w = height;  // above the cluster's base, where the draw cuts it
+      puff.centre = x;
+      puff.extinction_per_m = sigma;
+      puff.radii = radii;
+      puff.height_m = height;  // above the cluster's base, where the draw cuts it
     }
   }
   cp_puffs[id] = puff;
@@ -140,40 +143,41 @@ void main() {
   }
   ClusterPuff puff = cp_puffs[id];
   float key = -1.0;
-  if (puff.centre.w > 0.0) {
-    vec3 c = puff.centre.xyz;
+  if (puff.extinction_per_m > 0.0) {
+    vec3 c = puff.centre;
     int first = (id / u_puffs) * u_puffs;
     // At the centre and half a radius to either side along each axis (the draw interpolates, so
     // the shade does not jump from puff to puff).
     float tau[7] = float[7](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
     for (int q = first; q < first + u_puffs; ++q) {
       if (q == id) continue;
-      vec4 other = cp_puffs[q].centre;
-      if (other.w <= 0.0) continue;
-      vec3 other_radii = cp_puffs[q].radii.xyz;
+      float other_sigma = cp_puffs[q].extinction_per_m;
+      if (other_sigma <= 0.0) continue;
+      vec3 other_centre = cp_puffs[q].centre, other_radii = cp_puffs[q].radii;
       // In the other puff's normalised frame (the puffs share their axes): the light's direction,
       // this puff's centre, and the half-radius steps along each axis, found once for the 7 points.
       vec3 light_local = puff_direction(u_light_dir, other_radii),
-           centre_local = puff_local(c, other.xyz, other_radii);
-      vec3 step_local = 0.5 * puff.radii.xyz / other_radii;
-      tau[0] += other.w * puff_optical_depth(puff_chord_local(centre_local, light_local), 0.0, 3.4e38);
+           centre_local = puff_local(c, other_centre, other_radii);
+      vec3 step_local = 0.5 * puff.radii / other_radii;
+      tau[0] += other_sigma * puff_optical_depth(puff_chord_local(centre_local, light_local), 0.0, 3.4e38);
       for (int a = 0; a < 3; ++a)
         for (int side = 0; side < 2; ++side) {
           vec3 x = centre_local;
           x[a] += side == 0 ? step_local[a] : -step_local[a];
           tau[1 + 2 * a + side] +=
-              other.w * puff_optical_depth(puff_chord_local(x, light_local), 0.0, 3.4e38);
+              other_sigma * puff_optical_depth(puff_chord_local(x, light_local), 0.0, 3.4e38);
         }
     }
     // Only this stage's fields are written: the other invocations read the centres and radii.
-    cp_puffs[id].radii.w = tau[0];
-    cp_puffs[id].light_gradient = vec4(tau[1] - tau[2], tau[3] - tau[4], tau[5] - tau[6], 0.0);
+    cp_puffs[id].light_depth = tau[0];
+    cp_puffs[id].light_depth_gradient = vec3(tau[1] - tau[2], tau[3] - tau[4], tau[5] - tau[6]);
     vec3 up = normalize(cl.up * cl.camera_radius_m + c);
-    cp_puffs[id].light = vec4(u_light == 1 ? welkin_moon_irradiance(c) : welkin_sun_irradiance(c), length(c));
-    cp_puffs[id].sky.rgb = welkin_sky_irradiance(up);
+    cp_puffs[id].light = u_light == 1 ? welkin_moon_irradiance(c) : welkin_sun_irradiance(c);
+    cp_puffs[id].distance_m = length(c);
+    cp_puffs[id].sky = welkin_sky_irradiance(up);
     vec3 t;
-    cp_puffs[id].ap_inscattering = vec4(welkin_aerial_perspective(c, t), 0.0);
-    cp_puffs[id].ap_transmittance = vec4(t, 0.0);
+    cp_puffs[id].ap_inscattering = welkin_aerial_perspective(c, t);
+    cp_puffs[id].ap_transmittance = t;
     key = length(c);
   }
   cp_order[id] = uvec2(floatBitsToUint(key), uint(id));

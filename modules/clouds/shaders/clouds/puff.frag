@@ -18,8 +18,9 @@ uniform vec3 u_light_dir;
 in vec3 v_position;
 flat in int v_puff;
 flat in vec4 v_base_plane;  // up at the puff; w: the camera's height above the cluster's base (m)
-// w: the depth toward the light at the centre
-flat in vec4 v_light, v_sky, v_ap_inscattering, v_ap_transmittance, v_light_gradient;
+flat in vec3 v_light, v_sky, v_ap_inscattering, v_ap_transmittance;
+flat in float v_height_m;         // the puff's centre above the cluster's base
+flat in vec4 v_light_gradient;  // w: the depth toward the light at the centre
 layout(location = 0) out vec4 o_color;  // premultiplied: light reaching the camera, opacity
 layout(location = 1) out float o_front;  // where the puff turns opaque (m; blended by minimum)
 
@@ -27,10 +28,9 @@ void main() {
   // What the light model reads of the block.
   cl = clb;
   // The puff's fields are loaded as they are needed: most of a quad's pixels stop at the chord.
-  vec4 centre = cp_puffs[v_puff].centre, radii = cp_puffs[v_puff].radii;
+  vec3 centre = cp_puffs[v_puff].centre, radii = cp_puffs[v_puff].radii;
   vec3 dir = normalize(v_position);
-  vec3 camera_local = puff_local(vec3(0.0), centre.xyz, radii.xyz),
-       dir_local = puff_direction(dir, radii.xyz);
+  vec3 camera_local = puff_local(vec3(0.0), centre, radii), dir_local = puff_direction(dir, radii);
   vec4 chord = puff_chord_local(camera_local, dir_local);
   if (chord.w <= 0.0) discard;
   // Cut at the cluster's base (a plane across the local vertical): flat bases, as the field's.
@@ -55,7 +55,7 @@ void main() {
   if (ground.x <= ground.y && ground.x > 0.0) t1 = min(t1, ground.x);
   float s0 = clamp(t0 - chord.x, -chord.w, chord.w), s1 = clamp(t1 - chord.x, -chord.w, chord.w);
   if (s1 <= s0) discard;
-  float sigma = centre.w;
+  float sigma = cp_puffs[v_puff].extinction_per_m;
   float depth_total = sigma * (puff_depth_at(chord, s1) - puff_depth_at(chord, s0));
   float opacity = 1.0 - exp(-depth_total);
   if (opacity < 1e-5) discard;
@@ -63,7 +63,7 @@ void main() {
   float mu = dot(dir, u_light_dir);
   float phase_single = clouds_phase(mu, 1.0);
   // Toward the light, in the puff's normalised frame (the same for every sample).
-  vec3 light_local = puff_direction(u_light_dir, radii.xyz);
+  vec3 light_local = puff_direction(u_light_dir, radii);
   float light_a = max(dot(light_local, light_local), 1e-30);
   vec3 source = vec3(0.0);
   const int n = PUFF_SAMPLES;
@@ -82,14 +82,14 @@ void main() {
     float tau = sigma * puff_optical_depth(toward_light, 0.0, 3.4e38) +
                 max(v_light_gradient.w + dot(v_light_gradient.xyz, local), 0.0);
     // The cloud under the sample, from the cluster's base (the march's depth in its layer).
-    float depth_below_m = max(v_sky.w + local.z * radii.z, 0.0);
+    float depth_below_m = max(v_height_m + local.z * radii.z, 0.0);
     // And over it, to the puff's top (the cluster's other puffs are not above it).
     float depth_above_m = max(sqrt(max(1.0 - dot(local.xy, local.xy), 0.0)) - local.z, 0.0) * radii.z;
     source += clouds_sample_source(mu, phase_single, tau, sigma * max(1.0 - q, 0.0), depth_below_m,
-                                   depth_above_m, u_light_dir, up, v_light.rgb, v_sky.rgb);
+                                   depth_above_m, u_light_dir, up, v_light, v_sky);
   }
   vec3 light = source * (opacity / float(n));
-  o_color = vec4(v_ap_transmittance.rgb * light + v_ap_inscattering.rgb * opacity, opacity);
+  o_color = vec4(v_ap_transmittance * light + v_ap_inscattering * opacity, opacity);
   // Opaque beyond one half: where the depth reaches ln 2 (else nowhere).
   o_front = depth_total > 0.6931472 ? chord.x + puff_invert_depth(chord, s0, s1, 0.6931472 / sigma) : 3.4e38;
 }

@@ -13,30 +13,31 @@ out vec3 v_position;                     // camera-relative m (along the pixel's
 flat out int v_puff;
 flat out vec4 v_base_plane;  // up at the puff; w: the camera's height above the cluster's base (m)
 // What the light needs of the puff, loaded here once per vertex rather than by every pixel.
-flat out vec4 v_light, v_sky, v_ap_inscattering, v_ap_transmittance, v_light_gradient;
+flat out vec3 v_light, v_sky, v_ap_inscattering, v_ap_transmittance;
+flat out float v_height_m;  // the puff's centre above the cluster's base
+flat out vec4 v_light_gradient;  // how the depth toward the light changes across the puff; w: at its centre
 uniform vec4 u_up_radius;  // up at the camera; w: the camera's distance from the planet's centre
 
 void main() {
   int puff = int(cp_order[gl_InstanceID].y);
   v_puff = puff;
   // Only the centre and radii: software vertex processing pays for every load.
-  vec4 centre = cp_puffs[puff].centre;
-  vec3 radii = cp_puffs[puff].radii.xyz;
-  vec3 up = normalize(u_up_radius.xyz * u_up_radius.w + centre.xyz);
-  v_base_plane = vec4(up, cp_puffs[puff].sky.w - dot(centre.xyz, up));
-  v_light = cp_puffs[puff].light, v_sky = cp_puffs[puff].sky;
+  vec3 centre = cp_puffs[puff].centre, radii = cp_puffs[puff].radii;
+  vec3 up = normalize(u_up_radius.xyz * u_up_radius.w + centre);
+  v_base_plane = vec4(up, cp_puffs[puff].height_m - dot(centre, up));
+  v_light = cp_puffs[puff].light, v_sky = cp_puffs[puff].sky, v_height_m = cp_puffs[puff].height_m;
   v_ap_inscattering = cp_puffs[puff].ap_inscattering, v_ap_transmittance = cp_puffs[puff].ap_transmittance;
-  v_light_gradient = vec4(cp_puffs[puff].light_gradient.xyz, cp_puffs[puff].radii.w);
-  if (centre.w <= 0.0) {
+  v_light_gradient = vec4(cp_puffs[puff].light_depth_gradient, cp_puffs[puff].light_depth);
+  if (cp_puffs[puff].extinction_per_m <= 0.0) {
     v_position = vec3(0.0);
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
     return;
   }
 #if PUFF_PROXY_MESH
   vec3 unit = cp_proxy[gl_VertexID].xyz * radii;
-  v_position = centre.xyz + unit.x * u_axis_wind + unit.y * u_axis_across + unit.z * u_axis_up;
+  v_position = centre + unit.x * u_axis_wind + unit.y * u_axis_across + unit.z * u_axis_up;
   gl_Position = u_view_projection * vec4(v_position, 1.0);
 #else
-  v_position = sprite_corner(centre.xyz, max(radii.x, max(radii.y, radii.z)), gl_VertexID, gl_Position);
+  v_position = sprite_corner(centre, max(radii.x, max(radii.y, radii.z)), gl_VertexID, gl_Position);
 #endif
 }

@@ -38,7 +38,7 @@ std::vector<BillboardGpu> read_billboards(Rendered& r) {
   return out;
 }
 size_t live(const std::vector<BillboardGpu>& billboards) {
-  return size_t(std::count_if(billboards.begin(), billboards.end(), [](const BillboardGpu& b) { return b.centre.w > 0.0f; }));
+  return size_t(std::count_if(billboards.begin(), billboards.end(), [](const BillboardGpu& b) { return b.depth_scale > 0.0f; }));
 }
 
 double luminance(const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
@@ -127,14 +127,13 @@ TEST(CloudBillboards, BillboardsStandOnTheLayersWeatherWithinTheirRingFarToNear)
   const CloudField field(read_noise(gpu), gpu.block, gpu.layers);
   const CloudLayer& cumulus = r.clouds().layers[0];
   for (const BillboardGpu& b : billboards) {
-    if (b.centre.w <= 0.0f) continue;
+    if (b.depth_scale <= 0.0f) continue;
     const glm::dvec3 c(b.centre);
     EXPECT_GE(glm::length(c), fade.x - 1.0);
     EXPECT_LE(glm::length(c), fade.w + 1.0);
     EXPECT_NEAR(field.altitude(c), cumulus.base_altitude_m + 0.5 * cumulus.thickness_m, 1.0) << "the layer's middle";
-    EXPECT_GE(b.sky.w, 0.0f);
-    EXPECT_LT(b.sky.w, 4.0f) << "an archetype";
-    EXPECT_LE(b.centre.w, 1.0f) << "the cross-fades and the weather only thin";
+    EXPECT_LT(b.archetype, 4u) << "an archetype";
+    EXPECT_LE(b.depth_scale, 1.0f) << "the cross-fades and the weather only thin";
   }
   // Every chosen cell's weather allows cloud.
   const PlacementBuffers& p = gpu.billboards.placement;
@@ -153,7 +152,7 @@ TEST(CloudBillboards, BillboardsStandOnTheLayersWeatherWithinTheirRingFarToNear)
     ASSERT_LT(o.y, billboards.size());
     ++seen[o.y];
     const BillboardGpu& b = billboards[o.y];
-    const double d = b.centre.w > 0.0f ? glm::length(glm::dvec3(b.centre)) : -1.0;
+    const double d = b.depth_scale > 0.0f ? glm::length(glm::dvec3(b.centre)) : -1.0;
     EXPECT_LE(d, previous + 1e-6 * std::abs(previous));
     previous = d;
   }
@@ -210,7 +209,7 @@ TEST(CloudBillboards, StiffCasesStayFiniteAndNonNegative) {
     Rendered r = render_stiff_case(billboard_scene(c.billboards, c.sun_deg, c.clouds), c.camera, c.name);
     const std::vector<BillboardGpu> billboards = read_billboards(r);
     for (const BillboardGpu& b : billboards)
-      if (b.centre.w > 0.0f) {
+      if (b.depth_scale > 0.0f) {
         ASSERT_TRUE(std::isfinite(b.light.x) && b.light.x >= 0.0f) << c.name;
         ASSERT_TRUE(std::isfinite(b.ap_transmittance.x) && b.ap_transmittance.x >= 0.0f) << c.name;
       }
@@ -220,7 +219,7 @@ TEST(CloudBillboards, StiffCasesStayFiniteAndNonNegative) {
     if (name == "billboards at 200 km") {
       EXPECT_GT(live(billboards), 0u);
       for (const BillboardGpu& b : billboards)
-        if (b.centre.w > 0.0f) EXPECT_GT(glm::length(glm::dvec3(b.centre)), 185000.0);
+        if (b.depth_scale > 0.0f) EXPECT_GT(glm::length(glm::dvec3(b.centre)), 185000.0);
     }
   }
 }

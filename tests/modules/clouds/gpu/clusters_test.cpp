@@ -170,7 +170,7 @@ std::vector<glm::uvec2> read_order(Rendered& r) {
 }
 
 size_t live_puffs(const std::vector<ClusterPuffGpu>& puffs) {
-  return size_t(std::count_if(puffs.begin(), puffs.end(), [](const ClusterPuffGpu& p) { return p.centre.w > 0.0f; }));
+  return size_t(std::count_if(puffs.begin(), puffs.end(), [](const ClusterPuffGpu& p) { return p.extinction_per_m > 0.0f; }));
 }
 
 TEST(CloudClusters, PuffsStandWhereTheLayersFieldHoldsCloudAndAreDrawnFarToNear) {
@@ -191,7 +191,7 @@ TEST(CloudClusters, PuffsStandWhereTheLayersFieldHoldsCloudAndAreDrawnFarToNear)
   const CloudLayer& cumulus = clouds.layers[0];
   int checked = 0, below = 0;
   for (const ClusterPuffGpu& p : puffs) {
-    if (p.centre.w <= 0.0f) continue;
+    if (p.extinction_per_m <= 0.0f) continue;
     const glm::dvec3 c(p.centre);
     const double rho = glm::length(c);
     EXPECT_GE(rho, 3000.0 - 500.0 - 1.0);
@@ -206,7 +206,7 @@ TEST(CloudClusters, PuffsStandWhereTheLayersFieldHoldsCloudAndAreDrawnFarToNear)
     const double fade = smooth(2500.0, 3500.0 + 1e-3, rho) * (1.0 - smooth(29000.0 - 1e-3, 30000.0, rho));
     const double at_centre = field.extinction(c, false) * per_density * fade;
     ++checked;
-    below += double(p.centre.w) < 0.97 * at_centre - 1e-4;
+    below += double(p.extinction_per_m) < 0.97 * at_centre - 1e-4;
   }
   EXPECT_GT(checked, 0);
   EXPECT_LE(below, checked / 50) << "puffs thinner than the field at their centre";
@@ -219,7 +219,7 @@ TEST(CloudClusters, PuffsStandWhereTheLayersFieldHoldsCloudAndAreDrawnFarToNear)
     ASSERT_LT(o.y, puffs.size());
     ++seen[o.y];
     const ClusterPuffGpu& p = puffs[o.y];
-    const double d = p.centre.w > 0.0f ? glm::length(glm::dvec3(p.centre)) : -1.0;
+    const double d = p.extinction_per_m > 0.0f ? glm::length(glm::dvec3(p.centre)) : -1.0;
     EXPECT_LE(d, previous + 1e-6 * std::abs(previous)) << "far to near";
     previous = d;
   }
@@ -236,7 +236,7 @@ TEST(CloudClusters, OrderIsSortedAcrossSeveralBlocksOfTheSort) {
   ASSERT_EQ(order.size(), size_t(2400));
   EXPECT_GT(live_puffs(puffs), size_t(1024));
   std::vector<double> keys;
-  for (const glm::uvec2& o : order) keys.push_back(puffs[o.y].centre.w > 0.0f ? glm::length(glm::dvec3(puffs[o.y].centre)) : -1.0);
+  for (const glm::uvec2& o : order) keys.push_back(puffs[o.y].extinction_per_m > 0.0f ? glm::length(glm::dvec3(puffs[o.y].centre)) : -1.0);
   EXPECT_TRUE(std::is_sorted(keys.rbegin(), keys.rend()));
 }
 
@@ -255,7 +255,7 @@ TEST(CloudClusters, OrderIsSortedWhenTheSortIsSmallerThanItsRegisterWindow) {
     for (const glm::uvec2& o : order) {
       ASSERT_LT(o.y, puffs.size());
       ++seen[o.y];
-      keys.push_back(puffs[o.y].centre.w > 0.0f ? glm::length(glm::dvec3(puffs[o.y].centre)) : -1.0);
+      keys.push_back(puffs[o.y].extinction_per_m > 0.0f ? glm::length(glm::dvec3(puffs[o.y].centre)) : -1.0);
     }
     EXPECT_GE(live_puffs(puffs), size_t(puffs_per_cluster > 1 ? 2 : 1)) << puffs_per_cluster;
     EXPECT_TRUE(std::is_sorted(keys.rbegin(), keys.rend())) << puffs_per_cluster;
@@ -335,8 +335,8 @@ TEST(CloudClusters, StiffCasesStayFiniteAndNonNegative) {
     Rendered r = render_stiff_case(cluster_scene(c.clusters, c.sun_deg, c.clouds), c.camera, c.name);
     const std::vector<ClusterPuffGpu> puffs = read_puffs(r);
     for (const ClusterPuffGpu& p : puffs)
-      if (p.centre.w > 0.0f) {
-        ASSERT_TRUE(std::isfinite(p.radii.w) && p.radii.w >= 0.0f) << c.name;
+      if (p.extinction_per_m > 0.0f) {
+        ASSERT_TRUE(std::isfinite(p.light_depth) && p.light_depth >= 0.0f) << c.name;
         ASSERT_TRUE(std::isfinite(p.light.x) && p.light.x >= 0.0f) << c.name;
       }
     const std::string name = c.name;

@@ -13,8 +13,8 @@
 namespace welkin::clouds {
 namespace {
 
-std::string blocks_header() {
-  return read_file_text(WELKIN_SOURCE_DIR "/modules/clouds/shaders/clouds/blocks.glsl.h", 1u << 20);
+std::string blocks_header(const std::string& name = "blocks") {
+  return read_file_text(WELKIN_SOURCE_DIR "/modules/clouds/shaders/clouds/" + name + ".glsl.h", 1u << 20);
 }
 
 // `count` structs whose every word holds a distinct float.
@@ -45,6 +45,20 @@ TEST(CloudsGpuBlocks, EveryFieldOfEachLayerReadsBackFromAStd430Buffer) {
   const std::vector<LayerBlock> layers = distinct_words<LayerBlock>(3);
   EXPECT_EQ(welkin::test::read_back_block(blocks_header(), "CloudLayerGpu", layers.data(), 3 * sizeof(LayerBlock), 3, false),
             words_of(layers.data(), 3 * sizeof(LayerBlock)));
+}
+
+TEST(CloudsGpuBlocks, EveryFieldOfEachClusterPuffReadsBackFromAStd430Buffer) {
+  test::gl_context().make_current();
+  const std::vector<ClusterPuffGpu> puffs = distinct_words<ClusterPuffGpu>(3);
+  EXPECT_EQ(welkin::test::read_back_block(blocks_header("puff_block"), "ClusterPuff", puffs.data(), 3 * sizeof(ClusterPuffGpu), 3, false),
+            words_of(puffs.data(), 3 * sizeof(ClusterPuffGpu)));
+}
+
+TEST(CloudsGpuBlocks, EveryFieldOfEachBillboardReadsBackFromAStd430Buffer) {
+  test::gl_context().make_current();
+  const std::vector<BillboardGpu> billboards = distinct_words<BillboardGpu>(3);
+  EXPECT_EQ(welkin::test::read_back_block(blocks_header("billboard_block"), "Billboard", billboards.data(), 3 * sizeof(BillboardGpu), 3, false),
+            words_of(billboards.data(), 3 * sizeof(BillboardGpu)));
 }
 
 // The check itself: a struct C++ packs tightly but std430 pads (a vec3 after a scalar starts on 16
