@@ -11,6 +11,7 @@
 #include "terrain_mesh.h"
 #include "welkin/assets/asset_cache.h"
 #include "welkin/gfx/gl_objects.h"
+#include "welkin/gfx/gpu_block.h"
 
 namespace welkin::terrain {
 
@@ -40,6 +41,16 @@ struct GpuTerrain {
 
 inline constexpr int kShadowCascades = 3;
 
+// The light term's TerrainCascades block (std140), declared once in shaders/terrain/cascades_block.glsl.h
+// for both languages (welkin/gfx/gpu_block.h).
+namespace gpu_blocks {
+using namespace welkin::gpu_block_types;
+#include "terrain/cascades_block.glsl.h"
+}  // namespace gpu_blocks
+using CascadesBlock = gpu_blocks::TerrainCascadesGpu;
+static_assert(sizeof(CascadesBlock::cascades) / sizeof(CascadesBlock::cascades[0]) == kShadowCascades);
+static_assert(sizeof(CascadesBlock) == 256, "CascadesBlock: the std140 TerrainCascades block's size");
+
 struct TerrainCache {
   static constexpr std::string_view kTypeName = "terrain.TerrainCache";
   // Cascades side by side in one depth atlas (kShadowCascades x 1), compared in the shader.
@@ -57,11 +68,7 @@ struct TerrainCache {
   std::optional<CascadePlaces> cascade_places;
   size_t cascade_draws = 0;  // cascades drawn (tests, stats)
   // This frame's cascades as the light term's std140 block (terrain/light_term.glsl), and its buffer.
-  struct CascadeBlock {
-    glm::mat4 light_view_projection[kShadowCascades];
-    glm::vec4 far_m{0.0f};  // w: 1 while shadows are on
-    glm::vec4 texel_m{0.0f};
-  } cascade_block;
+  CascadesBlock cascade_block{};
   std::unique_ptr<Buffer> cascade_buffer;
   // The view's terrain as last drawn (terrain_system.cpp, view_inputs): its colour and depth, and
   // the digest of what they were drawn from. A frame whose digest is the same takes them instead of

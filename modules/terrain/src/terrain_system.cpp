@@ -256,7 +256,7 @@ ResourceHandle add_shadow_pass(SystemContext& sc, const std::shared_ptr<std::vec
   world.registry().each<Terrain>([&](Entity, Terrain& t) {
     if (t.cast_shadows && !shadow_settings) shadow_settings = &t;
   });
-  cache.cascade_block.far_m.w = 0.0f;  // until a cascade is made this frame
+  cache.cascade_block.shadows_on = 0;  // until a cascade is made this frame
   drawn = false;
   if (!sun || !shadow_settings) return {};
   const Cascades cs =
@@ -265,11 +265,12 @@ ResourceHandle add_shadow_pass(SystemContext& sc, const std::shared_ptr<std::vec
   const int size = shadow_settings->shadow_map_size;
   Texture& atlas = cache.shadow_map(size);
   for (int i = 0; i < kShadowCascades; ++i) {
-    cache.cascade_block.light_view_projection[i] = cs.light_view_projection[size_t(i)];
-    cache.cascade_block.far_m[i] = cs.far_m[size_t(i)];
-    cache.cascade_block.texel_m[i] = cs.extent_m[size_t(i)] / float(size);
+    gpu_blocks::TerrainCascade& c = cache.cascade_block.cascades[i];
+    c.light_view_projection = cs.light_view_projection[size_t(i)];
+    c.far_m = cs.far_m[size_t(i)];
+    c.texel_m = cs.extent_m[size_t(i)] / float(size);
   }
-  cache.cascade_block.far_m.w = 1.0f;
+  cache.cascade_block.shadows_on = 1;
   // Each cascade draws the casters its square sees, at the level whose error stays within the
   // terrain's pixel error in the cascade's texels: the far cascades draw coarse levels.
   for (Placed& p : *placed)

@@ -1,11 +1,8 @@
 #pragma once
 // The terrain's light term (src/terrain_system.cpp registers it): the sun's cascaded shadow maps,
 // three cascades side by side in one compare atlas, for every material of the scene.
-layout(std140, binding = WELKIN_BLOCK_TERRAIN_CASCADES) uniform TerrainCascades {
-  mat4 terrain_cascade[3];      // camera-relative world -> cascade clip space
-  vec4 terrain_cascade_far;     // xyz: view distance each cascade reaches; w: 1 while shadows are on
-  vec4 terrain_cascade_texel;   // xyz: texel size of each cascade (m)
-};
+#include "terrain/cascades_block.glsl.h"
+layout(std140, binding = WELKIN_BLOCK_TERRAIN_CASCADES) uniform TerrainCascades { TerrainCascadesGpu tc; };
 layout(binding = WELKIN_UNIT_TERRAIN_SHADOW_ATLAS) uniform sampler2DShadow terrain_shadow_atlas;
 
 // Fraction of the sun reaching a point: the nearest cascade that covers it, a 3x3 box of hardware-PCF
@@ -13,12 +10,13 @@ layout(binding = WELKIN_UNIT_TERRAIN_SHADOW_ATLAS) uniform sampler2DShadow terra
 // The cascades are made for the sun only (the moon's light is left unshadowed by the terrain).
 // Shaders that sample the light at many points per pixel define WELKIN_VOLUME_SAMPLES: one tap each.
 float terrain_light_visibility(vec3 camera_relative, vec3 normal, int light) {
-  if (light != 0 || terrain_cascade_far.w < 0.5) return 1.0;
+  if (light != 0 || tc.shadows_on == 0) return 1.0;
   float d = length(camera_relative);
-  int c = d < terrain_cascade_far.x ? 0 : d < terrain_cascade_far.y ? 1 : d < terrain_cascade_far.z ? 2 : 3;
+  int c = d < tc.cascades[0].far_m ? 0 : d < tc.cascades[1].far_m ? 1 : d < tc.cascades[2].far_m ? 2 : 3;
   if (c == 3) return 1.0;
   // Normal offset of two texels: a grazing sun on gentle slopes otherwise shadows the surface itself.
-  vec4 clip = terrain_cascade[c] * vec4(camera_relative + normal * 2.0 * terrain_cascade_texel[c], 1.0);
+  vec4 clip = tc.cascades[c].light_view_projection *
+              vec4(camera_relative + normal * 2.0 * tc.cascades[c].texel_m, 1.0);
   vec3 p = clip.xyz / clip.w;
   vec2 uv = p.xy * 0.5 + 0.5;
   if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return 1.0;
