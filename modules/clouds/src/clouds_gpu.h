@@ -43,7 +43,7 @@ struct CloudsGpu {
   int noise_cache_reads = 0;  // how often it was read from the disk cache instead
   std::unique_ptr<Buffer> frame_buffer, layer_buffer, shadow_buffer;
   size_t layer_capacity = 0;
-  ShadowBlock shadow;                            // as last uploaded (valid: origin[k].w = 1)
+  ShadowBlock shadow{};                          // as last uploaded
   ShadowKey shadow_keys[kMaxShadowCascades];     // what each cascade holds
   bool shadow_rebuild[kMaxShadowCascades] = {};  // this frame remakes it
   int shadow_builds = 0;                         // cascades made

@@ -24,7 +24,7 @@ void add_light_term(World& world) {
           [&world](const LightEnvironment& env) {
             CloudsGpu& gpu = world.resource<CloudsGpu>();
             ShadowBlock s = gpu.shadow;
-            if (!gpu.shadow_map) s.up.w = 0.0f;
+            if (!gpu.shadow_map) s.cascade_count = 0;
             env.bind_block("clouds.shadow", gpu.shadow_buffer, &s, sizeof(s));
             if (gpu.shadow_map) glBindTextureUnit(env.unit("clouds.shadow_map"), gpu.shadow_map->id());
           },

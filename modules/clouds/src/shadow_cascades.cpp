@@ -60,7 +60,7 @@ void place_shadow_cascades(CloudsGpu& gpu, const VolumetricClouds& clouds, const
     gpu.shadow_rebuild[k] = false;
     if (!key.wanted || k >= cascades) {
       held.wanted = false;
-      gpu.shadow.origin[k].w = 0.0f;
+      gpu.shadow.cascades[k].valid = 0;
       continue;
     }
     const float side = 2.0f * clouds.shadow_distance_m / float(1 << (2 * (cascades - 1 - k)));
@@ -68,15 +68,20 @@ void place_shadow_cascades(CloudsGpu& gpu, const VolumetricClouds& clouds, const
     cascade.texel_m = side / float(clouds.shadow_map_size);
     gpu.shadow_rebuild[k] = !held.wanted || held.stale(cascade);
     if (gpu.shadow_rebuild[k]) {
-      gpu.shadow.axis_u[k] = glm::vec4(u / side, start);
-      gpu.shadow.axis_v[k] = glm::vec4(v / side, side);
+      gpu.shadow.cascades[k].axis_u = u / side;
+      gpu.shadow.cascades[k].start_m = start;
+      gpu.shadow.cascades[k].axis_v = v / side;
+      gpu.shadow.cascades[k].side_m = side;
       held = cascade;
     }
     // A cascade stays where it was made: its centre, relative to this frame's camera.
-    gpu.shadow.origin[k] = glm::vec4(glm::vec3(held.anchor_m - view.camera_position_m), 1.0f);
+    gpu.shadow.cascades[k].origin = glm::vec3(held.anchor_m - view.camera_position_m);
+    gpu.shadow.cascades[k].valid = 1;
   }
-  gpu.shadow.light = glm::vec4(l, std::abs(l.z));
-  gpu.shadow.up = glm::vec4(glm::vec3(block.up), float(key.wanted ? cascades : 0));
+  gpu.shadow.light = l;
+  gpu.shadow.column_vertical = std::abs(l.z);
+  gpu.shadow.up = block.up;
+  gpu.shadow.cascade_count = key.wanted ? cascades : 0;
 }
 
 // Before the geometry: noise, this frame's block, and the shadow map every material reads.
@@ -87,12 +92,12 @@ void shadow_system(SystemContext& sc) {
   auto& gpu = world.resource<CloudsGpu>();
   ensure_noise(world, clouds->seed);
   gpu.has_layers = upload_frame(world, sc, *clouds, gpu.block);
-  if (!gpu.has_layers || gpu.shadow.up.w < 0.5f) {
-    gpu.shadow.up.w = 0.0f;
+  if (!gpu.has_layers || gpu.shadow.cascade_count < 1) {
+    gpu.shadow.cascade_count = 0;
     for (ShadowKey& k : gpu.shadow_keys) k.wanted = false;
     return;
   }
-  const int cascades = int(gpu.shadow.up.w), size = clouds->shadow_map_size;
+  const int cascades = gpu.shadow.cascade_count, size = clouds->shadow_map_size;
   // The cascades side by side in one texture, nearest first; a new texture holds none of them yet.
   if (ensure_texture(gpu.shadow_map,
                      {.width = size * cascades, .height = size, .format = TextureFormat::rgba32f}))
@@ -116,14 +121,14 @@ void shadow_system(SystemContext& sc) {
         bind_image_for_write(0, *gp->shadow_map);
         const Program& p = rc.shaders.compute("clouds/shadow_map.comp", defines);
         for (int k : remade) {
-          const float side = s.axis_v[k].w;
+          const gpu_blocks::CloudsShadowCascade& c = s.cascades[k];
           // The plane through the cascade's centre (camera-relative, this frame).
-          p.set("u_centre", glm::vec3(s.origin[k]));
-          p.set("u_light", glm::vec3(s.light));
-          p.set("u_axis_u", glm::vec3(s.axis_u[k]) * side);
-          p.set("u_axis_v", glm::vec3(s.axis_v[k]) * side);
-          p.set("u_extent_m", side);
-          p.set("u_start_m", s.axis_u[k].w);
+          p.set("u_centre", c.origin);
+          p.set("u_light", s.light);
+          p.set("u_axis_u", c.axis_u * c.side_m);
+          p.set("u_axis_v", c.axis_v * c.side_m);
+          p.set("u_extent_m", c.side_m);
+          p.set("u_start_m", c.start_m);
           p.set("u_steps", kShadowSteps);
           glProgramUniform2i(p.id(), p.location("u_region"), k * size, size);
           const int g = group_count(size, 8);

@@ -14,16 +14,16 @@ struct SystemContext;
 
 namespace welkin::clouds {
 
-// std140 mirror of the light term's CloudsShadow block (shaders/clouds/light_term.glsl): one plane
-// per cascade, nearest first.
+// The light term's CloudsShadow block (std140), declared once in shaders/clouds/shadow_block.glsl.h
+// for both languages (welkin/gfx/gpu_block.h): one plane per cascade, nearest first.
+namespace gpu_blocks {
+using namespace welkin::gpu_block_types;
+#include "clouds/shadow_block.glsl.h"
+}  // namespace gpu_blocks
+using ShadowBlock = gpu_blocks::CloudsShadowGpu;
 inline constexpr int kMaxShadowCascades = 4;
-struct ShadowBlock {
-  glm::vec4 origin[kMaxShadowCascades]{};  // camera-relative centre; w: 1 while the cascade is valid
-  glm::vec4 axis_u[kMaxShadowCascades]{};  // axis per map unit; w: the columns' start toward the sun
-  glm::vec4 axis_v[kMaxShadowCascades]{};  // w: side (m)
-  glm::vec4 light{0.0f};                   // toward the sun; w: |sun.z|
-  glm::vec4 up{0.0f};                      // up at the camera; w: cascade count
-};
+static_assert(sizeof(ShadowBlock::cascades) / sizeof(ShadowBlock::cascades[0]) == kMaxShadowCascades);
+static_assert(sizeof(ShadowBlock) == 224, "ShadowBlock: the std140 CloudsShadow block's size");
 
 // What the shadow map was made from; a frame whose key is not stale reuses it.
 struct ShadowKey {

@@ -3,30 +3,24 @@
 // that cast shadows, from a beer shadow map (front depth, mean extinction and the maximum optical
 // depth of each texel's column toward the sun; Schneider/takram), in cascades, and the sky occluded
 // under them.
-const int CLOUDS_SHADOW_CASCADES = 4;
-layout(std140, binding = WELKIN_BLOCK_CLOUDS_SHADOW) uniform CloudsShadow {
-  vec4 cs_origin[CLOUDS_SHADOW_CASCADES];  // camera-relative centre of each cascade's plane, nearest first
-  vec4 cs_axis_u[CLOUDS_SHADOW_CASCADES];  // xyz: the plane's axis per map unit (uv = 0.5 + dot(p - origin,
-                                           // axis)); w: start distance toward the sun
-  vec4 cs_axis_v[CLOUDS_SHADOW_CASCADES];  // w: side (m)
-  vec4 cs_light;   // xyz: direction toward the sun; w: |sun.z| (vertical fraction of a slanted column)
-  vec4 cs_up;      // xyz: up at the camera; w: cascade count (0: no shadows)
-};
+#include "clouds/shadow_block.glsl.h"
+layout(std140, binding = WELKIN_BLOCK_CLOUDS_SHADOW) uniform CloudsShadow { CloudsShadowGpu cs; };
+const int CLOUDS_SHADOW_CASCADES = 4;  // cs.cascades.length()
 layout(binding = WELKIN_UNIT_CLOUDS_SHADOW_MAP) uniform sampler2D cs_map;  // the cascades side by side
 
 // Optical depth of the clouds between p and the sun, from the nearest cascade that holds p (away
 // from its edge, except in the last): zero above the column's front, then the mean extinction times
 // the depth into it, up to the column's total.
 float clouds_shadow_optical_depth(vec3 p) {
-  int n = int(cs_up.w);
+  int n = cs.cascade_count;
   // The cascade is chosen first and read once (a software rasteriser would read every cascade a loop
   // passes, taken or not), by selects rather than branches. Materials ask for it once per point
   // (clouds_surface_light): asked by each of the three functions, it was computed three times.
   int chosen = -1;
   vec2 uv = vec2(0.0);
   for (int k = 0; k < CLOUDS_SHADOW_CASCADES; ++k) {
-    vec3 q = p - cs_origin[k].xyz;
-    vec2 c = vec2(0.5 + dot(q, cs_axis_u[k].xyz), 0.5 + dot(q, cs_axis_v[k].xyz));
+    vec3 q = p - cs.cascades[k].origin;
+    vec2 c = vec2(0.5 + dot(q, cs.cascades[k].axis_u), 0.5 + dot(q, cs.cascades[k].axis_v));
     float margin = k + 1 < n ? 0.0625 : 0.0;
     bool inside = all(greaterThanEqual(c, vec2(margin))) && all(lessThanEqual(c, vec2(1.0 - margin)));
     bool take = chosen < 0 && k < n && inside;
@@ -40,7 +34,7 @@ float clouds_shadow_optical_depth(vec3 p) {
   uv = clamp(uv, vec2(half_texel), vec2(1.0 - half_texel));
   // front, mean extinction, total
   vec3 m = texture(cs_map, vec2((float(k) + uv.x) / float(max(n, 1)), uv.y)).xyz;
-  float depth = cs_axis_u[k].w - dot(p - cs_origin[k].xyz, cs_light.xyz);
+  float depth = cs.cascades[k].start_m - dot(p - cs.cascades[k].origin, cs.light);
   return found ? min(m.z, m.y * max(depth - m.x, 0.0)) : 0.0;
 }
 
@@ -52,7 +46,7 @@ float clouds_light_visibility(vec3 p, vec3 n, int light) {
 #include "clouds/transmittance.glsl"
 
 float clouds_sky_visibility(vec3 p, vec3 n) {
-  return clouds_diffuse_transmittance(clouds_shadow_optical_depth(p) * cs_light.w);
+  return clouds_diffuse_transmittance(clouds_shadow_optical_depth(p) * cs.column_vertical);
 }
 
 // The sunlight the deck scatters down rather than lets through directly (optical depth tau toward
@@ -60,7 +54,7 @@ float clouds_sky_visibility(vec3 p, vec3 n) {
 // uniform sky on a tilted plane). None without cloud: the two transmittances are then both 1.
 vec3 clouds_scattered_down(vec3 sun_irradiance, float tau, vec3 n) {
   float diffuse = max(clouds_diffuse_transmittance(tau) - exp(-tau), 0.0);
-  return sun_irradiance * (cs_light.w * diffuse * (0.5 + 0.5 * dot(n, cs_up.xyz)));
+  return sun_irradiance * (cs.column_vertical * diffuse * (0.5 + 0.5 * dot(n, cs.up)));
 }
 
 vec3 clouds_added_irradiance(vec3 p, vec3 n) {
@@ -71,6 +65,6 @@ vec3 clouds_added_irradiance(vec3 p, vec3 n) {
 void clouds_surface_light(vec3 p, vec3 n, inout WelkinSurfaceLight l) {
   float tau = clouds_shadow_optical_depth(p);
   l.sun_visibility *= exp(-tau);
-  l.sky_visibility *= clouds_diffuse_transmittance(tau * cs_light.w);
+  l.sky_visibility *= clouds_diffuse_transmittance(tau * cs.column_vertical);
   l.added_irradiance += clouds_scattered_down(l.sun_irradiance, tau, n);
 }

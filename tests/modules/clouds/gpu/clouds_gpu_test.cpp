@@ -186,7 +186,7 @@ TEST(CloudsGpu, ShadowMapIsRebuiltOnlyWhenItsInputsChange) {
   r.camera().position_m.x += 50.0;  // a fraction of a texel's worth of the map's middle
   r.frame(32, 18);
   EXPECT_EQ(gpu.shadow_builds, n);  // within the middle of even the nearest cascade
-  EXPECT_NEAR(gpu.shadow.origin[0].x, -50.0f, 1e-3f);
+  EXPECT_NEAR(gpu.shadow.cascades[0].origin.x, -50.0f, 1e-3f);
   auto& reg = r.world->registry();
   const ComponentInfo* sun = r.world->modules().component("atmosphere.Sun");
   resolve_field(*sun->type, reg.get(reg.pool(sun->type->id)->entities()[0], sun->type->id), "elevation_deg").set_scalar(41.0);

@@ -61,6 +61,13 @@ TEST(CloudsGpuBlocks, EveryFieldOfEachBillboardReadsBackFromAStd430Buffer) {
             words_of(billboards.data(), 3 * sizeof(BillboardGpu)));
 }
 
+TEST(CloudsGpuBlocks, EveryFieldOfTheShadowBlockReadsBackFromAStd140UniformBlock) {
+  test::gl_context().make_current();
+  const std::vector<ShadowBlock> shadow = distinct_words<ShadowBlock>(1);
+  EXPECT_EQ(welkin::test::read_back_block(blocks_header("shadow_block"), "CloudsShadowGpu", shadow.data(), sizeof(ShadowBlock), 1, true),
+            words_of(shadow.data(), sizeof(ShadowBlock)));
+}
+
 // The check itself: a struct C++ packs tightly but std430 pads (a vec3 after a scalar starts on 16
 // bytes) reads back shifted.
 TEST(CloudsGpuBlocks, AFieldTheShaderPlacesElsewhereReadsBackWrong) {
