@@ -6,6 +6,7 @@
 #include <map>
 #include <vector>
 
+#include "default_lights_block.h"
 #include "welkin/core/module.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/light_environment.h"
@@ -189,17 +190,16 @@ void debug_shape_system(SystemContext& sc) {
 }  // namespace
 
 // The scene's first core.DirectionalLight (or its defaults) as welkin/default_lights.glsl's block.
-struct DefaultLightsBlock {
-  glm::vec4 direction, illuminance;
-};
 DefaultLightsBlock default_lights_block(World& world) {
   DirectionalLight light;
   const Registry& reg = world.registry();
   if (const ComponentPool* pool = reg.pool(type_id<DirectionalLight>()); pool && !pool->empty())
     light = *reg.get<DirectionalLight>(pool->entities()[0]);
-  return {
-      glm::vec4(glm::vec3(direction_from_azimuth_elevation(light.azimuth_deg, light.elevation_deg)), 0.0f),
-      glm::vec4(light.color * light.illuminance_lux, light.ambient_fraction)};
+  DefaultLightsBlock block{};
+  block.direction = glm::vec3(direction_from_azimuth_elevation(light.azimuth_deg, light.elevation_deg));
+  block.sky_fraction = light.ambient_fraction;
+  block.illuminance_lux = light.color * light.illuminance_lux;
+  return block;
 }
 
 // Without an atmosphere the built-in light stands in for the sun: it follows the time of day's

@@ -2,15 +2,15 @@
 // The runtime's own light term: one directional light (the scene's first core.DirectionalLight, or
 // its defaults) and a sky brighter overhead than at the horizon. Serves scenes without an
 // atmosphere; a module that models light transport provides the lights instead.
+#include "welkin/default_lights_block.glsl.h"
 layout(std140, binding = WELKIN_BLOCK_CORE_DEFAULT_LIGHTS) uniform WelkinDefaultLights {
-  vec4 default_light_direction;    // w unused
-  vec4 default_light_illuminance;  // rgb lux; w: sky light as a fraction of the sun's
+  WelkinDefaultLightsGpu default_lights;
 };
 
-vec3 default_sun_direction() { return default_light_direction.xyz; }
-vec3 default_sun_irradiance(vec3 camera_relative_m) { return default_light_illuminance.rgb; }
+vec3 default_sun_direction() { return default_lights.direction; }
+vec3 default_sun_irradiance(vec3 camera_relative_m) { return default_lights.illuminance_lux; }
 vec3 default_moon_direction() { return vec3(0.0, 0.0, 1.0); }
 vec3 default_moon_irradiance(vec3 camera_relative_m) { return vec3(0.0); }
 vec3 default_sky_irradiance(vec3 normal) {
-  return default_light_illuminance.rgb * default_light_illuminance.w * (0.5 + 0.5 * normal.z);
+  return default_lights.illuminance_lux * default_lights.sky_fraction * (0.5 + 0.5 * normal.z);
 }
