@@ -108,7 +108,9 @@ TEST(CloudsPresets, EveryPresetFileLoads) {
 }
 
 // The genus table (genera.h) and the preset folder agree: each row has its preset file, a valid layer
-// of that genus, and each file in presets/genera is a row of the table. Nothing here counts genera.
+// of that genus holding the row's typical layer (thickness, density, shadow: the table is their source,
+// which the weather module reads too), and each file in presets/genera is a row of the table. Nothing
+// here counts genera.
 TEST(CloudsPresets, TheGenusTableAndTheGeneraFolderAgree) {
   const std::filesystem::path dir = WELKIN_SOURCE_DIR "/modules/clouds/presets/genera";
   std::set<std::string> rows;
@@ -121,8 +123,14 @@ TEST(CloudsPresets, TheGenusTableAndTheGeneraFolderAgree) {
     ASSERT_TRUE(std::filesystem::is_regular_file(file)) << "no preset file for the genus " << g.name;
     CloudLayer layer;
     layer.genus = g.genus == Genus::cumulus ? Genus::stratus : Genus::cumulus;  // so a file without it fails
-    EXPECT_NO_THROW(object_from_json(type_desc<CloudLayer>(), &layer, read_json_file(file.string()))) << file;
+    const nlohmann::json preset = read_json_file(file.string());
+    EXPECT_NO_THROW(object_from_json(type_desc<CloudLayer>(), &layer, preset)) << file;
     EXPECT_EQ(layer.genus, g.genus) << file;
+    // Written in the file, not left to CloudLayer's defaults (a cumulus layer's).
+    EXPECT_TRUE(preset.contains("thickness_m") && preset.contains("density_per_m")) << file;
+    EXPECT_EQ(layer.thickness_m, g.thickness_m) << file;
+    EXPECT_EQ(layer.density_per_m, g.density_per_m) << file;
+    EXPECT_EQ(layer.casts_shadow, g.casts_shadow) << file;
   }
   std::set<std::string> files;
   for (const auto& e : std::filesystem::directory_iterator(dir))
