@@ -266,4 +266,34 @@ void write_term_budget(clouds::CloudProbe& probe, const std::vector<CloudView>& 
   write_file_atomically((fs::path(o.out) / "accuracy-clouds-terms.csv").string(), csv.str());
 }
 
+void write_sky_budget(clouds::CloudProbe& probe, const std::vector<CloudView>& views,
+                      const std::map<std::string, clouds::Quality>& names, const CloudAccuracyOptions& o,
+                      const clouds::reference::PathTraceSettings& settings) {
+  probe.set_light(clouds::CloudProbe::Light::sky);
+  // The light the clouds scatter: the sky seen through them is the march's background, not its
+  // clouds' (the probe draws no sky behind them).
+  std::vector<double> reference;
+  double mean_reference = 0.0;
+  for (const CloudView& v : views) {
+    reference.push_back(probe.reference_radiance(v, settings).scattered.mean);
+    mean_reference += reference.back() / double(views.size());
+  }
+  std::ostringstream csv;
+  csv << "quality,view,altitude_m,heading_deg,pitch_deg,gpu,reference\n";
+  std::printf("\nthe sky alone (a uniform sky over a black ground, %.0f%% of the sun's illuminance on a plane facing up)\n"
+              "| quality | sky: relative RMSE / worst |\n|---|---|\n",
+              100 * clouds::CloudProbe::kSkyFraction);
+  for (const std::string& q : o.qualities) {
+    probe.clouds().quality = names.at(q);
+    const std::vector<double> gpu = march(probe, views, {});
+    for (size_t i = 0; i < views.size(); ++i)
+      csv << q << "," << views[i].name << "," << views[i].altitude_m << "," << views[i].heading_deg << ","
+          << views[i].pitch_deg << "," << gpu[i] << "," << reference[i] << "\n";
+    const Error2 e = error_of(gpu, reference, mean_reference);
+    std::printf("| %s | %.1f%% / %.1f%% |\n", q.c_str(), 100 * e.rmse, 100 * e.worst);
+  }
+  probe.set_light(clouds::CloudProbe::Light::sun);
+  write_file_atomically((fs::path(o.out) / "accuracy-clouds-sky.csv").string(), csv.str());
+}
+
 }  // namespace welkin::cli

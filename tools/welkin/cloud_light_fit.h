@@ -40,4 +40,10 @@ void write_term_budget(clouds::CloudProbe& probe, const std::vector<clouds::Clou
                        const std::map<std::string, clouds::Quality>& names, const CloudAccuracyOptions& o,
                        clouds::reference::PathTraceSettings settings);
 
+// The sky's share alone (CloudProbe::Light::sky) against the path tracer at each quality, relative to
+// the mean reference of that light; writes accuracy-clouds-sky.csv.
+void write_sky_budget(clouds::CloudProbe& probe, const std::vector<clouds::CloudView>& views,
+                      const std::map<std::string, clouds::Quality>& names, const CloudAccuracyOptions& o,
+                      const clouds::reference::PathTraceSettings& settings);
+
 }  // namespace welkin::cli

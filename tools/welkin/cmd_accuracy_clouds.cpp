@@ -383,6 +383,7 @@ int run_cloud_accuracy(const CloudAccuracyOptions& o) {
     results.push_back({{"config", cfg.name}, {"clouds_ms", cost.clouds_ms}, {"copy_ms", cost.copy_ms}, {"relative_rmse", rmse}, {"max", worst}});
   }
   write_term_budget(probe, views, refs, names, o, settings);
+  write_sky_budget(probe, views, names, o, settings);
   write_file_atomically((fs::path(o.out) / "accuracy-clouds-rays.csv").string(), rays_csv.str());
   write_file_atomically((fs::path(o.out) / "accuracy-clouds.csv").string(), csv.str());
   if (o.light_only) return kOk;

@@ -83,8 +83,9 @@ class RadiancePath {
       const double t = sample_free_flight(medium_, ray, rng, budget);
       if (budget.exhausted()) return radiance;
       if (!std::isfinite(t)) {
-        // Escaped: the sky, unless this is the camera ray itself (its background is separate).
-        if (order > 0) radiance += weight * lighting_.sky_radiance;
+        // Escaped: the sky or the ground, unless this is the camera ray itself (its background is
+        // separate).
+        if (order > 0) radiance += weight * lighting_.environment(ray.origin, ray.direction);
         return radiance;
       }
       const glm::dvec3 x = ray.at(t);
@@ -98,11 +99,9 @@ class RadiancePath {
       }
       const glm::dvec3 next = phase_.sample_direction(ray.direction, rng);
       if (order >= settings_.max_orders) {
-        // The last order still sees the sky that reaches this vertex unscattered.
-        if (lighting_.sky_radiance > 0.0) {
-          radiance += weight * lighting_.sky_radiance *
-                      ratio_tracking_transmittance(medium_, {x, next}, kInfinity, rng, budget);
-        }
+        // The last order still sees the sky or ground that reaches this vertex unscattered.
+        if (const double outside = lighting_.environment(x, next); outside > 0.0)
+          radiance += weight * outside * ratio_tracking_transmittance(medium_, {x, next}, kInfinity, rng, budget);
         return radiance;
       }
       ray = {x, next};
@@ -148,8 +147,8 @@ CloudRadianceEstimate path_trace(const Medium& medium, const PhaseFunction& phas
   result.samples = settings.samples;
   result.scattered = sums.scattered.estimate();
   result.transmittance = sums.transmittance.estimate();
-  result.background = {result.transmittance.mean * lighting.sky_radiance,
-                       result.transmittance.ci95 * lighting.sky_radiance};
+  const double behind = lighting.environment(unit_view.origin, unit_view.direction);
+  result.background = {result.transmittance.mean * behind, result.transmittance.ci95 * behind};
   if (settings.samples > 0) {
     result.mean_scattering_events = static_cast<double>(sums.events) / static_cast<double>(settings.samples);
   }

@@ -1,10 +1,11 @@
 // Monte Carlo reference for clouds, all orders of scattering: radiance along a camera ray through a
-// medium lit by a directional sun and a uniform sky, and the reflected / transmitted flux of a slab.
+// medium lit by a directional sun, a uniform sky and a uniform ground, and the reflected /
+// transmitted flux of a slab.
 //
 // Free flight by delta tracking; at every scattering vertex the sun by next-event estimation with
 // a ratio-tracking shadow ray; the next direction by exact phase sampling; escaping paths collect
-// the sky; Russian roulette on the path weight after a few vertices. The direct sun is a delta
-// and never seen by the camera ray itself.
+// the sky or the ground; Russian roulette on the path weight after a few vertices. The direct sun
+// is a delta and never seen by the camera ray itself.
 //
 // Determinism: paths are drawn in batches of batch_size, each batch with its own random stream
 // (seed, batch index) and batch sums are added in batch order, so a result depends on (seed,
@@ -36,7 +37,7 @@ struct PathTraceSettings {
 struct CloudRadianceEstimate {
   Estimate scattered;      // Light scattered at least once towards the camera.
   Estimate transmittance;  // Along the camera ray (ratio tracking).
-  Estimate background;     // transmittance * sky radiance: what reaches the camera from behind.
+  Estimate background;     // transmittance * sky or ground radiance: what reaches the camera from behind.
   double radiance() const { return scattered.mean + background.mean; }
   std::uint64_t samples = 0;
   double mean_scattering_events = 0.0;  // Per path.

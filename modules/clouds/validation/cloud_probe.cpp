@@ -6,6 +6,7 @@
 #include <cstring>
 #include <nlohmann/json.hpp>
 #include <thread>
+#include <type_traits>
 
 #include "cloud_field.h"
 #include "clouds_gpu.h"
@@ -39,6 +40,8 @@ class CloudMedium final : public ref::Medium {
     radius_ = f.planet_radius_m;
   }
   double extinction(const glm::dvec3& p) const override { return field_.extinction(p); }
+  const glm::dvec3& planet_center_m() const { return center_; }
+  double planet_radius_m() const { return radius_; }
   ref::MajorantSegments segments(const ref::Ray& ray) const override {
     ref::MajorantSegments s = ref::spherical_shell_segments(ray, center_, radius_ + field_.lowest_m(),
                                                             radius_ + field_.highest_m(), field_.majorant());
@@ -110,10 +113,46 @@ void CloudProbe::aim(const CloudView& view) {
   cam.pitch_deg = float(view.pitch_deg);
 }
 
-double CloudProbe::gpu_radiance(const CloudView& view) {
+double CloudProbe::march_middle_pixel(const CloudView& view) {
   aim(view);
   renderer_->render_frame(FrameInfo{.index = frame_++}, 1, kRows);
   return renderer_->read_hdr().pixel(0, kRows / 2)[1];
+}
+
+// The march under the probe's light: `render` marched once under the sun, or (the sky alone) with
+// and without the sky, the difference taken value by value. The two frames have the same index, so
+// the same jitter: the sun's light is the same in both to the bit.
+template <typename Render>
+auto CloudProbe::under_light(const Render& render) {
+  const uint64_t frame = frame_;
+  auto result = render();
+  if (light_ == Light::sun) return result;
+  Registry& reg = world_->registry();
+  DirectionalLight& sun = *reg.get<DirectionalLight>(reg.first<DirectionalLight>());
+  sun.ambient_fraction = float(kSkyFraction);
+  frame_ = frame;
+  auto with_sky = render();
+  sun.ambient_fraction = 0.0f;
+  if constexpr (std::is_same_v<decltype(result), double>) {
+    return with_sky - result;
+  } else {
+    for (size_t i = 0; i < result.size(); ++i) result[i] = with_sky[i] - result[i];
+    return result;
+  }
+}
+
+double CloudProbe::gpu_radiance(const CloudView& view) {
+  return under_light([&] { return march_middle_pixel(view); });
+}
+
+ref::Lighting CloudProbe::reference_lighting(const glm::dvec3& planet_center_m, double planet_radius_m) const {
+  if (light_ == Light::sun)
+    return {.sun_direction = sun_direction_, .sun_irradiance = kSunIlluminance};
+  return {.sun_direction = sun_direction_,
+          .sun_irradiance = 0.0,
+          .sky_radiance = kSkyFraction * kSunIlluminance / M_PI,
+          .planet_center_m = planet_center_m,
+          .planet_radius_m = planet_radius_m};
 }
 
 struct CloudProbe::ReferenceScene {
@@ -201,6 +240,7 @@ ref::CloudRadianceEstimate CloudProbe::reference_radiance(const CloudView& view,
   if (cache_.enabled()) {
     key = reference_key(clouds(), scene.field, scene.medium, noise, gpu.layers, view, ray, sun_direction_,
                         settings);
+    if (light_ == Light::sky) key += "|sky alone " + std::to_string(kSkyFraction);
     if (const auto bytes = cache_.read(key, sizeof(StoredEstimate))) {
       StoredEstimate s;
       std::memcpy(&s, bytes->data(), sizeof s);
@@ -216,7 +256,7 @@ ref::CloudRadianceEstimate CloudProbe::reference_radiance(const CloudView& view,
   }
   const ref::CloudRadianceEstimate r = ref::path_trace(
       scene.medium, *scene.phase, ray,
-      ref::Lighting{.sun_direction = sun_direction_, .sun_irradiance = kSunIlluminance}, settings);
+      reference_lighting(scene.medium.planet_center_m(), scene.medium.planet_radius_m()), settings);
   if (cache_.enabled()) {
     const StoredEstimate s{{r.scattered.mean, r.scattered.ci95},
                            {r.transmittance.mean, r.transmittance.ci95},
@@ -234,12 +274,14 @@ ref::CloudRadianceEstimate CloudProbe::reference_radiance(const CloudView& view,
 std::vector<double> CloudProbe::gpu_image(const Camera& camera, int width, int height) {
   Registry& reg = world_->registry();
   *reg.get<Camera>(reg.first<Camera>()) = camera;
-  renderer_->render_frame(FrameInfo{.index = frame_++}, width, height);
-  const ImageF hdr = renderer_->read_hdr();
-  std::vector<double> image(size_t(width) * height);
-  for (int y = 0; y < height; ++y)  // read_hdr's rows run from the bottom
-    for (int x = 0; x < width; ++x) image[size_t(y) * width + x] = hdr.pixel(x, height - 1 - y)[1];
-  return image;
+  return under_light([&] {
+    renderer_->render_frame(FrameInfo{.index = frame_++}, width, height);
+    const ImageF hdr = renderer_->read_hdr();
+    std::vector<double> image(size_t(width) * height);
+    for (int y = 0; y < height; ++y)  // read_hdr's rows run from the bottom
+      for (int x = 0; x < width; ++x) image[size_t(y) * width + x] = hdr.pixel(x, height - 1 - y)[1];
+    return image;
+  });
 }
 
 std::vector<ref::CloudRadianceEstimate> CloudProbe::reference_image(const Camera& camera, int width,
@@ -248,7 +290,8 @@ std::vector<ref::CloudRadianceEstimate> CloudProbe::reference_image(const Camera
   gpu_image(camera, width, height);  // this view's frame block and layers
   const std::unique_ptr<ReferenceScene> scene = reference_scene();
   const FrameView view = make_frame_view(camera, width, height);
-  const ref::Lighting lighting{.sun_direction = sun_direction_, .sun_irradiance = kSunIlluminance};
+  const ref::Lighting lighting =
+      reference_lighting(scene->medium.planet_center_m(), scene->medium.planet_radius_m());
   std::vector<ref::CloudRadianceEstimate> image(size_t(width) * height);
   std::atomic<size_t> next{0};
   auto worker = [&] {

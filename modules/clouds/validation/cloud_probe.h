@@ -1,7 +1,7 @@
 #pragma once
 // The GPU march against the CPU reference on single view rays through the same cloud field: a world
-// with the clouds, a white sun (core.DirectionalLight, 100 klx, no sky light, no air, no ground
-// bounce) so that both see exactly the same light, and a frame aimed along each ray (kRows).
+// with the clouds, a white sun (core.DirectionalLight, 100 klx, no air, no ground bounce) or a sky
+// alone (set_light), so that both see exactly the same light, and a frame aimed along each ray (kRows).
 #include <glm/glm.hpp>
 #include <map>
 #include <memory>
@@ -40,6 +40,16 @@ class CloudProbe {
   // resolution (ceil(17 x 0.25, 0.4, 0.5, 1) = 5, 7, 9, 17): the middle march pixel is the ray.
   static constexpr int kRows = 17;
 
+  // What lights the rays, on both sides: the sun alone (as built), or the sky alone, the runtime's
+  // default sky with kSkyFraction of the sun's illuminance on a plane facing up, over a black ground.
+  // The march cannot turn its sun off, so its share of the sky is its frame with that sky less its
+  // frame without (the march is linear in the light); the path tracer sees a uniform sky of radiance
+  // kSkyFraction x kSunIlluminance / pi above the planet's horizon, which gives a plane facing up
+  // that irradiance.
+  enum class Light { sun, sky };
+  static constexpr double kSkyFraction = 0.25;
+  void set_light(Light light) { light_ = light; }
+
   // Radiance (cd/m^2, green channel) of the ray through the middle of the frame.
   double gpu_radiance(const CloudView& view);
   // The path-traced radiance of the same ray through the same field (the noise read back); from the
@@ -72,6 +82,11 @@ class CloudProbe {
 
  private:
   void aim(const CloudView& view);
+  double march_middle_pixel(const CloudView& view);
+  template <typename Render>
+  auto under_light(const Render& render);
+  reference::Lighting reference_lighting(const glm::dvec3& planet_center_m, double planet_radius_m) const;
+  Light light_ = Light::sun;
   struct ReferenceScene;
   // The field, medium and phase of the frame just rendered.
   std::unique_ptr<ReferenceScene> reference_scene();

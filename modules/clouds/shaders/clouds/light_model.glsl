@@ -110,15 +110,27 @@ float clouds_multiple_scattering(float mu, CloudsLightInputs s, vec3 l, vec3 up)
   return sum * (1.0 - exp(-CLOUDS_MS_POWDER * s.sigma_t * cl.light_step_m));
 }
 
+// The sky's light from above and the lit ground's from below at a sample tau_below and tau_above
+// deep in its cloud (the local extinction times the cloud's depth under and over it): the mean
+// intensity a conservative two-stream slab holds there when lit diffusely from one side, from the top
+// T (1 + 2 k tau_below) with T = 1 / (1 + k (tau_above + tau_below)), from the bottom the same turned
+// over. Under a sky and a ground of one radiance the two sum to it at every depth (the white
+// furnace); a sample in thin cloud sees half of each. No extra density samples: on software
+// rasterisers each is most of a step's cost. The sky alone against the path tracer, the cumulus
+// case's 20 rays: 35% relative RMSE at `high`, 30% at `low`; through the diffuse transmittance toward
+// the sun, as before, 69% and 79% (docs/clouds-light.md).
+vec3 clouds_ambient(vec3 e_sky, vec3 e_ground, float tau_below, float tau_above) {
+  float k = clouds_two_stream_k(), t = 1.0 / (1.0 + k * (tau_above + tau_below));
+  vec3 mean_intensity = e_sky * (1.0 + 2.0 * k * tau_below) + e_ground * (1.0 + 2.0 * k * tau_above);
+  return mean_intensity * t / (2.0 * CLOUDS_PI);
+}
+
 vec3 clouds_light_source(float mu, float phase_single, CloudsLightInputs s, vec3 l, vec3 up, vec3 e_light,
                          vec3 e_sky) {
   float scattered = CLOUDS_SS_WEIGHT * phase_single * s.direct + clouds_multiple_scattering(mu, s, l, up);
   scattered *= clouds_powder(s.sigma_t);
-  // Sky from above and the lit ground from below, diffused through the cloud: the two-stream
-  // transmittance toward the light (no extra samples: on software rasterisers each density sample is
-  // most of a step's cost).
   vec3 e_ground = cl.ground_albedo * (e_light * max(dot(l, up), 0.0) * s.direct + e_sky);
-  vec3 ambient = (e_sky + e_ground) * s.diffuse / (2.0 * CLOUDS_PI);
+  vec3 ambient = clouds_ambient(e_sky, e_ground, s.sigma_t * s.depth_below_m, s.sigma_t * s.depth_above_m);
   float albedo = cl.scattering / max(cl.scattering + cl.absorption, 1e-9);
   return albedo * (e_light * scattered + ambient);
 }
@@ -148,7 +160,7 @@ vec3 clouds_sample_source(float mu, float phase_single, float tau, float sigma_t
   scattered *= clouds_powder(sigma_t);
   float direct = exp(-tau);
   vec3 e_ground = cl.ground_albedo * (e_light * max(dot(l, up), 0.0) * direct + e_sky);
-  vec3 ambient = (e_sky + e_ground) * clouds_diffuse_transmittance(tau) / (2.0 * CLOUDS_PI);
+  vec3 ambient = clouds_ambient(e_sky, e_ground, sigma_t * depth_below_m, sigma_t * depth_above_m);
   float albedo = cl.scattering / max(cl.scattering + cl.absorption, 1e-9);
   return albedo * (e_light * scattered + ambient);
 }

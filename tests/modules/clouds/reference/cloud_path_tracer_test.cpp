@@ -92,7 +92,7 @@ TEST(CloudPathTracer, ThinSlabMatchesClosedFormSingleScattering) {
 TEST(CloudPathTracer, WhiteFurnace) {
   const HenyeyGreenstein phase(0.7);
   const HomogeneousSphere cloud({0, 0, 0}, 200.0, 0.01);  // Optical diameter 4.
-  const Lighting sky_only{.sun_irradiance = 0.0, .sky_radiance = 1.0};
+  const Lighting sky_only{.sun_irradiance = 0.0, .sky_radiance = 1.0, .ground_radiance = 1.0};
   for (const Ray view : {Ray{{0, 0, -1000}, {0, 0, 1}}, Ray{{50, 0, 0}, direction_deg(60.0, 30.0)}}) {
     const CloudRadianceEstimate r = path_trace(cloud, phase, view, sky_only, with_samples(20'000));
     EXPECT_EQ(r.truncated_paths, 0u);
@@ -104,6 +104,36 @@ TEST(CloudPathTracer, WhiteFurnace) {
   const CloudRadianceEstimate once = path_trace(cloud, phase, {{0, 0, -1000}, {0, 0, 1}}, sky_only, with_samples(20'000, 1));
   EXPECT_LT(once.radiance(), 1.0);
   EXPECT_GT(once.scattered.mean, 0.0);
+}
+
+// The sky and the ground apart: with no medium a ray sees the sky above the ground's horizon and
+// the ground below it (flat, and a planet 6360 km across seen from 2 km up: its horizon is 1.44
+// degrees down); through a cloud, what the sky alone and the ground alone give adds up to the white
+// furnace's 1 (transport is linear in the light).
+TEST(CloudPathTracer, SkyAndGroundApart) {
+  const HenyeyGreenstein phase(0.7);
+  const Lighting flat{.sun_irradiance = 0.0, .sky_radiance = 1.0, .ground_radiance = 0.25};
+  const HomogeneousSlab empty(0.0, 500.0, 0.0);
+  EXPECT_EQ(path_trace(empty, phase, {{0, 0, 600}, direction_deg(89.0, 0.0)}, flat, with_samples(10)).radiance(), 1.0);
+  EXPECT_EQ(path_trace(empty, phase, {{0, 0, 600}, direction_deg(91.0, 0.0)}, flat, with_samples(10)).radiance(), 0.25);
+  const double radius = 6360e3, dip = std::acos(radius / (radius + 2000.0)) * 180.0 / kPi;
+  Lighting planet = flat;
+  planet.planet_center_m = {0.0, 0.0, -radius - 2000.0}, planet.planet_radius_m = radius;
+  EXPECT_NEAR(dip, 1.4358, 1e-3);
+  EXPECT_EQ(path_trace(empty, phase, {{0, 0, 0}, direction_deg(90.0 + dip - 0.01, 0.0)}, planet, with_samples(10)).radiance(), 1.0);
+  EXPECT_EQ(path_trace(empty, phase, {{0, 0, 0}, direction_deg(90.0 + dip + 0.01, 0.0)}, planet, with_samples(10)).radiance(), 0.25);
+
+  const HomogeneousSphere cloud({0, 0, 0}, 200.0, 0.01);
+  const Ray view{{50, 0, 0}, direction_deg(60.0, 30.0)};
+  const Lighting sky{.sun_irradiance = 0.0, .sky_radiance = 1.0}, ground{.sun_irradiance = 0.0, .ground_radiance = 1.0};
+  const CloudRadianceEstimate a = path_trace(cloud, phase, view, sky, with_samples(20'000));
+  PathTraceSettings other_seed = with_samples(20'000);
+  other_seed.seed = 2;
+  const CloudRadianceEstimate b = path_trace(cloud, phase, view, ground, other_seed);
+  const double ci = std::hypot(std::hypot(a.scattered.ci95, a.background.ci95), b.scattered.ci95);
+  EXPECT_NEAR(a.radiance() + b.radiance(), 1.0, 2.5 * ci);
+  EXPECT_GT(b.scattered.mean, 0.05);  // the ground's light does reach a ray looking up through the cloud
+  EXPECT_LT(ci, 0.03);
 }
 
 // (d) Semi-infinite isotropic medium, single-scattering albedo 0.9: the reflected radiance is
@@ -129,7 +159,7 @@ TEST(CloudPathTracer, SemiInfiniteIsotropicMatchesChandrasekharH) {
 // (e) Stiff cases: extinction x0, x1000, g = +-0.999, a horizontal ray inside the slab.
 TEST(CloudPathTracer, StiffCases) {
   const HenyeyGreenstein phase(0.8);
-  const Lighting lighting{.sun_direction = direction_deg(30.0, 0.0), .sky_radiance = 0.25};
+  const Lighting lighting{.sun_direction = direction_deg(30.0, 0.0), .sky_radiance = 0.25, .ground_radiance = 0.25};
   const Ray down{{0, 0, 600}, direction_deg(150.0, 0.0)};
   // x0: the background, exactly.
   const CloudRadianceEstimate empty = path_trace(HomogeneousSlab(0.0, 500.0, 0.0), phase, down, lighting, with_samples(1000));
@@ -169,7 +199,7 @@ TEST(CloudPathTracer, StiffCases) {
 TEST(CloudPathTracer, DeterministicAcrossThreadCounts) {
   const HomogeneousSphere cloud({0, 0, 0}, 150.0, 0.02);
   const DualLobeHenyeyGreenstein phase;
-  const Lighting lighting{.sun_direction = direction_deg(60.0, 20.0), .sky_radiance = 0.1};
+  const Lighting lighting{.sun_direction = direction_deg(60.0, 20.0), .sky_radiance = 0.1, .ground_radiance = 0.1};
   const Ray view{{0, 0, -400}, {0, 0, 1}};
   PathTraceSettings s = with_samples(3000);
   s.threads = 1;

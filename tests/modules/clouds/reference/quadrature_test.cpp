@@ -96,7 +96,7 @@ TEST(Quadrature, SlabSingleScatteringMatchesClosedForm) {
 // matches the closed form of a deep slab; the sun below an opaque slab gives nothing below it.
 TEST(Quadrature, StiffExtinction) {
   const HenyeyGreenstein phase(0.8);
-  const Lighting lighting{.sun_direction = direction_deg(20.0, 0.0), .sky_radiance = 0.3};
+  const Lighting lighting{.sun_direction = direction_deg(20.0, 0.0), .sky_radiance = 0.3, .ground_radiance = 0.3};
   const Ray down{{0, 0, 600}, direction_deg(140.0, 0.0)};
   const SingleScatteringResult empty = single_scattering(HomogeneousSlab(0.0, 500.0, 0.0), phase, down, lighting);
   EXPECT_EQ(empty.radiance, 0.0);
