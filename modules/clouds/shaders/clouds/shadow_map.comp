@@ -36,18 +36,42 @@ void main() {
     vec2 seg = outer;
     if (inner.x <= inner.y && inner.x > seg.x) seg.y = min(seg.y, inner.x);
     result.x = seg.y;
+    // The column is marched in u_steps stretches. Toward a low sun it crosses tens of kilometres of
+    // shell (a kilometre a stretch at sunset), and one sample a stretch saw a cumulus with one or two
+    // samples: the column's optical depth and front jumped from one texel row to the next as the
+    // samples slid through the clouds, which the march showed as bands across the clouds and steps
+    // on their edges whatever the map's resolution (godrays-sunset.png). Such a stretch is sampled
+    // at its ends: with cloud at either end it is integrated in sub-steps of at most kSubStepM (up
+    // to four); where only the weather allows cloud (before the noise erodes it), by its middle as
+    // before; not at all where neither end has weather for cloud. Short stretches, as before.
+    const float kSubStepM = 250.0;
     float step_m = (seg.y - seg.x) / float(u_steps);
+    int subs = clamp(int(ceil(step_m / kSubStepM)), 1, 4);
     float tau = 0.0, front = 0.0, back = 0.0;
     bool cloudy = false;
     // columns are a few km long
     clouds_system_g = clouds_weather_system_at(start + dir * (0.5 * (seg.x + seg.y)));
+    bool empty_end = false;
+    float d_end = subs > 1 ? clouds_density(start + dir * seg.x, false, true, empty_end) : 0.0;
     for (int i = 0; i < u_steps; ++i) {
-      float t = seg.x + (float(i) + 0.5) * step_m;
-      float d = clouds_density(start + dir * t, false, true) * (cl.scattering + cl.absorption);
-      if (d > 0.0) {
-        if (!cloudy) front = t - 0.5 * step_m, cloudy = true;
-        back = t + 0.5 * step_m;
-        tau += d * step_m;
+      float t0 = seg.x + float(i) * step_m;
+      int n = subs;
+      if (subs > 1) {
+        bool empty_start = empty_end;
+        float d_start = d_end;
+        d_end = clouds_density(start + dir * (t0 + step_m), false, true, empty_end);
+        if (empty_start && empty_end) continue;
+        n = d_start > 0.0 || d_end > 0.0 ? subs : 1;
+      }
+      float sub = step_m / float(n);
+      for (int j = 0; j < n; ++j) {
+        float t = t0 + (float(j) + 0.5) * sub;
+        float d = clouds_density(start + dir * t, false, true) * (cl.scattering + cl.absorption);
+        if (d > 0.0) {
+          if (!cloudy) front = t - 0.5 * sub, cloudy = true;
+          back = t + 0.5 * sub;
+          tau += d * sub;
+        }
       }
     }
     if (cloudy) result = vec4(front, tau / max(back - front, 1e-3), tau, 0.0);
