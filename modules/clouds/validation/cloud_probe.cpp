@@ -224,6 +224,25 @@ struct StoredEstimate {
   double scattered[2], transmittance[2], background[2], mean_scattering_events, wall_ms;
   uint64_t samples, truncated_paths, majorant_violations;
 };
+StoredEstimate stored(const ref::CloudRadianceEstimate& r) {
+  return {{r.scattered.mean, r.scattered.ci95},
+          {r.transmittance.mean, r.transmittance.ci95},
+          {r.background.mean, r.background.ci95},
+          r.mean_scattering_events,
+          r.wall_ms,
+          r.samples,
+          r.truncated_paths,
+          r.majorant_violations};
+}
+ref::CloudRadianceEstimate estimate(const StoredEstimate& s) {
+  ref::CloudRadianceEstimate r;
+  r.scattered = {s.scattered[0], s.scattered[1]}, r.transmittance = {s.transmittance[0], s.transmittance[1]};
+  r.background = {s.background[0], s.background[1]};
+  r.samples = s.samples, r.mean_scattering_events = s.mean_scattering_events,
+  r.truncated_paths = s.truncated_paths;
+  r.majorant_violations = s.majorant_violations, r.wall_ms = s.wall_ms;
+  return r;
+}
 
 }  // namespace
 
@@ -244,28 +263,14 @@ ref::CloudRadianceEstimate CloudProbe::reference_radiance(const CloudView& view,
     if (const auto bytes = cache_.read(key, sizeof(StoredEstimate))) {
       StoredEstimate s;
       std::memcpy(&s, bytes->data(), sizeof s);
-      ref::CloudRadianceEstimate r;
-      r.scattered = {s.scattered[0], s.scattered[1]},
-      r.transmittance = {s.transmittance[0], s.transmittance[1]};
-      r.background = {s.background[0], s.background[1]};
-      r.samples = s.samples, r.mean_scattering_events = s.mean_scattering_events,
-      r.truncated_paths = s.truncated_paths;
-      r.majorant_violations = s.majorant_violations, r.wall_ms = s.wall_ms;
-      return r;
+      return estimate(s);
     }
   }
   const ref::CloudRadianceEstimate r = ref::path_trace(
       scene.medium, *scene.phase, ray,
       reference_lighting(scene.medium.planet_center_m(), scene.medium.planet_radius_m()), settings);
   if (cache_.enabled()) {
-    const StoredEstimate s{{r.scattered.mean, r.scattered.ci95},
-                           {r.transmittance.mean, r.transmittance.ci95},
-                           {r.background.mean, r.background.ci95},
-                           r.mean_scattering_events,
-                           r.wall_ms,
-                           r.samples,
-                           r.truncated_paths,
-                           r.majorant_violations};
+    const StoredEstimate s = stored(r);
     cache_.write(key, std::string_view(reinterpret_cast<const char*>(&s), sizeof s));
   }
   return r;
@@ -293,6 +298,41 @@ std::vector<ref::CloudRadianceEstimate> CloudProbe::reference_image(const Camera
   const ref::Lighting lighting =
       reference_lighting(scene->medium.planet_center_m(), scene->medium.planet_radius_m());
   std::vector<ref::CloudRadianceEstimate> image(size_t(width) * height);
+  // Cached whole: the key hashes each pixel's ray key (its field along the ray included), so that a
+  // change of the field that a pixel sees path traces the image again.
+  std::string key;
+  if (cache_.enabled()) {
+    const CloudsGpu& gpu = world_->resource<CloudsGpu>();
+    const NoiseVolumes noise = read_noise(gpu);
+    const CloudView at{.name = "image",
+                       .altitude_m = camera.position_m.z,
+                       .heading_deg = camera.heading_deg,
+                       .pitch_deg = camera.pitch_deg,
+                       .east_m = camera.position_m.x,
+                       .north_m = camera.position_m.y};
+    uint64_t h = DiskCache::hash({});
+    for (size_t i = 0; i < image.size(); ++i) {
+      const glm::dvec3 dir =
+          glm::normalize(glm::dvec3(pixel_direction(view, double(i % width) + 0.5, double(i / width) + 0.5)));
+      ref::PathTraceSettings s = settings;
+      s.seed = settings.seed + i;
+      h = DiskCache::hash(reference_key(clouds(), scene->field, scene->medium, noise, gpu.layers, at,
+                                        ref::Ray{glm::dvec3(0.0), dir}, sun_direction_, s),
+                          h);
+    }
+    char text[96];
+    std::snprintf(text, sizeof text, "clouds reference image v1|%dx%d fov %.9g|%016llx", width, height,
+                  double(camera.vertical_fov_deg), (unsigned long long)h);
+    key = text;
+    if (const auto bytes = cache_.read(key, image.size() * sizeof(StoredEstimate))) {
+      for (size_t i = 0; i < image.size(); ++i) {
+        StoredEstimate s;
+        std::memcpy(&s, bytes->data() + i * sizeof s, sizeof s);
+        image[i] = estimate(s);
+      }
+      return image;
+    }
+  }
   std::atomic<size_t> next{0};
   auto worker = [&] {
     ref::PathTraceSettings s = settings;
@@ -309,6 +349,14 @@ std::vector<ref::CloudRadianceEstimate> CloudProbe::reference_image(const Camera
   for (int t = 1; t < std::max(settings.threads, 1); ++t) pool.emplace_back(worker);
   worker();
   for (std::thread& t : pool) t.join();
+  if (cache_.enabled()) {
+    std::string bytes;
+    for (const ref::CloudRadianceEstimate& r : image) {
+      const StoredEstimate s = stored(r);
+      bytes.append(reinterpret_cast<const char*>(&s), sizeof s);
+    }
+    cache_.write(key, bytes);
+  }
   return image;
 }
 

@@ -68,7 +68,8 @@ class CloudProbe {
   // The frame `camera` sees (its position, heading, pitch, roll and field of view), width x height,
   // row by row from the top: the radiance (green) marched with the probe's clouds, and path traced
   // through the same field (settings.samples paths per pixel; pixels shared among settings.threads
-  // workers, each pixel its own seed, so the image does not depend on the thread count).
+  // workers, each pixel its own seed, so the image does not depend on the thread count). The path-traced
+  // image is kept in the reference cache whole, keyed by every pixel's ray key (set_reference_cache).
   std::vector<double> gpu_image(const Camera& camera, int width, int height);
   std::vector<reference::CloudRadianceEstimate> reference_image(const Camera& camera, int width, int height,
                                                                 const reference::PathTraceSettings& settings);

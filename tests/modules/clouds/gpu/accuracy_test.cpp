@@ -115,6 +115,36 @@ TEST(CloudsAccuracy, ReferenceCacheReadsTheSameRayBackAndMissesAChangedField) {
   std::filesystem::remove_all(folder);
 }
 
+// The reference image is cached whole: read back as it was, path traced again when the field changes.
+TEST(CloudsAccuracy, ReferenceImageCacheReadsTheImageBackAndMissesAChangedField) {
+  test::gl_context().make_current();
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "welkin-cloud-image-cache-test";
+  std::filesystem::remove_all(folder);
+  CloudProbe probe(cumulus(), 200.0, 40.0);
+  probe.set_reference_cache(DiskCache(folder.string()));
+  reference::PathTraceSettings s;
+  s.samples = 16;
+  Camera camera;
+  camera.position_m = {0.0, 0.0, 100.0}, camera.heading_deg = 0.0f, camera.pitch_deg = 60.0f;
+  auto files = [&] { return std::distance(std::filesystem::directory_iterator(folder), std::filesystem::directory_iterator()); };
+  const auto computed = probe.reference_image(camera, 4, 3, s);
+  ASSERT_EQ(files(), 1);
+  const auto read = probe.reference_image(camera, 4, 3, s);
+  ASSERT_EQ(read.size(), computed.size());
+  double light = 0.0;
+  for (size_t i = 0; i < read.size(); ++i) {
+    EXPECT_EQ(read[i].scattered.mean, computed[i].scattered.mean) << i;
+    EXPECT_EQ(read[i].wall_ms, computed[i].wall_ms) << i;  // not path traced again
+    light += computed[i].scattered.mean;
+  }
+  EXPECT_GT(light, 0.0);  // the view sees cloud
+  EXPECT_EQ(files(), 1);
+  probe.clouds().layers[0].coverage = 0.5f;
+  probe.reference_image(camera, 4, 3, s);
+  EXPECT_EQ(files(), 2);
+  std::filesystem::remove_all(folder);
+}
+
 }  // namespace
 }  // namespace welkin::clouds
 
