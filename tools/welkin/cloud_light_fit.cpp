@@ -1,5 +1,6 @@
 #include "cloud_light_fit.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -32,11 +33,12 @@ constexpr Constant kConstants[] = {
     {"CLOUDS_SS_WEIGHT", 1.0, "single scattering's weight (0 only while the fit measures the other terms)"},
 };
 // The multiple-scattering terms' weights, in light_model.glsl's order.
-constexpr const char* kTerms[] = {"CLOUDS_MS_W0", "CLOUDS_MS_W1", "CLOUDS_MS_W2", "CLOUDS_MS_W3",
-                                  "CLOUDS_MS_W4", "CLOUDS_MS_W5", "CLOUDS_MS_W6", "CLOUDS_MS_W7",
-                                  "CLOUDS_MS_W8", "CLOUDS_MS_W9", "CLOUDS_MS_W10", "CLOUDS_MS_W11",
-                                  "CLOUDS_MS_W12", "CLOUDS_MS_W13", "CLOUDS_MS_W14", "CLOUDS_MS_W15",
-                                  "CLOUDS_MS_W16", "CLOUDS_MS_W17"};
+constexpr const char* kTerms[] = {
+    "CLOUDS_MS_W0",  "CLOUDS_MS_W1",  "CLOUDS_MS_W2",  "CLOUDS_MS_W3",  "CLOUDS_MS_W4",  "CLOUDS_MS_W5",
+    "CLOUDS_MS_W6",  "CLOUDS_MS_W7",  "CLOUDS_MS_W8",  "CLOUDS_MS_W9",  "CLOUDS_MS_W10", "CLOUDS_MS_W11",
+    "CLOUDS_MS_W12", "CLOUDS_MS_W13", "CLOUDS_MS_W14", "CLOUDS_MS_W15", "CLOUDS_MS_W16", "CLOUDS_MS_W17",
+    "CLOUDS_MS_W18", "CLOUDS_MS_W19", "CLOUDS_MS_W20", "CLOUDS_MS_W21", "CLOUDS_MS_W22", "CLOUDS_MS_W23",
+    "CLOUDS_MS_W24", "CLOUDS_MS_W25", "CLOUDS_MS_W26", "CLOUDS_MS_W27", "CLOUDS_MS_W28", "CLOUDS_MS_W29"};
 constexpr const char* kTermMeaning[] = {
     "D = T_d(tau) - T(tau): the diffuse light beyond the direct beam, toward the light",
     "D S(tau_b): ... gathered from the cloud below",
@@ -55,7 +57,20 @@ constexpr const char* kTermMeaning[] = {
     "mu_0 T_d(tau_A) S(tau_B)",
     "exp(-tau / 16) S(tau_B)",
     "mu_0 (1 + 2k tau_B) / (1 + k (tau_A + tau_B)): the diffuse light in a lit slab",
-    "mu_0 (1 + 2k tau_b) / (1 + k (tau_a + tau_b)): the same with the sample's own depths"};
+    "mu_0 (1 + 2k tau_b) / (1 + k (tau_a + tau_b)): the same with the sample's own depths",
+    "mu_0 D: the diffuse light beyond the direct beam, per unit area of a deck's lit top",
+    "mu_0 D S(tau_b)",
+    "mu_0 T_d(tau) S(tau_b)",
+    "mu_0 D T_d(tau_a)",
+    "mu_0 exp(-tau / 16)",
+    "c D, c = clamp(tau_A / tau, mu_0, 1): the cosine at which the light entered the lit surface",
+    "c D S(tau_b)",
+    "f D, f the clear fraction of the light march: light let in through gaps and the soft edge",
+    "f D S(tau_b)",
+    "mu_0 exp(-tau / 4)",
+    "T_d(tau) (1 - mu) / 2: the diffuse light seen from the light's side (a lit surface's reflection)",
+    "D (1 - mu) / 2"};
+static_assert(std::size(kTermMeaning) == std::size(kTerms));
 constexpr size_t kTermCount = std::size(kTerms);
 
 Coefficients constants() {
@@ -142,12 +157,62 @@ double mean_radiance(const std::vector<clouds::reference::CloudRadianceEstimate>
   return m;
 }
 
+namespace {
+
+// The weights are fitted per group of qualities: `low` marches without the detail noise (a smoother,
+// denser field than the path tracer's), the others with it; light_model_fit.glsl keeps both
+// (CLOUDS_SHAPE_DETAIL chooses).
+bool reads_detail(clouds::Quality q) {
+  clouds::VolumetricClouds c;
+  c.quality = q;
+  return clouds::resolve_quality(c).shape_detail;
+}
+
+std::vector<size_t> candidate_terms(const CloudAccuracyOptions& o) {
+  std::vector<size_t> k;
+  for (int t : o.fit_terms) {
+    if (t < 0 || size_t(t) >= kTermCount)
+      throw Error(ErrorInfo{.path = "--fit-terms", .expected = "term numbers from 0 to " + std::to_string(kTermCount - 1),
+                            .found = std::to_string(t)});
+    if (std::find(k.begin(), k.end(), size_t(t)) == k.end()) k.push_back(size_t(t));
+  }
+  if (o.fit_terms.empty())
+    for (size_t t = 0; t < kTermCount; ++t) k.push_back(t);
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+std::vector<double> solve(const LinearProblem& p) {
+  std::vector<double> w(kTermCount, 0.0), lo(kTermCount, 0.0), hi(kTermCount, 100.0);
+  if (p.rows.empty()) return w;
+  nlopt_opt opt = nlopt_create(NLOPT_LD_LBFGS, unsigned(kTermCount));
+  nlopt_set_lower_bounds(opt, lo.data());
+  nlopt_set_upper_bounds(opt, hi.data());
+  nlopt_set_min_objective(opt, linear_objective, const_cast<LinearProblem*>(&p));
+  nlopt_set_ftol_rel(opt, 1e-12);
+  nlopt_set_maxeval(opt, 20000);
+  double best = 0.0;
+  const nlopt_result result = nlopt_optimize(opt, w.data(), &best);
+  nlopt_destroy(opt);
+  if (result < 0) throw Error("the light model's fit failed (NLopt result " + std::to_string(int(result)) + ")");
+  return w;
+}
+
+void write_weights(std::ostringstream& glsl, const std::vector<double>& w) {
+  for (size_t k = 0; k < kTermCount; ++k)
+    glsl << "#ifndef " << kTerms[k] << "  // " << kTermMeaning[k] << "\n#define " << kTerms[k] << " " << glsl_number(w[k])
+         << "\n#endif\n";
+}
+
+}  // namespace
+
 int fit_light_model(const CloudAccuracyOptions& o, std::vector<RaySet>& sets, const std::map<std::string, clouds::Quality>& names) {
   const auto started = std::chrono::steady_clock::now();
-  LinearProblem p;
+  const std::vector<size_t> candidates = candidate_terms(o);
+  LinearProblem problem[2];  // [0]: qualities without the detail noise, [1]: with it
   std::ostringstream csv;  // the problem itself, ray by ray: what the march gives with each term alone (weight 1)
-  csv << "set,quality,view,altitude_m,heading_deg,pitch_deg,reference,single";
-  for (const char* t : kTerms) csv << "," << t;
+  csv << "set,kept_back,quality,view,altitude_m,heading_deg,pitch_deg,reference,single";
+  for (size_t k : candidates) csv << "," << kTerms[k];
   csv << "\n";
   size_t rays = 0;
   for (size_t s = 0; s < sets.size(); ++s) {
@@ -155,51 +220,45 @@ int fit_light_model(const CloudAccuracyOptions& o, std::vector<RaySet>& sets, co
     clouds::CloudProbe& probe = *set.probe;
     probe.clouds().multiple_scattering = clouds::MultipleScattering::diffusion;
     const double scale = 1.0 / mean_radiance(set.refs);
-    rays += set.views.size();
+    if (!set.kept_back) rays += set.views.size();
     for (const std::string& q : o.qualities) {
       probe.clouds().quality = names.at(q);
       const std::vector<double> single = march(probe, set.views, only(-1, 1.0));
-      std::vector<std::vector<double>> terms;
-      for (size_t k = 0; k < kTermCount; ++k) {
-        terms.push_back(march(probe, set.views, only(int(k), 0.0)));
-        for (double& x : terms.back()) x /= kTermScale;
-        std::fprintf(stderr, "\rset %zu/%zu, %s: term %zu/%zu marched", s + 1, sets.size(), q.c_str(), k + 1, kTermCount);
+      std::vector<std::vector<double>> terms(kTermCount, std::vector<double>(set.views.size(), 0.0));
+      for (size_t k : candidates) {
+        terms[k] = march(probe, set.views, only(int(k), 0.0));
+        for (double& x : terms[k]) x /= kTermScale;
+        std::fprintf(stderr, "\rset %zu/%zu, %s: term %zu marched", s + 1, sets.size(), q.c_str(), k);
       }
       for (size_t i = 0; i < set.views.size(); ++i) {
         Row r{single[i], set.refs[i].radiance(), scale, {}};
         const CloudView& v = set.views[i];
-        csv << s << "," << q << "," << v.name << "," << v.altitude_m << "," << v.heading_deg << "," << v.pitch_deg << ","
-            << r.reference << "," << r.single;
-        for (size_t k = 0; k < kTermCount; ++k) r.terms.push_back(terms[k][i]), csv << "," << terms[k][i];
+        csv << s << "," << (set.kept_back ? 1 : 0) << "," << q << "," << v.name << "," << v.altitude_m << "," << v.heading_deg
+            << "," << v.pitch_deg << "," << r.reference << "," << r.single;
+        for (size_t k = 0; k < kTermCount; ++k) r.terms.push_back(terms[k][i]);
+        for (size_t k : candidates) csv << "," << terms[k][i];
         csv << "\n";
-        p.rows.push_back(std::move(r));
+        if (!set.kept_back) problem[reads_detail(names.at(q)) ? 1 : 0].rows.push_back(std::move(r));
       }
     }
   }
   std::fprintf(stderr, "\n");
   write_file_atomically((fs::path(o.out) / "light-model-terms.csv").string(), csv.str());
-  std::vector<double> w(kTermCount, 0.0), lo(kTermCount, 0.0), hi(kTermCount, 100.0);
-  nlopt_opt opt = nlopt_create(NLOPT_LD_LBFGS, unsigned(kTermCount));
-  nlopt_set_lower_bounds(opt, lo.data());
-  nlopt_set_upper_bounds(opt, hi.data());
-  nlopt_set_min_objective(opt, linear_objective, &p);
-  nlopt_set_ftol_rel(opt, 1e-12);
-  nlopt_set_maxeval(opt, 20000);
-  double best = 0.0;
-  const nlopt_result result = nlopt_optimize(opt, w.data(), &best);
-  nlopt_destroy(opt);
-  if (result < 0) throw Error("the light model's fit failed (NLopt result " + std::to_string(int(result)) + ")");
+  // A group no quality asked for takes the other's weights.
+  std::vector<double> w[2] = {solve(problem[0]), solve(problem[1])};
+  if (problem[0].rows.empty()) w[0] = w[1];
+  if (problem[1].rows.empty()) w[1] = w[0];
 
   // The weights compiled in, each set and quality marched again: the figures are the march's, not the sum's.
-  Coefficients fitted = constants();
-  for (size_t k = 0; k < kTermCount; ++k) fitted[kTerms[k]] = w[k];
   std::ostringstream figures;
   for (RaySet& set : sets) {
-    figures << "\n//   " << set.name << ", " << set.views.size() << " rays:";
+    figures << "\n//   " << (set.kept_back ? "kept back: " : "") << set.name << ", " << set.views.size() << " rays:";
     std::vector<double> reference;
     for (const auto& r : set.refs) reference.push_back(r.radiance());
     for (const std::string& q : o.qualities) {
       set.probe->clouds().quality = names.at(q);
+      Coefficients fitted = constants();
+      for (size_t k = 0; k < kTermCount; ++k) fitted[kTerms[k]] = w[reads_detail(names.at(q)) ? 1 : 0][k];
       const Error2 e = error_of(march(*set.probe, set.views, fitted), reference, mean_radiance(set.refs));
       figures << " " << q << " " << std::lround(1000 * e.rmse) / 10.0 << "% (worst " << std::lround(1000 * e.worst) / 10.0 << "%)";
     }
@@ -213,15 +272,22 @@ int fit_light_model(const CloudAccuracyOptions& o, std::vector<RaySet>& sets, co
        << "\n// The fit overrides them with defines while it measures.\n";
   for (const Constant& k : kConstants)
     glsl << "#ifndef " << k.name << "  // " << k.meaning << "\n#define " << k.name << " " << glsl_number(k.value) << "\n#endif\n";
-  for (size_t k = 0; k < kTermCount; ++k)
-    glsl << "#ifndef " << kTerms[k] << "  // " << kTermMeaning[k] << "\n#define " << kTerms[k] << " " << glsl_number(w[k])
-         << "\n#endif\n";
+  glsl << "#ifndef CLOUDS_SHAPE_DETAIL  // the march reads the detail noise (light_model_defines; not low)\n"
+          "#define CLOUDS_SHAPE_DETAIL 1\n#endif\n#if CLOUDS_SHAPE_DETAIL\n";
+  write_weights(glsl, w[1]);
+  glsl << "#else  // without the detail noise (low): a smoother field than the path tracer's\n";
+  write_weights(glsl, w[0]);
+  glsl << "#endif\n";
   const std::string file = (fs::path(o.out) / "light_model_fit.glsl").string();
   write_file_atomically(file, glsl.str());
-  std::printf("fit over %zu rays: weights", rays);
-  for (double x : w) std::printf(" %.4g", x);
-  std::printf("\nthe sum's relative RMSE %.1f%%; marched:%s\n%.0f s; wrote %s\n", 100 * std::sqrt(best), figures.str().c_str(), seconds,
-              file.c_str());
+  std::printf("fit over %zu rays", rays);
+  for (int g = 1; g >= 0; --g) {
+    std::printf("\n%s weights:", g ? "with the detail noise" : "without");
+    for (size_t k : candidates) std::printf(" W%zu=%.4g", k, w[g][k]);
+  }
+  std::printf("\nthe sums' relative RMSE %.1f%% (with detail), %.1f%% (without); marched:%s\n%.0f s; wrote %s\n",
+              100 * std::sqrt(problem[1].objective(w[1].data(), nullptr)),
+              100 * std::sqrt(problem[0].objective(w[0].data(), nullptr)), figures.str().c_str(), seconds, file.c_str());
   return kOk;
 }
 

@@ -26,6 +26,7 @@ struct RaySet {
   std::vector<clouds::CloudView> views;
   std::vector<clouds::reference::CloudRadianceEstimate> refs;
   std::unique_ptr<clouds::CloudProbe> probe;
+  bool kept_back = false;  // marched and reported, not fitted (--fit-kept-back)
 };
 
 // Solves for the weights of the light model's multiple-scattering terms (light_model_fit.glsl) over

@@ -47,7 +47,8 @@ struct AccuracyOptions {
   std::string rays, image;  // clouds: a file of view rays; a scene whose path-traced image is made
   int paths_per_pixel = 64;
   bool fit = false, light_only = false;
-  std::vector<std::string> fit_also;
+  std::vector<std::string> fit_also, fit_kept_back;
+  std::vector<int> fit_terms;
   std::vector<std::string> methods{"lut", "raymarch"}, qualities{"low", "medium", "high", "ultra"};
   int frames = 7, threads = 2;
   bool quick = false, json = false, check = false;
@@ -375,7 +376,8 @@ int run_accuracy(const AccuracyOptions& options) {
   if (o.technique == "clouds")
     return run_cloud_accuracy({.out = o.out, .size = o.size.empty() ? (o.image.empty() ? "640x360" : "96x54") : o.size,
                                .ghosting_scene = o.ghosting_scene, .scene = o.scene, .rays = o.rays, .image = o.image,
-                               .cache = o.cache, .paths_per_pixel = o.paths_per_pixel, .fit = o.fit, .fit_also = o.fit_also, .light_only = o.light_only,
+                               .cache = o.cache, .paths_per_pixel = o.paths_per_pixel, .fit = o.fit, .fit_also = o.fit_also,
+                               .fit_kept_back = o.fit_kept_back, .fit_terms = o.fit_terms, .light_only = o.light_only,
                                .qualities = o.qualities, .frames = o.frames,
                                .quick = o.quick, .json = o.json});
   if (o.size.empty()) o.size = "640x360";
@@ -621,6 +623,12 @@ void add_accuracy_command(CLI::App& app, int& exit_code) {
                "given) and write light_model_fit.glsl into --out");
   cmd->add_option("--fit-also", o->fit_also,
                   "clouds --fit: a further training set, SCENE,RAYS (two files; repeat for more)");
+  cmd->add_option("--fit-kept-back", o->fit_kept_back,
+                  "clouds --fit: a set marched term by term and reported after the fit but not fitted, SCENE,RAYS "
+                  "(repeat for more)");
+  cmd->add_option("--fit-terms", o->fit_terms,
+                  "clouds --fit: the candidate terms solved for, by number (light_model.glsl; default: all)")
+      ->delimiter(',');
   cmd->add_flag("--light-only", o->light_only,
                 "clouds: the rays' errors and the light model's term budget only (no GPU time, ghosting or aerial perspective)");
   cmd->add_option("--paths-per-pixel", o->paths_per_pixel, "clouds --image: paths per pixel of the path-traced image")

@@ -256,6 +256,7 @@ int write_cloud_images(const CloudAccuracyOptions& o, const std::map<std::string
   fs::create_directories(o.out);
   std::unique_ptr<GlContext> gl = create_headless_context();
   clouds::CloudProbe probe(measured.clouds, measured.sun_azimuth_deg, measured.sun_elevation_deg);
+  probe.set_reference_cache(o.cache.empty() ? DiskCache::from_environment() : DiskCache(o.cache));
   clouds::reference::PathTraceSettings settings;
   settings.samples = uint64_t(o.paths_per_pixel);
   std::fprintf(stderr, "path tracing %dx%d pixels, %d paths each\n", width, height, o.paths_per_pixel);
@@ -327,12 +328,17 @@ int run_cloud_accuracy(const CloudAccuracyOptions& o) {
   std::vector<RaySet> sets;
   sets.push_back(measure_set(o.scene, o.rays, o, settings));
   if (o.fit) {
-    for (const std::string& also : o.fit_also) {
-      const size_t comma = also.find(',');
-      if (comma == std::string::npos)
-        throw Error(ErrorInfo{.path = "--fit-also", .expected = "SCENE,RAYS (two files)", .found = "'" + also + "'"});
-      sets.push_back(measure_set(also.substr(0, comma), also.substr(comma + 1), o, settings));
-    }
+    auto add_sets = [&](const std::vector<std::string>& pairs, const char* option, bool kept_back) {
+      for (const std::string& also : pairs) {
+        const size_t comma = also.find(',');
+        if (comma == std::string::npos)
+          throw Error(ErrorInfo{.path = option, .expected = "SCENE,RAYS (two files)", .found = "'" + also + "'"});
+        sets.push_back(measure_set(also.substr(0, comma), also.substr(comma + 1), o, settings));
+        sets.back().kept_back = kept_back;
+      }
+    };
+    add_sets(o.fit_also, "--fit-also", false);
+    add_sets(o.fit_kept_back, "--fit-kept-back", true);
     return fit_light_model(o, sets, names);
   }
   const MeasuredCase& measured = sets[0].measured;

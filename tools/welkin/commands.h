@@ -37,6 +37,8 @@ struct CloudAccuracyOptions {
   int paths_per_pixel = 64;
   bool fit = false;  // fit the light model's weights instead of the sweep
   std::vector<std::string> fit_also;  // --fit: further training sets, each "SCENE,RAYS"
+  std::vector<std::string> fit_kept_back;  // --fit: sets marched and reported but not fitted, each "SCENE,RAYS"
+  std::vector<int> fit_terms;  // --fit: the candidate terms solved for (empty: all)
   bool light_only = false;  // the rays' errors and the term budget only: no GPU time, ghosting or aerial perspective
   std::vector<std::string> qualities{"low", "medium", "high", "ultra"};
   int frames = 5;

@@ -21,7 +21,9 @@ void bind_field(const CloudsGpu& gpu) {
 ShaderDefines light_model_defines(const CloudsGpu& gpu) {
   ShaderDefines d = {{"CLOUDS_MULTIPLE_SCATTERING", gpu.block.multiple_scattering > 0.5f ? "1" : "0"},
                      {"CLOUDS_POWDER", gpu.block.powder != 0.0f ? "1" : "0"},
-                     {"CLOUDS_PHASE_MODEL", gpu.block.phase_model > 0.5f ? "1" : "0"}};
+                     {"CLOUDS_PHASE_MODEL", gpu.block.phase_model > 0.5f ? "1" : "0"},
+                     // The fitted weights differ with and without the detail noise (light_model_fit.glsl).
+                     {"CLOUDS_SHAPE_DETAIL", gpu.block.shape_detail > 0.5f ? "1" : "0"}};
   for (const auto& [name, value] : gpu.light_model_fit) d[name] = value;
   return d;
 }

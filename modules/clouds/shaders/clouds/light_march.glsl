@@ -21,18 +21,23 @@ CloudsSampleGeometry clouds_sample_geometry() {
 #ifndef CLOUDS_LIGHT_DETAIL
 #define CLOUDS_LIGHT_DETAIL 1
 #endif
-float clouds_light_optical_depth(vec3 x, vec3 l, float extinction_per_density) {
-  float tau = 0.0, s = 0.0, step_m = cl.light_step_m;
+// `clear`: the fraction of the steps' way where the field is empty (the light model weighs light let
+// in through gaps and soft edges against light diffused through the column by it).
+float clouds_light_optical_depth(vec3 x, vec3 l, float extinction_per_density, out float clear) {
+  float tau = 0.0, s = 0.0, step_m = cl.light_step_m, clear_m = 0.0;
   int n = int(cl.light_steps);
   if (n > 0) {
-    tau = clouds_density(x + l * (0.5 * step_m), CLOUDS_LIGHT_DETAIL != 0.0, false) * step_m;
+    float d = clouds_density(x + l * (0.5 * step_m), CLOUDS_LIGHT_DETAIL != 0.0, false);
+    tau = d * step_m, clear_m = d > 0.0 ? 0.0 : step_m;
     s = step_m, step_m *= 2.0;
   }
   for (int k = 1; k < n; ++k) {
-    tau += clouds_density(x + l * (s + 0.5 * step_m), false, false) * step_m;
+    float d = clouds_density(x + l * (s + 0.5 * step_m), false, false);
+    tau += d * step_m, clear_m += d > 0.0 ? 0.0 : step_m;
     s += step_m;
     step_m *= 2.0;
   }
+  clear = clear_m / max(s, 1e-6);
   tau *= extinction_per_density;
   if (cl.moon_marched < 0.5) tau += clouds_shadow_optical_depth(x + l * s);
   return tau;
@@ -42,11 +47,12 @@ float clouds_light_optical_depth(vec3 x, vec3 l, float extinction_per_density) {
 vec3 clouds_marched_source(vec3 x, vec3 l, float mu, float phase_single, float sigma_t,
                            float extinction_per_density, CloudsSampleGeometry g, vec3 up, vec3 e_light,
                            vec3 e_sky) {
-  float tau = clouds_light_optical_depth(x, l, extinction_per_density);
+  float clear;
+  float tau = clouds_light_optical_depth(x, l, extinction_per_density, clear);
   if (!clouds_diffusion_model)
     return clouds_sample_source(mu, phase_single, tau, sigma_t, g.depth_below_m, g.depth_above_m, l, up,
                                 e_light, e_sky);
   CloudsLightInputs s = clouds_light_inputs(tau, sigma_t, g.depth_below_m, g.depth_above_m);
-  s.column_below = g.column_below, s.column_above = g.column_above;
+  s.column_below = g.column_below, s.column_above = g.column_above, s.clear = clear;
   return clouds_light_source(mu, phase_single, s, l, up, e_light, e_sky);
 }

@@ -7,7 +7,8 @@
 //   local vertical; e_light, e_sky: the light's and the sky's irradiance there.
 // Needs clouds/density.glsl (the block) and clouds/phase.glsl.
 // CLOUDS_MULTIPLE_SCATTERING and CLOUDS_POWDER (src/density_field.cpp, light_model_defines) compile the
-// model's choices in; undefined, they are read from the block.
+// model's choices in; undefined, they are read from the block. CLOUDS_SHAPE_DETAIL (the march reads the
+// detail noise: every quality but low) chooses between the two sets of fitted weights.
 #include "clouds/transmittance.glsl"
 #ifdef CLOUDS_MULTIPLE_SCATTERING
 const bool clouds_diffusion_model = CLOUDS_MULTIPLE_SCATTERING == 1;
@@ -26,6 +27,8 @@ struct CloudsLightInputs {
   float depth_above_m;               // and over it, up to the top of its column (the light it lets down)
   float octave4, octave16;           // exp(-tau / 4), exp(-tau / 16)
   float column_below, column_above;  // the optical depths of the cloud's body under and over the sample
+  float tau;                         // the optical depth toward the light
+  float clear;                       // the fraction of the light march's way that was clear (0: unknown)
 };
 
 // Schneider's beer-powder darkening of thin edges (cl.powder = 0: off).
@@ -61,6 +64,18 @@ float clouds_powder(float sigma_t) {
 //                               2 mu_0 at a thick slab's top to mu_0 T_d(tau_A + tau_B) at its
 //                               base): a deck's dark base, whatever the slant path toward a low sun
 //  17  the same with the sample's own tau_a, tau_b
+//  18-22  terms 0, 1, 6, 7 and 9 times mu_0: the light a lit surface takes in per unit area, when the
+//         surface is a deck's top (the diffusion slab's mu_0 F_0)
+//  23  c D, c = clamp(tau_A / tau, mu_0, 1): the cosine at which the light entered the surface between
+//      the sample and the light; a deck's top gives tau_A = mu_0 tau (c = mu_0), a cumulus's sunlit
+//      side a slant depth shorter than the column above (c = 1)
+//  24  c D S(tau_b)
+//  25  f D, f the fraction of the light march's way that is clear: light let in through gaps and
+//      the soft edge toward the light rather than diffused through the column
+//  26  f D S(tau_b)
+//  27  mu_0 exp(-tau / 4)
+//  28  T_d(tau) (1 - mu) / 2    the diffuse light seen from the light's side: a lit surface reflects
+//  29  D (1 - mu) / 2           more than the cloud lets through (the cloud's brighter face)
 // All fade where the cloud around the sample is thin (its outskirts, wisps: little light has been
 // scattered toward it by neighbours, the physical side of Schneider's "powder"), by
 // 1 - exp(-n sigma_t l_1), l_1 the first light step.
@@ -107,6 +122,12 @@ float clouds_multiple_scattering(float mu, CloudsLightInputs s, vec3 l, vec3 up)
   float slab_body = (1.0 + 2.0 * k * s.column_below) / (1.0 + k * (s.column_above + s.column_below));
   float slab = (1.0 + 2.0 * k * tau_below) / (1.0 + k * (tau_above + tau_below));
   sum += mu_0 * (CLOUDS_MS_W16 * slab_body + CLOUDS_MS_W17 * slab);
+  sum += mu_0 * (beyond * (CLOUDS_MS_W18 + CLOUDS_MS_W19 * reflection + CLOUDS_MS_W21 * through_above) +
+                 CLOUDS_MS_W20 * s.diffuse * reflection + CLOUDS_MS_W22 * s.octave16 + CLOUDS_MS_W27 * s.octave4);
+  float entered = clamp(s.column_above / max(s.tau, 1e-6), mu_0, 1.0);
+  sum += beyond * (entered * (CLOUDS_MS_W23 + CLOUDS_MS_W24 * reflection) +
+                   s.clear * (CLOUDS_MS_W25 + CLOUDS_MS_W26 * reflection));
+  sum += 0.5 * (1.0 - mu) * (CLOUDS_MS_W28 * s.diffuse + CLOUDS_MS_W29 * beyond);
   return sum * (1.0 - exp(-CLOUDS_MS_POWDER * s.sigma_t * cl.light_step_m));
 }
 
@@ -139,7 +160,7 @@ vec3 clouds_light_source(float mu, float phase_single, CloudsLightInputs s, vec3
 CloudsLightInputs clouds_light_inputs(float tau, float sigma_t, float depth_below_m, float depth_above_m) {
   return CloudsLightInputs(clouds_direct_transmittance(tau), clouds_slab_diffuse(tau), sigma_t, depth_below_m,
                            depth_above_m, exp(-0.25 * tau), exp(-0.0625 * tau), sigma_t * depth_below_m,
-                           sigma_t * depth_above_m);
+                           sigma_t * depth_above_m, tau, 0.0);
 }
 
 vec3 clouds_sample_source(float mu, float phase_single, float tau, float sigma_t, float depth_below_m,
