@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <vector>
 
 #include "clouds_test_support.h"
 #include "validation/cloud_probe.h"
@@ -47,11 +48,51 @@ TEST(CloudsAccuracy, DiffusionBeatsOctavesAndStaysWithinItsStatedError) {
   std::printf("relative RMSE: octaves %.1f%% (worst %.1f%%), diffusion %.1f%% (worst %.1f%%)\n", 100 * rmse_octaves,
               100 * worst[0], 100 * rmse_diffusion, 100 * worst[1]);
   EXPECT_LT(rmse_diffusion, rmse_octaves);
-  // Measured with the fitted light model (light_model_fit.glsl, docs/clouds-light.md): 7.6%, worst
-  // 12.6% (a base seen 60 degrees up, too dark); the seven-coefficient model before: 9.5%, worst 15.2%;
-  // the hand-set model: 14.6%, worst 30.8%.
-  EXPECT_LT(rmse_diffusion, 0.10);
-  EXPECT_LT(worst[1], 0.16);
+  // Measured with the fitted light model (light_model_fit.glsl, docs/clouds-light.md), fitted on this
+  // cumulus, two stratus decks and a cumulus under a low sun: 16.2%, worst 24.8% (a base seen 60
+  // degrees up, too dark). The model fitted on this cumulus alone measured 7.6%, worst 12.6%, and was
+  // two to ten times too bright on decks under a low sun (the test below); over the fit's 20 cumulus
+  // rays the two are alike (13.6%). The seven-coefficient model: 9.5%, worst 15.2%; the hand-set
+  // model: 14.6%, worst 30.8%.
+  EXPECT_LT(rmse_diffusion, 0.18);
+  EXPECT_LT(worst[1], 0.27);
+}
+
+// A stratus deck (0.8-1.3 km, coverage 0.9) under a sun 12 degrees up: the bases' multiple scattering
+// comes through the whole column (diffusion theory's mu_0 per unit area of the lit top), not along the
+// slant path toward the sun; a model fitted on a cumulus under a high sun alone lights the deck two
+// to five times too bright.
+TEST(CloudsAccuracy, DeckUnderALowSunStaysWithinItsStatedError) {
+  test::gl_context().make_current();
+  VolumetricClouds deck;
+  deck.layers = {CloudLayer{.genus = Genus::stratus, .base_altitude_m = 800.0f, .thickness_m = 500.0f, .coverage = 0.9f, .density_per_m = 0.03f}};
+  deck.weather_system_amount = 0.0f;
+  CloudProbe probe(deck, 200.0, 12.0);
+  reference::PathTraceSettings s;
+  s.samples = 4096;  // a deck's base is dim: at 2048 paths its 95% interval is 20% of its radiance
+  const CloudView views[] = {{"below 30", 200, 0, 30}, {"below 70", 200, 200, 70}, {"inside", 1050, 20, 5, 300, 200},
+                             {"above", 2500, 200, -40}};
+  // Errors relative to the mean reference over the rays (as `welkin accuracy clouds` and the fit
+  // weigh them): the bases are a fifth as bright as the top.
+  std::vector<double> gpu, ref;
+  for (const CloudView& v : views) {
+    const auto r = probe.reference_radiance(v, s);
+    ASSERT_LT(r.scattered.ci95, 0.15 * r.radiance()) << v.name;
+    gpu.push_back(probe.gpu_radiance(v)), ref.push_back(r.radiance());
+    std::printf("%-10s gpu %9.1f  reference %9.1f +- %6.1f\n", v.name.c_str(), gpu.back(), ref.back(), r.scattered.ci95);
+  }
+  double mean = 0.0, sum = 0.0, worst = 0.0;
+  for (double r : ref) mean += r / double(ref.size());
+  for (size_t i = 0; i < ref.size(); ++i) {
+    const double e = (gpu[i] - ref[i]) / mean;
+    sum += e * e, worst = std::max(worst, std::abs(e));
+  }
+  const double rmse = std::sqrt(sum / double(ref.size()));
+  std::printf("relative RMSE %.1f%% (worst %.1f%%)\n", 100 * rmse, 100 * worst);
+  // Measured (docs/clouds-light.md): 4.9%, worst 7.5%; the model fitted on the cumulus alone, on the
+  // same rays' marched terms: 201%, worst 364% (every ray too bright, the top seen from above most).
+  EXPECT_LT(rmse, 0.10);
+  EXPECT_LT(worst, 0.15);
 }
 
 // The sky alone (CloudProbe::Light::sky: a uniform sky over a black ground, no sun) on the same rays:
