@@ -198,10 +198,25 @@ std::vector<double> solve(const LinearProblem& p) {
   return w;
 }
 
+// `// text` in lines of at most 110 columns (the project's limit holds for the file the fit writes).
+std::string comment(const std::string& text, const std::string& indent = "") {
+  std::string out, line = indent;
+  std::istringstream words(text);
+  for (std::string word; words >> word;) {
+    if (line.size() > indent.size() && 3 + line.size() + 1 + word.size() > 110) out += "// " + line + "\n", line = indent;
+    line += (line.size() > indent.size() ? " " : "") + word;
+  }
+  return out + "// " + line + "\n";
+}
+
+// A guarded define with its meaning above it.
+void write_define(std::ostringstream& glsl, const std::string& name, const std::string& meaning, double value) {
+  glsl << comment(name + ": " + meaning) << "#ifndef " << name << "\n#define " << name << " " << glsl_number(value)
+       << "\n#endif\n";
+}
+
 void write_weights(std::ostringstream& glsl, const std::vector<double>& w) {
-  for (size_t k = 0; k < kTermCount; ++k)
-    glsl << "#ifndef " << kTerms[k] << "  // " << kTermMeaning[k] << "\n#define " << kTerms[k] << " " << glsl_number(w[k])
-         << "\n#endif\n";
+  for (size_t k = 0; k < kTermCount; ++k) write_define(glsl, kTerms[k], kTermMeaning[k], w[k]);
 }
 
 }  // namespace
@@ -252,7 +267,8 @@ int fit_light_model(const CloudAccuracyOptions& o, std::vector<RaySet>& sets, co
   // The weights compiled in, each set and quality marched again: the figures are the march's, not the sum's.
   std::ostringstream figures;
   for (RaySet& set : sets) {
-    figures << "\n//   " << (set.kept_back ? "kept back: " : "") << set.name << ", " << set.views.size() << " rays:";
+    figures << comment((set.kept_back ? "kept back: " : "") + set.name + ", " + std::to_string(set.views.size()) + " rays:", "  ")
+            << "//    ";
     std::vector<double> reference;
     for (const auto& r : set.refs) reference.push_back(r.radiance());
     for (const std::string& q : o.qualities) {
@@ -262,16 +278,16 @@ int fit_light_model(const CloudAccuracyOptions& o, std::vector<RaySet>& sets, co
       const Error2 e = error_of(march(*set.probe, set.views, fitted), reference, mean_radiance(set.refs));
       figures << " " << q << " " << std::lround(1000 * e.rmse) / 10.0 << "% (worst " << std::lround(1000 * e.worst) / 10.0 << "%)";
     }
+    figures << "\n";
     set.probe->set_light_model_fit({});
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   std::ostringstream glsl;  // each define guarded alone: a partial override (the term budget's) keeps the rest
   glsl << "#pragma once\n// The light model's weights (light_model.glsl), fitted to the project's path tracer by\n"
           "// `welkin accuracy clouds --fit` (tools/welkin/cloud_light_fit.cpp), which wrote this file: "
-       << rays << " rays,\n// " << settings_paths(o) << " paths each; the march's relative RMSE after the fit:" << figures.str()
-       << "\n// The fit overrides them with defines while it measures.\n";
-  for (const Constant& k : kConstants)
-    glsl << "#ifndef " << k.name << "  // " << k.meaning << "\n#define " << k.name << " " << glsl_number(k.value) << "\n#endif\n";
+       << rays << " rays,\n// " << settings_paths(o) << " paths each; the march's relative RMSE after the fit:\n" << figures.str()
+       << "// The fit overrides them with defines while it measures.\n";
+  for (const Constant& k : kConstants) write_define(glsl, k.name, k.meaning, k.value);
   glsl << "#ifndef CLOUDS_SHAPE_DETAIL  // the march reads the detail noise (light_model_defines; not low)\n"
           "#define CLOUDS_SHAPE_DETAIL 1\n#endif\n#if CLOUDS_SHAPE_DETAIL\n";
   write_weights(glsl, w[1]);

@@ -101,7 +101,8 @@ class RadiancePath {
       if (order >= settings_.max_orders) {
         // The last order still sees the sky or ground that reaches this vertex unscattered.
         if (const double outside = lighting_.environment(x, next); outside > 0.0)
-          radiance += weight * outside * ratio_tracking_transmittance(medium_, {x, next}, kInfinity, rng, budget);
+          radiance +=
+              weight * outside * ratio_tracking_transmittance(medium_, {x, next}, kInfinity, rng, budget);
         return radiance;
       }
       ray = {x, next};

@@ -120,7 +120,8 @@ SingleScatteringResult single_scattering(const Medium& medium, const PhaseFuncti
   }
   // The early stop above is for the radiance only: the transmittance gets its own full quadrature.
   result.transmittance = transmittance(medium, view, settings);
-  result.background = result.transmittance * lighting.environment(view.origin, glm::normalize(view.direction));
+  const double behind = lighting.environment(view.origin, glm::normalize(view.direction));
+  result.background = result.transmittance * behind;
   return result;
 }
 

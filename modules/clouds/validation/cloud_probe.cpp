@@ -145,7 +145,8 @@ double CloudProbe::gpu_radiance(const CloudView& view) {
   return under_light([&] { return march_middle_pixel(view); });
 }
 
-ref::Lighting CloudProbe::reference_lighting(const glm::dvec3& planet_center_m, double planet_radius_m) const {
+ref::Lighting CloudProbe::reference_lighting(const glm::dvec3& planet_center_m,
+                                             double planet_radius_m) const {
   if (light_ == Light::sun)
     return {.sun_direction = sun_direction_, .sun_irradiance = kSunIlluminance};
   return {.sun_direction = sun_direction_,

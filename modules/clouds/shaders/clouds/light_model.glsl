@@ -123,7 +123,8 @@ float clouds_multiple_scattering(float mu, CloudsLightInputs s, vec3 l, vec3 up)
   float slab = (1.0 + 2.0 * k * tau_below) / (1.0 + k * (tau_above + tau_below));
   sum += mu_0 * (CLOUDS_MS_W16 * slab_body + CLOUDS_MS_W17 * slab);
   sum += mu_0 * (beyond * (CLOUDS_MS_W18 + CLOUDS_MS_W19 * reflection + CLOUDS_MS_W21 * through_above) +
-                 CLOUDS_MS_W20 * s.diffuse * reflection + CLOUDS_MS_W22 * s.octave16 + CLOUDS_MS_W27 * s.octave4);
+                 CLOUDS_MS_W20 * s.diffuse * reflection + CLOUDS_MS_W22 * s.octave16 +
+                 CLOUDS_MS_W27 * s.octave4);
   float entered = clamp(s.column_above / max(s.tau, 1e-6), mu_0, 1.0);
   sum += beyond * (entered * (CLOUDS_MS_W23 + CLOUDS_MS_W24 * reflection) +
                    s.clear * (CLOUDS_MS_W25 + CLOUDS_MS_W26 * reflection));
@@ -136,12 +137,15 @@ float clouds_multiple_scattering(float mu, CloudsLightInputs s, vec3 l, vec3 up)
 // intensity a conservative two-stream slab holds there when lit diffusely from one side, from the top
 // T (1 + 2 k tau_below) with T = 1 / (1 + k (tau_above + tau_below)), from the bottom the same turned
 // over. Under a sky and a ground of one radiance the two sum to it at every depth (the white
-// furnace); a sample in thin cloud sees half of each. No extra density samples: on software
-// rasterisers each is most of a step's cost. The sky alone against the path tracer, the cumulus
-// case's 20 rays: 35% relative RMSE at `high`, 30% at `low`; through the diffuse transmittance toward
-// the sun, as before, 69% and 79% (docs/clouds-light.md).
-vec3 clouds_ambient(vec3 e_sky, vec3 e_ground, float tau_below, float tau_above) {
+// furnace); a sample in thin cloud sees half of each. The ground under the column is lit by the
+// light and the sky through that same column (its transmitted flux, T again): under a deck it gets
+// a deck's light, not the clear sky's. No extra density samples: on software rasterisers each is
+// most of a step's cost. The sky alone against the path tracer, the cumulus case's 20 rays: 35%
+// relative RMSE at `high`, 30% at `low`; through the diffuse transmittance toward the sun, as
+// before, 69% and 79% (docs/clouds-light.md).
+vec3 clouds_ambient(vec3 e_sky, vec3 e_light_on_ground, float tau_below, float tau_above) {
   float k = clouds_two_stream_k(), t = 1.0 / (1.0 + k * (tau_above + tau_below));
+  vec3 e_ground = cl.ground_albedo * (e_light_on_ground + e_sky) * t;
   vec3 mean_intensity = e_sky * (1.0 + 2.0 * k * tau_below) + e_ground * (1.0 + 2.0 * k * tau_above);
   return mean_intensity * t / (2.0 * CLOUDS_PI);
 }
@@ -150,8 +154,8 @@ vec3 clouds_light_source(float mu, float phase_single, CloudsLightInputs s, vec3
                          vec3 e_sky) {
   float scattered = CLOUDS_SS_WEIGHT * phase_single * s.direct + clouds_multiple_scattering(mu, s, l, up);
   scattered *= clouds_powder(s.sigma_t);
-  vec3 e_ground = cl.ground_albedo * (e_light * max(dot(l, up), 0.0) * s.direct + e_sky);
-  vec3 ambient = clouds_ambient(e_sky, e_ground, s.sigma_t * s.depth_below_m, s.sigma_t * s.depth_above_m);
+  vec3 ambient = clouds_ambient(e_sky, e_light * max(dot(l, up), 0.0), s.sigma_t * s.depth_below_m,
+                                s.sigma_t * s.depth_above_m);
   float albedo = cl.scattering / max(cl.scattering + cl.absorption, 1e-9);
   return albedo * (e_light * scattered + ambient);
 }
@@ -180,8 +184,8 @@ vec3 clouds_sample_source(float mu, float phase_single, float tau, float sigma_t
   }
   scattered *= clouds_powder(sigma_t);
   float direct = exp(-tau);
-  vec3 e_ground = cl.ground_albedo * (e_light * max(dot(l, up), 0.0) * direct + e_sky);
-  vec3 ambient = clouds_ambient(e_sky, e_ground, sigma_t * depth_below_m, sigma_t * depth_above_m);
+  vec3 ambient = clouds_ambient(e_sky, e_light * max(dot(l, up), 0.0), sigma_t * depth_below_m,
+                                sigma_t * depth_above_m);
   float albedo = cl.scattering / max(cl.scattering + cl.absorption, 1e-9);
   return albedo * (e_light * scattered + ambient);
 }
