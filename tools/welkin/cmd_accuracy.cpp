@@ -46,7 +46,7 @@ struct AccuracyOptions {
   std::string scene;  // godrays, clusters, clouds: the scene measured (each has its own default)
   std::string rays, image;  // clouds: a file of view rays; a scene whose path-traced image is made
   int paths_per_pixel = 64;
-  bool fit = false, light_only = false;
+  bool fit = false, light_only = false, silhouettes = false;
   std::vector<std::string> fit_also, fit_kept_back;
   std::vector<int> fit_terms;
   std::vector<std::string> methods{"lut", "raymarch"}, qualities{"low", "medium", "high", "ultra"};
@@ -378,6 +378,7 @@ int run_accuracy(const AccuracyOptions& options) {
                                .ghosting_scene = o.ghosting_scene, .scene = o.scene, .rays = o.rays, .image = o.image,
                                .cache = o.cache, .paths_per_pixel = o.paths_per_pixel, .fit = o.fit, .fit_also = o.fit_also,
                                .fit_kept_back = o.fit_kept_back, .fit_terms = o.fit_terms, .light_only = o.light_only,
+                               .silhouettes_only = o.silhouettes,
                                .qualities = o.qualities, .frames = o.frames,
                                .quick = o.quick, .json = o.json});
   if (o.size.empty()) o.size = "640x360";
@@ -631,6 +632,9 @@ void add_accuracy_command(CLI::App& app, int& exit_code) {
       ->delimiter(',');
   cmd->add_flag("--light-only", o->light_only,
                 "clouds: the rays' errors and the light model's term budget only (no GPU time, ghosting or aerial perspective)");
+  cmd->add_flag("--silhouettes", o->silhouettes,
+                "clouds: only the temporal upscaling's silhouettes in --ghosting-scene, still, turning 1 degree a frame "
+                "and flying (frames at half --size)");
   cmd->add_option("--paths-per-pixel", o->paths_per_pixel, "clouds --image: paths per pixel of the path-traced image")
       ->check(CLI::Range(1, 65536))
       ->capture_default_str();

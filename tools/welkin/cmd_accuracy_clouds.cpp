@@ -1,5 +1,5 @@
 // welkin accuracy clouds [--out DIR] [--size WxH] [--frames N] [--qualities ...] [--quick] [--json]
-//                        [--ghosting-scene SCENE]
+//                        [--ghosting-scene SCENE] [--silhouettes]
 // The clouds' "error against run time": each quality preset and multiple-scattering model marched
 // on view rays from below, inside and above a cumulus layer and from orbit, against the path-traced
 // radiance of the same rays through the same field (validation/cloud_probe.h), next to the GPU time of the
@@ -15,6 +15,7 @@
 #include "error_plot.h"
 #include "session.h"
 #include "validation/cloud_probe.h"
+#include "validation/silhouettes.h"
 #include "welkin/core/error.h"
 #include "welkin/gfx/gl_context.h"
 #include "welkin/gfx/image.h"
@@ -173,6 +174,33 @@ Ghosting measure_ghosting(const std::string& scene, int frames, int width, int h
   return g;
 }
 
+// The temporal upscaling's silhouettes (validation/silhouettes.h): the scene still, turning 1 degree a
+// frame (`welkin bench --turn-deg 1`) and flying, upscaled against a march of every pixel, at the full
+// march's silhouettes (its opacity steps by more than 0.1 between neighbours).
+void report_silhouettes(const std::string& scene, int frames, int width, int height) {
+  std::printf("\ntemporal upscaling at silhouettes (%s at its quality, %dx%d, %d frames after 4 that fill the\n"
+              "history): mean |upscaled - every pixel marched| luminance at the full march's silhouettes, of the\n"
+              "frame's mean; the clouds' opacity there; relative L1 over the frame\n",
+              scene.c_str(), width, height, frames);
+  for (clouds::SilhouetteMotion motion :
+       {clouds::SilhouetteMotion::still, clouds::SilhouetteMotion::turning, clouds::SilhouetteMotion::flying}) {
+    auto upscaled_world = make_world(), full_world = make_world();
+    load_scene_file(*upscaled_world, scene), load_scene_file(*full_world, scene);
+    for (World* w : {upscaled_world.get(), full_world.get()}) {
+      auto& c = *w->registry().get<clouds::VolumetricClouds>(w->registry().first<clouds::VolumetricClouds>());
+      c.temporal_upscaling = true;
+      w->registry().get<Camera>(w->registry().first<Camera>())->moving_render_scale = 1.0f;
+    }
+    Renderer upscaled(*upscaled_world), full(*full_world);
+    const clouds::SilhouetteError e =
+        clouds::measure_silhouettes({*upscaled_world, upscaled}, {*full_world, full}, motion, 4, frames, width, height);
+    std::printf("  %-8s %6.2f%% at %zu silhouette pixels, opacity %.3f; frame %.2f%%; %.0f%% of the march's pixels "
+                "near a silhouette\n",
+                clouds::motion_name(motion), 100 * e.silhouette, e.pixels, e.opacity, 100 * e.frame,
+                100 * e.near_silhouette);
+  }
+}
+
 // Aerial perspective along the ray against takram's single mean depth, in hazy air, the same march
 // (30 m steps, every pixel) with each. Two scenes: sparse clouds from 2 to 60 km, and one built for the
 // failure: a translucent sheet 10-20 km away in front of an opaque deck 30-60 km away, so that most
@@ -320,6 +348,10 @@ int run_cloud_accuracy(const CloudAccuracyOptions& o) {
   if (!o.image.empty()) return write_cloud_images(o, names, width, height);
   fs::create_directories(o.out);
   std::unique_ptr<GlContext> gl = create_headless_context();
+  if (o.silhouettes_only) {
+    report_silhouettes(o.ghosting_scene, o.quick ? 3 : 8, width / 2, height / 2);
+    return kOk;
+  }
   const std::string renderer = gl->info().renderer;
   // References once per ray (they do not depend on the GPU's settings).
   clouds::reference::PathTraceSettings settings;
@@ -398,6 +430,7 @@ int run_cloud_accuracy(const CloudAccuracyOptions& o) {
                    "path-traced reference through the same field, " + std::to_string(views.size()) + " rays; " + o.size + ", " + renderer,
                    "GPU ms per frame, clouds passes (log)", {series[MultipleScattering::diffusion], series[MultipleScattering::octaves]});
   const Ghosting ghost = measure_ghosting(o.ghosting_scene, o.quick ? 8 : 20, width / 2, height / 2);
+  report_silhouettes(o.ghosting_scene, o.quick ? 3 : 8, width / 2, height / 2);
   std::printf("\ntemporal upscaling on a flying, turning camera (peer scene, high), per-frame relative L1 against\n"
               "marching every pixel: clipped history %.2f%% mean, %.2f%% worst; plain reprojection %.2f%% mean, %.2f%% worst\n",
               100 * ghost.clipped_mean, 100 * ghost.clipped_worst, 100 * ghost.plain_mean, 100 * ghost.plain_worst);

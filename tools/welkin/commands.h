@@ -40,6 +40,7 @@ struct CloudAccuracyOptions {
   std::vector<std::string> fit_kept_back;  // --fit: sets marched and reported but not fitted, each "SCENE,RAYS"
   std::vector<int> fit_terms;  // --fit: the candidate terms solved for (empty: all)
   bool light_only = false;  // the rays' errors and the term budget only: no GPU time, ghosting or aerial perspective
+  bool silhouettes_only = false;  // the temporal upscaling's silhouettes in the ghosting scene only
   std::vector<std::string> qualities{"low", "medium", "high", "ultra"};
   int frames = 5;
   bool quick = false, json = false;

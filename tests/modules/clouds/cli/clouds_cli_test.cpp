@@ -44,6 +44,8 @@ TEST(CloudsCli, AccuracyWritesTablesPlotAndGhosting) {
   EXPECT_EQ(diffusion.rfind("diffusion/low,", 0), 0u) << diffusion;
   EXPECT_EQ(octaves.rfind("octaves/low,", 0), 0u) << octaves;
   EXPECT_NE(r.out.find("clipped history"), std::string::npos) << r.out;
+  for (const char* motion : {"still", "turning", "flying"})  // the silhouettes after the upscaling
+    EXPECT_NE(r.out.find(std::string("  ") + motion + " "), std::string::npos) << motion << "\n" << r.out;
 }
 
 // --rays: a value out of range is one error naming the file and the path inside it.
