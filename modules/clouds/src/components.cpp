@@ -142,6 +142,8 @@ void describe(TypeBuilder<VolumetricClouds>& t) {
       .tooltip("quality custom: 2 (a quarter of the pixels per frame) or 4 (a sixteenth)");
   t.field("temporal_clipping", &VolumetricClouds::temporal_clipping)
       .tooltip("Clip reprojected history to this frame's samples (against ghosting)");
+  t.field("march_silhouettes", &VolumetricClouds::march_silhouettes)
+      .tooltip("March every frame the pixels next to the last frame's silhouettes (temporal upscaling)");
   t.field("skip_empty_front", &VolumetricClouds::skip_empty_front)
       .tooltip("Start each ray where the last frame's rays around it met no cloud (temporal upscaling)");
   t.field("shadows", &VolumetricClouds::shadows).tooltip("Cloud shadows and sky occlusion on every material");

@@ -26,7 +26,8 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
   const float inside_cloud_m = 2.0f * gpu.block.min_step_m;  // two of the shortest march steps
   const ShaderDefines resolve_defines = {{"CLOUDS_CLIP", clouds.temporal_clipping ? "1" : "0"},
                                          {"CLOUDS_WITH_CLUSTERS", merge_clusters ? "1" : "0"},
-                                         {"CLOUDS_CLEAR", clear ? "1" : "0"}};
+                                         {"CLOUDS_CLEAR", clear ? "1" : "0"},
+                                         {"CLOUDS_SILHOUETTES", current.silhouettes.valid() ? "1" : "0"}};
   const ResourceHandle merged =
       merge_clusters ? g.create("clouds.with_clusters",
                                 TextureDesc{.width = w, .height = h, .format = TextureFormat::rgba16f})
@@ -39,6 +40,7 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
       [&](PassBuilder& b) {
         b.read(current.color);
         b.read(current.distance);
+        if (current.silhouettes.valid()) b.read(current.silhouettes);
         b.read(history);
         b.write(out_color);
         if (clear) b.write(out_clear);
@@ -54,6 +56,7 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
         glBindTextureUnit(1, pc.texture(current.distance).id());
         glBindTextureUnit(2, pc.texture(history).id());
         if (merge_clusters) glBindTextureUnit(3, pc.texture(clusters).id());
+        if (current.silhouettes.valid()) glBindTextureUnit(4, pc.texture(current.silhouettes).id());
         const Program& p =
             compute ? rc.shaders.compute("clouds/resolve.comp", resolve_defines)
                     : rc.shaders.graphics("fullscreen.vert", "clouds/resolve.frag", resolve_defines);

@@ -10,9 +10,12 @@
 namespace welkin::clouds {
 
 // What the march writes this frame: its colour and its distances (mean, opaque from, clear up to), at
-// the march's resolution.
+// the march's resolution (one pixel of each block).
 struct MarchOutput {
   ResourceHandle color, distance;
+  // At the march's whole size, the pixels next to the last frame's silhouettes marched again (-1
+  // elsewhere; clouds/march_silhouettes_pixel.glsl), when they were.
+  ResourceHandle silhouettes;
 };
 
 // The resolve into the history (gpu.history_color) at the march's size w x h, the march having

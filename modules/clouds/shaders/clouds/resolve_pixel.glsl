@@ -5,11 +5,12 @@
 // neighbouring samples so that what moved or appeared does not leave ghosts. CLOUDS_CLIP 0 keeps
 // plain reprojection (for the ghosting comparison of `welkin accuracy clouds`). Where the ray starts
 // inside a cloud (the camera in it) nothing is reprojected: the history there would smear the cloud
-// around the camera.
+// around the camera. CLOUDS_SILHOUETTES: the pixels next to the last frame's silhouettes were marched
+// too this frame (march_silhouettes_pixel.glsl), and are taken as marched.
 // CLOUDS_WITH_CLUSTERS: the mesh clusters, drawn at this resolution, are also laid behind the result
 // in a second target (march + T x clusters) for the composite, which then reads one texture at the
 // frame's resolution instead of two; the history stays the march alone.
-#include "welkin/view.glsl"
+#include "clouds/reproject.glsl"
 #if CLOUDS_WITH_CLUSTERS
 layout(binding = 3) uniform sampler2D u_clusters;  // premultiplied, opacity in alpha
 #endif
@@ -17,11 +18,12 @@ layout(binding = 0) uniform sampler2D u_current;           // one pixel per bloc
 // one pixel per block: the clouds' mean distance, where they turn opaque, up to where none (m)
 layout(binding = 1) uniform sampler2D u_current_distance;
 layout(binding = 2) uniform sampler2D u_history;           // the last result at the march resolution
+#if CLOUDS_SILHOUETTES
+// The pixels next to a silhouette marched again this frame (march_silhouettes_pixel.glsl); -1 elsewhere.
+layout(binding = 4) uniform sampler2D u_silhouettes;
+#endif
 uniform int u_block;               // N
 uniform ivec2 u_offset;            // the position in the block marched this frame
-uniform mat4 u_inverse_view_projection;
-uniform mat4 u_previous_view_projection;
-uniform vec3 u_camera_moved_m;     // this frame's camera minus the last one's
 uniform int u_history_valid;
 uniform int u_full_frame;  // every pixel was marched this frame (no history yet): taken as it is
 uniform float u_inside_cloud_m;  // a first cloud sample closer than this: the camera is in the cloud
@@ -45,21 +47,16 @@ vec4 history_catmull_rom(vec2 uv) {
   return sum;
 }
 
-// Where the clouds seen through ndc at distance_m were last frame, in the history's uv (outside [0, 1]
-// where they were not in view).
-vec2 previous_uv(vec2 ndc, float distance_m) {
-  vec3 dir = view_ray_direction(u_inverse_view_projection, ndc);
-  vec4 clip = u_previous_view_projection * vec4(dir * distance_m + u_camera_moved_m, 1.0);
-  return clip.w <= 0.0 ? vec2(-1.0) : clip.xy / clip.w * 0.5 + 0.5;
-}
-bool in_view(vec2 uv) { return all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))); }
-
 // The resolved pixel (at the march's resolution; ndc its centre).
 vec4 resolved(ivec2 pixel, vec2 ndc) {
   ivec2 block = pixel / u_block;
   ivec2 current_size = textureSize(u_current, 0);
   if (u_full_frame == 1) return texelFetch(u_current, pixel, 0);
   if (all(equal(pixel % u_block, u_offset))) return texelFetch(u_current, block, 0);
+#if CLOUDS_SILHOUETTES
+  vec4 marched = texelFetch(u_silhouettes, pixel, 0);
+  if (marched.a >= 0.0) return marched;
+#endif
   // The neighbourhood of fresh samples around this pixel: its range bounds the history.
   vec4 lo = vec4(1e30), hi = vec4(-1e30), nearest = vec4(0.0);
   float distance_m = 0.0, front_m = 0.0;
