@@ -178,12 +178,13 @@ Ghosting measure_ghosting(const std::string& scene, int frames, int width, int h
 // frame (`welkin bench --turn-deg 1`) and flying, upscaled against a march of every pixel, at the full
 // march's silhouettes (its opacity steps by more than 0.1 between neighbours).
 void report_silhouettes(const std::string& scene, int frames, int width, int height) {
-  std::printf("\ntemporal upscaling at silhouettes (%s at its quality, %dx%d, %d frames after 4 that fill the\n"
-              "history): mean |upscaled - every pixel marched| luminance at the full march's silhouettes, of the\n"
-              "frame's mean; the clouds' opacity there; relative L1 over the frame\n",
-              scene.c_str(), width, height, frames);
-  for (clouds::SilhouetteMotion motion :
-       {clouds::SilhouetteMotion::still, clouds::SilhouetteMotion::turning, clouds::SilhouetteMotion::flying}) {
+  std::printf(
+      "\ntemporal upscaling at silhouettes (%s at its quality, %dx%d, %d frames after 4 that fill the\n"
+      "history): mean |upscaled - every pixel marched| luminance at the full march's silhouettes, of the\n"
+      "frame's mean; the clouds' opacity there; relative L1 over the frame\n",
+      scene.c_str(), width, height, frames);
+  for (clouds::SilhouetteMotion motion : {clouds::SilhouetteMotion::still, clouds::SilhouetteMotion::turning,
+                                          clouds::SilhouetteMotion::flying}) {
     auto upscaled_world = make_world(), full_world = make_world();
     load_scene_file(*upscaled_world, scene), load_scene_file(*full_world, scene);
     for (World* w : {upscaled_world.get(), full_world.get()}) {
@@ -192,12 +193,13 @@ void report_silhouettes(const std::string& scene, int frames, int width, int hei
       w->registry().get<Camera>(w->registry().first<Camera>())->moving_render_scale = 1.0f;
     }
     Renderer upscaled(*upscaled_world), full(*full_world);
-    const clouds::SilhouetteError e =
-        clouds::measure_silhouettes({*upscaled_world, upscaled}, {*full_world, full}, motion, 4, frames, width, height);
-    std::printf("  %-8s %6.2f%% at %zu silhouette pixels, opacity %.3f; frame %.2f%%; %.0f%% of the march's pixels "
-                "near a silhouette\n",
-                clouds::motion_name(motion), 100 * e.silhouette, e.pixels, e.opacity, 100 * e.frame,
-                100 * e.near_silhouette);
+    const clouds::SilhouetteError e = clouds::measure_silhouettes(
+        {*upscaled_world, upscaled}, {*full_world, full}, motion, 4, frames, width, height);
+    std::printf(
+        "  %-8s %6.2f%% at %zu silhouette pixels, opacity %.3f; frame %.2f%%; %.0f%% of the march's pixels "
+        "near a silhouette\n",
+        clouds::motion_name(motion), 100 * e.silhouette, e.pixels, e.opacity, 100 * e.frame,
+        100 * e.near_silhouette);
   }
 }
 

@@ -141,7 +141,7 @@ ResourceHandle add_silhouette_march_pass(SystemContext& sc, CloudsGpu& gpu, Shad
   // silhouettes. On the peer scene (`welkin accuracy clouds --silhouettes`) 0.1 left 0.27% and 0.95%
   // turning and flying, 0.25 0.87% and 1.73%, 0.5 2.40% and 4.28% (9.60% and 16.77% without), the
   // pass costing 1.9x, 1.2x and 0.8x the march's (llvmpipe runs a group of pixels as long as one of
-  // them marches): docs/performance.md, "Silhouettes".
+  // them marches); 0.8 left 5.48% and 8.81%, not half: docs/performance.md, "Silhouettes".
   constexpr float kSilhouetteOpacity = 0.5f;
   const GLuint unit = front_unit + 1;
   defines["CLOUDS_UNIT_SILHOUETTE_HISTORY"] = std::to_string(unit);
@@ -165,8 +165,8 @@ ResourceHandle add_silhouette_march_pass(SystemContext& sc, CloudsGpu& gpu, Shad
         b.read(current.distance);
         b.write(out);
       },
-      [gp, &rc, &world, t, front, front_unit, unit, defines, stride_offset, history, current, out, previous_vp,
-       inverse_vp, moved, compute, w, h, kSilhouetteOpacity](PassContext& pc) {
+      [gp, &rc, &world, t, front, front_unit, unit, defines, stride_offset, history, current, out,
+       previous_vp, inverse_vp, moved, compute, w, h, kSilhouetteOpacity](PassContext& pc) {
         bind_march_inputs(pc, world, *gp, t, front, front_unit);
         glBindTextureUnit(unit, pc.texture(history).id());
         glBindTextureUnit(unit + 1, pc.texture(current.color).id());
@@ -271,9 +271,13 @@ void clouds_system(SystemContext& sc) {
   const int qw = (w + n - 1) / n, qh = (h + n - 1) / n;
   const glm::ivec2 offset = block_offset(gpu, partial, n);
   const glm::ivec3 stride_offset(n, offset.x, offset.y);
-  MarchOutput current = add_march_pass(sc, gpu, march_defines, stride_offset, qw, qh, front, front_unit, skip);
-  if (partial && clouds->march_silhouettes)
-    current.silhouettes = add_silhouette_march_pass(sc, gpu, defines, stride_offset, current, w, h, front, front_unit);
+  MarchOutput current =
+      add_march_pass(sc, gpu, march_defines, stride_offset, qw, qh, front, front_unit, skip);
+  // With 2 x 2 blocks only: at 4 x 4 (`low`, `medium`) the march takes a sixteenth of the pixels and the
+  // pass would cost 3.5 times as much as it (llvmpipe, the peer scene at `low`).
+  if (partial && clouds->march_silhouettes && n == 2)
+    current.silhouettes =
+        add_silhouette_march_pass(sc, gpu, defines, stride_offset, current, w, h, front, front_unit);
   ResourceHandle result = current.color;
   if (temporal) {
     result = add_resolve_pass(g, rc, gpu, *clouds, current, offset, partial, n, w, h, clusters, skip.write);

@@ -32,7 +32,9 @@ double opacity_step_at(const ImageF& clouds, int x, int y) {
   return step;
 }
 
-Camera& camera_of(World& world) { return *world.registry().get<Camera>(world.registry().first<Camera>()); }
+Camera& camera_of(World& world) {
+  return *world.registry().get<Camera>(world.registry().first<Camera>());
+}
 
 }  // namespace
 
@@ -43,7 +45,9 @@ ImageF clouds_result(World& world) {
   return read_texture_float(*gpu.history_color[1 - gpu.history_index]);
 }
 
-void forget_clouds_history(World& world) { world.resource<CloudsGpu>().history_valid = false; }
+void forget_clouds_history(World& world) {
+  world.resource<CloudsGpu>().history_valid = false;
+}
 
 SilhouetteError silhouette_error(const ImageF& upscaled_frame, const ImageF& upscaled_clouds,
                                  const ImageF& full_frame, const ImageF& full_clouds, double opacity_step) {
@@ -84,15 +88,19 @@ SilhouetteError silhouette_error(const ImageF& upscaled_frame, const ImageF& ups
 
 const char* motion_name(SilhouetteMotion motion) {
   switch (motion) {
-    case SilhouetteMotion::still: return "still";
-    case SilhouetteMotion::turning: return "turning";
-    case SilhouetteMotion::flying: return "flying";
+    case SilhouetteMotion::still:
+      return "still";
+    case SilhouetteMotion::turning:
+      return "turning";
+    case SilhouetteMotion::flying:
+      return "flying";
   }
   return "";
 }
 
-SilhouetteError measure_silhouettes(RenderedWorld upscaled, RenderedWorld full, SilhouetteMotion motion, int settle,
-                                    int frames, int width, int height, ImageF* last_upscaled, ImageF* last_full) {
+SilhouetteError measure_silhouettes(RenderedWorld upscaled, RenderedWorld full, SilhouetteMotion motion,
+                                    int settle, int frames, int width, int height, ImageF* last_upscaled,
+                                    ImageF* last_full) {
   const glm::dvec3 start_m = camera_of(upscaled.world).position_m;
   const float start_heading = camera_of(upscaled.world).heading_deg;
   SilhouetteError sum;
@@ -110,7 +118,8 @@ SilhouetteError measure_silhouettes(RenderedWorld upscaled, RenderedWorld full, 
     }
     if (f < settle) continue;
     const ImageF a = upscaled.renderer.read_hdr(), b = full.renderer.read_hdr();
-    const SilhouetteError e = silhouette_error(a, clouds_result(upscaled.world), b, clouds_result(full.world));
+    const SilhouetteError e =
+        silhouette_error(a, clouds_result(upscaled.world), b, clouds_result(full.world));
     sum.silhouette += e.silhouette, sum.opacity += e.opacity, sum.frame += e.frame, sum.pixels += e.pixels;
     sum.near_silhouette += e.near_silhouette;
     if (f + 1 == settle + frames) {
@@ -119,7 +128,8 @@ SilhouetteError measure_silhouettes(RenderedWorld upscaled, RenderedWorld full, 
     }
   }
   const double n = std::max(frames, 1);
-  sum.silhouette /= n, sum.opacity /= n, sum.frame /= n, sum.near_silhouette /= n, sum.pixels = size_t(double(sum.pixels) / n);
+  sum.silhouette /= n, sum.opacity /= n, sum.frame /= n, sum.near_silhouette /= n,
+      sum.pixels = size_t(double(sum.pixels) / n);
   return sum;
 }
 

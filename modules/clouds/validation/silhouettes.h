@@ -49,12 +49,12 @@ struct RenderedWorld {
 };
 
 // Two worlds of the same scene, each with the temporal upscaling on (`full` forgets its history every
-// frame), rendered `settle + frames` frames (indices and times from 0, as `welkin bench`) of width x height: still, turning 1 degree a frame (the
-// camera's heading, as `welkin bench --turn-deg 1`), or flying 45 m a frame, climbing, turning 0.6
-// degrees a frame (from the scene's camera position and heading). The mean over the last `frames`.
-// `last_upscaled` and `last_full`, when given, receive the last frames.
-SilhouetteError measure_silhouettes(RenderedWorld upscaled, RenderedWorld full, SilhouetteMotion motion, int settle, int frames,
-                                    int width, int height, ImageF* last_upscaled = nullptr,
-                                    ImageF* last_full = nullptr);
+// frame), rendered `settle + frames` frames (indices and times from 0, as `welkin bench`) of width x height:
+// still, turning 1 degree a frame (the camera's heading, as `welkin bench --turn-deg 1`), or flying 45 m a
+// frame, climbing, turning 0.6 degrees a frame (from the scene's camera position and heading). The mean over
+// the last `frames`. `last_upscaled` and `last_full`, when given, receive the last frames.
+SilhouetteError measure_silhouettes(RenderedWorld upscaled, RenderedWorld full, SilhouetteMotion motion,
+                                    int settle, int frames, int width, int height,
+                                    ImageF* last_upscaled = nullptr, ImageF* last_full = nullptr);
 
 }  // namespace welkin::clouds

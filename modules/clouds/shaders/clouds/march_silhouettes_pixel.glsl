@@ -1,11 +1,11 @@
 #pragma once
 // The march again at the pixels next to a silhouette (issue 35; one body for march_silhouettes.frag
 // and .comp), at the march's whole resolution: where the last resolved frame, reprojected, changes its
-// opacity by more than u_silhouette_opacity within the 3 x 3 pixels around, a pixel that this frame's
-// march did not take (not its block's pixel this frame) is marched now instead of being left to the
-// resolve's history, which trails a moving silhouette by up to a whole cycle of the blocks. Where the
-// pixel's clouds were out of the last frame's view, the four fresh samples around it decide. Elsewhere
-// it writes -1: the resolve reprojects the history there (resolve_pixel.glsl).
+// opacity by more than u_silhouette_opacity (0.5) within the 3 x 3 pixels around, a pixel that this
+// frame's march did not take (not its block's pixel this frame) is marched now instead of being left
+// to the resolve's history, which trails a moving silhouette by up to a whole cycle of the blocks.
+// Where the pixel's clouds were out of the last frame's view, the four fresh samples around it decide.
+// Elsewhere it writes -1: the resolve reprojects the history there (resolve_pixel.glsl).
 #include "clouds/march_pixel.glsl"
 #include "clouds/reproject.glsl"
 // The last resolved frame (colour, transmittance) at its own size.
@@ -32,7 +32,8 @@ bool clouds_at_silhouette(ivec2 pixel) {
     ivec2 centre = ivec2(floor(uv * vec2(history_size)));
     for (int y = -1; y <= 1; ++y)
       for (int x = -1; x <= 1; ++x) {
-        float t = texelFetch(u_silhouette_history, clamp(centre + ivec2(x, y), ivec2(0), history_size - 1), 0).a;
+        ivec2 q = clamp(centre + ivec2(x, y), ivec2(0), history_size - 1);
+        float t = texelFetch(u_silhouette_history, q, 0).a;
         lo = min(lo, t), hi = max(hi, t);
       }
   } else {

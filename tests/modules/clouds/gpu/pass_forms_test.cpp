@@ -92,11 +92,13 @@ TEST(CloudsPassForms, MarchResolveCompositeTurning) {
   const testing::FormFrame f = render_turning(doc, {}, 7);
   ASSERT_TRUE(f.ran("clouds.resolve"));
   ASSERT_TRUE(f.ran("clouds.march_silhouettes"));
-  for (const std::string pass : {"clouds.march", "clouds.march_silhouettes", "clouds.resolve", "clouds.composite"})
+  for (const std::string pass :
+       {"clouds.march", "clouds.march_silhouettes", "clouds.resolve", "clouds.composite"})
     expect_equal_frames(f, render_turning(doc, {pass}, 7), pass + " turning");
   expect_equal_frames(
       f,
-      render_turning(doc, {"clouds.march", "clouds.march_silhouettes", "clouds.resolve", "clouds.composite"}, 7),
+      render_turning(doc, {"clouds.march", "clouds.march_silhouettes", "clouds.resolve", "clouds.composite"},
+                     7),
       "all four turning");
 }
 

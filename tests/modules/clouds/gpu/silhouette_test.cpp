@@ -78,13 +78,15 @@ void write_crop(const ImageF& im, const std::string& name, float exposure = 0.0f
 std::unique_ptr<World> peer_world(bool march_silhouettes) {
   std::ifstream in(std::filesystem::path(WELKIN_SOURCE_DIR) / "assets/scenes/clouds-peer.json");
   nlohmann::json doc = nlohmann::json::parse(in);
-  test::entity_with(doc, "clouds.VolumetricClouds")["components"]["clouds.VolumetricClouds"]["quality"] = "high";
+  test::entity_with(doc, "clouds.VolumetricClouds")["components"]["clouds.VolumetricClouds"]["quality"] =
+      "high";
   test::gl_context().make_current();
   auto world = std::make_unique<World>();
   world->modules().add_static(welkin::modules::atmosphere_module());
   world->modules().add_static(welkin::modules::clouds_module());
   load_scene(*world, doc, "clouds-peer.json");
-  VolumetricClouds& clouds = *world->registry().get<VolumetricClouds>(world->registry().first<VolumetricClouds>());
+  VolumetricClouds& clouds =
+      *world->registry().get<VolumetricClouds>(world->registry().first<VolumetricClouds>());
   clouds.march_silhouettes = march_silhouettes;
   return world;
 }
@@ -96,17 +98,18 @@ SilhouetteError measure(SilhouetteMotion motion, int frames, bool march_silhouet
   std::unique_ptr<World> upscaled_world = peer_world(march_silhouettes), full_world = peer_world(false);
   Renderer upscaled(*upscaled_world), full(*full_world);
   ImageF a, b;
-  const SilhouetteError e = measure_silhouettes({*upscaled_world, upscaled}, {*full_world, full}, motion, 4,
-                                                frames, w, h, &a, &b);
+  const SilhouetteError e =
+      measure_silhouettes({*upscaled_world, upscaled}, {*full_world, full}, motion, 4, frames, w, h, &a, &b);
   const std::string name = std::string(motion_name(motion)) + (march_silhouettes ? "" : "-reprojected");
   write_crop(a, name + "-upscaled"), write_crop(b, name + "-full");
   ImageF difference = b;  // |upscaled - full|, x4 against the frame
   for (size_t i = 0; i < b.rgba.size(); ++i)
     difference.rgba[i] = i % 4 == 3 ? 1.0f : std::abs(a.rgba[i] - b.rgba[i]);
   write_crop(difference, name + "-difference", exposure_of(b) * 4.0f);
-  std::printf("%s: silhouettes (%zu pixels) %.2f%% of the mean luminance, opacity %.3f; frame relative L1 %.2f%%; "
-              "%.0f%% of the march's pixels near a silhouette\n",
-              name.c_str(), e.pixels, 100.0 * e.silhouette, e.opacity, 100.0 * e.frame, 100.0 * e.near_silhouette);
+  std::printf(
+      "%s: silhouettes (%zu pixels) %.2f%% of the mean luminance, opacity %.3f; frame relative L1 %.2f%%; "
+      "%.0f%% of the march's pixels near a silhouette\n",
+      name.c_str(), e.pixels, 100.0 * e.silhouette, e.opacity, 100.0 * e.frame, 100.0 * e.near_silhouette);
   return e;
 }
 
@@ -118,17 +121,18 @@ SilhouetteError measure(SilhouetteMotion motion, int frames, bool march_silhouet
 // 0.1), 32% at 320 x 180. The former measure (silhouettes where the full march's luminance steps by a
 // quarter of the frame's mean, the noon scene) read still 1.06% and flying 12.66% before this change.
 TEST(CloudsSilhouettes, UpscaledFramesFollowTheFullMarchAtSilhouettes) {
-  const SilhouetteError still = measure(SilhouetteMotion::still, 3), turning = measure(SilhouetteMotion::turning, 6),
+  const SilhouetteError still = measure(SilhouetteMotion::still, 3),
+                        turning = measure(SilhouetteMotion::turning, 6),
                         flying = measure(SilhouetteMotion::flying, 6);
   EXPECT_GT(still.pixels, 2000u);  // 3651, 3492, 3459 of 8820
   EXPECT_GT(turning.pixels, 2000u);
   EXPECT_GT(flying.pixels, 2000u);
-  EXPECT_LT(still.silhouette, 0.004);  // 0.15%
-  EXPECT_LT(still.frame, 0.004);       // 0.17%
+  EXPECT_LT(still.silhouette, 0.004);    // 0.15%
+  EXPECT_LT(still.frame, 0.004);         // 0.17%
   EXPECT_LT(turning.silhouette, 0.035);  // 2.41%
   EXPECT_LT(turning.frame, 0.025);       // 1.79%
-  EXPECT_LT(flying.silhouette, 0.045);  // 3.23%
-  EXPECT_LT(flying.frame, 0.05);        // 3.74%
+  EXPECT_LT(flying.silhouette, 0.045);   // 3.23%
+  EXPECT_LT(flying.frame, 0.05);         // 3.74%
   // At least halved against the history reprojected as before, measured the same way in this run.
   const SilhouetteError turning_before = measure(SilhouetteMotion::turning, 6, false),
                         flying_before = measure(SilhouetteMotion::flying, 6, false);

@@ -89,8 +89,9 @@ struct VolumetricClouds {
   bool temporal_upscaling = true;
   int temporal_block = 2;  // quality custom
   bool temporal_clipping = true;  // off: plain reprojection (for measuring what clipping saves)
-  // With temporal upscaling: the pixels next to the last frame's silhouettes (its opacity changes by
-  // more than 0.1 within 3 x 3 pixels) are marched every frame too, not reprojected (issue 35).
+  // With temporal upscaling in 2 x 2 blocks: the pixels next to the last frame's strongest silhouettes
+  // (its opacity changes by more than 0.5 within 3 x 3 pixels) are marched every frame too, not
+  // reprojected (issue 35).
   bool march_silhouettes = true;
   // With temporal upscaling: each ray starts where the last frame's rays around it met no cloud, less
   // how far the camera and the clouds moved; one block in eight is marched whole each frame in turn.
