@@ -2,207 +2,282 @@
 // The light model's weights (light_model.glsl), fitted to the project's path tracer by
 // `welkin accuracy clouds --fit` (tools/welkin/cloud_light_fit.cpp), which wrote this file: 62 rays,
 // 8192 paths each; the march's relative RMSE after the fit:
-//   the built-in cumulus case, 20 rays: low 20% (worst 46.7%) high 13.6% (worst 37.2%)
-//   modules/clouds/validation/training/stratus-deck.json with modules/clouds/validation/training/stratus-deck-rays.json, 12 rays: low 10.5% (worst 19.2%) high 10.2% (worst 19.8%)
-//   modules/clouds/validation/training/stratus-deck-low-sun.json with modules/clouds/validation/training/stratus-deck-rays.json, 12 rays: low 25.6% (worst 62.4%) high 8.5% (worst 18.4%)
-//   modules/clouds/validation/training/cumulus-low-sun.json with modules/clouds/validation/training/cumulus-low-sun-rays.json, 18 rays: low 30.1% (worst 69.8%) high 18.1% (worst 43.1%)
-//   kept back: modules/clouds/validation/holdout/stratocumulus-low-sun.json with modules/clouds/validation/holdout/stratocumulus-rays.json, 17 rays: low 78.1% (worst 139.8%) high 29.2% (worst 62.3%)
+//   the built-in cumulus case, 20 rays:
+//     low 20% (worst 46.7%) high 13.6% (worst 37.2%)
+//   modules/clouds/validation/training/stratus-deck.json with
+//   modules/clouds/validation/training/stratus-deck-rays.json, 12 rays:
+//     low 10.5% (worst 19.2%) high 10.2% (worst 19.8%)
+//   modules/clouds/validation/training/stratus-deck-low-sun.json with
+//   modules/clouds/validation/training/stratus-deck-rays.json, 12 rays:
+//     low 25.6% (worst 62.4%) high 8.5% (worst 18.4%)
+//   modules/clouds/validation/training/cumulus-low-sun.json with
+//   modules/clouds/validation/training/cumulus-low-sun-rays.json, 18 rays:
+//     low 30.1% (worst 69.8%) high 18.1% (worst 43.1%)
+//   kept back: modules/clouds/validation/holdout/stratocumulus-low-sun.json with
+//   modules/clouds/validation/holdout/stratocumulus-rays.json, 17 rays:
+//     low 78.1% (worst 139.8%) high 29.2% (worst 62.3%)
 // The fit overrides them with defines while it measures.
-#ifndef CLOUDS_MS_DIFFUSION  // k in 1 / (1 + k tau) for the ground's shading: 0.75 (1 - g), g = 0.8
+// CLOUDS_MS_DIFFUSION: k in 1 / (1 + k tau) for the ground's shading: 0.75 (1 - g), g = 0.8
+#ifndef CLOUDS_MS_DIFFUSION
 #define CLOUDS_MS_DIFFUSION 0.15
 #endif
-#ifndef CLOUDS_DIRECT_DEPTH  // the light march's optical depth as the direct beam sees it
+// CLOUDS_DIRECT_DEPTH: the light march's optical depth as the direct beam sees it
+#ifndef CLOUDS_DIRECT_DEPTH
 #define CLOUDS_DIRECT_DEPTH 1.0
 #endif
-#ifndef CLOUDS_MS_POWDER  // n in the estimate's fade 1 - exp(-n sigma_t l_1) where the cloud around is thin
+// CLOUDS_MS_POWDER: n in the estimate's fade 1 - exp(-n sigma_t l_1) where the cloud around is thin
+#ifndef CLOUDS_MS_POWDER
 #define CLOUDS_MS_POWDER 10.0
 #endif
-#ifndef CLOUDS_SS_WEIGHT  // single scattering's weight (0 only while the fit measures the other terms)
+// CLOUDS_SS_WEIGHT: single scattering's weight (0 only while the fit measures the other terms)
+#ifndef CLOUDS_SS_WEIGHT
 #define CLOUDS_SS_WEIGHT 1.0
 #endif
 #ifndef CLOUDS_SHAPE_DETAIL  // the march reads the detail noise (light_model_defines; not low)
 #define CLOUDS_SHAPE_DETAIL 1
 #endif
 #if CLOUDS_SHAPE_DETAIL
-#ifndef CLOUDS_MS_W0  // D = T_d(tau) - T(tau): the diffuse light beyond the direct beam, toward the light
+// CLOUDS_MS_W0: D = T_d(tau) - T(tau): the diffuse light beyond the direct beam, toward the light
+#ifndef CLOUDS_MS_W0
 #define CLOUDS_MS_W0 0.0
 #endif
-#ifndef CLOUDS_MS_W1  // D S(tau_b): ... gathered from the cloud below
+// CLOUDS_MS_W1: D S(tau_b): ... gathered from the cloud below
+#ifndef CLOUDS_MS_W1
 #define CLOUDS_MS_W1 0.0
 #endif
-#ifndef CLOUDS_MS_W2  // D p_2(mu): ... forward-peaked
+// CLOUDS_MS_W2: D p_2(mu): ... forward-peaked
+#ifndef CLOUDS_MS_W2
 #define CLOUDS_MS_W2 0.0
 #endif
-#ifndef CLOUDS_MS_W3  // mu_0 T_d(tau_a): the light the top takes in, let down through the cloud above
+// CLOUDS_MS_W3: mu_0 T_d(tau_a): the light the top takes in, let down through the cloud above
+#ifndef CLOUDS_MS_W3
 #define CLOUDS_MS_W3 0.0
 #endif
-#ifndef CLOUDS_MS_W4  // mu_0 T_d(tau_a) S(tau_b): ... and reflected back up from below
+// CLOUDS_MS_W4: mu_0 T_d(tau_a) S(tau_b): ... and reflected back up from below
+#ifndef CLOUDS_MS_W4
 #define CLOUDS_MS_W4 0.0
 #endif
-#ifndef CLOUDS_MS_W5  // T_d(tau): the diffuse light toward the light, direct beam included
+// CLOUDS_MS_W5: T_d(tau): the diffuse light toward the light, direct beam included
+#ifndef CLOUDS_MS_W5
 #define CLOUDS_MS_W5 0.0
 #endif
-#ifndef CLOUDS_MS_W6  // T_d(tau) S(tau_b): ... gathered from the cloud below
+// CLOUDS_MS_W6: T_d(tau) S(tau_b): ... gathered from the cloud below
+#ifndef CLOUDS_MS_W6
 #define CLOUDS_MS_W6 0.00628674
 #endif
-#ifndef CLOUDS_MS_W7  // D T_d(tau_a): the diffuse light toward the light that the column above lets by
+// CLOUDS_MS_W7: D T_d(tau_a): the diffuse light toward the light that the column above lets by
+#ifndef CLOUDS_MS_W7
 #define CLOUDS_MS_W7 0.0
 #endif
-#ifndef CLOUDS_MS_W8  // exp(-tau / 4): an octave
+// CLOUDS_MS_W8: exp(-tau / 4): an octave
+#ifndef CLOUDS_MS_W8
 #define CLOUDS_MS_W8 0.0
 #endif
-#ifndef CLOUDS_MS_W9  // exp(-tau / 16): an octave
+// CLOUDS_MS_W9: exp(-tau / 16): an octave
+#ifndef CLOUDS_MS_W9
 #define CLOUDS_MS_W9 0.0
 #endif
-#ifndef CLOUDS_MS_W10  // exp(-tau / 4) p_2(mu): an octave, forward-peaked
+// CLOUDS_MS_W10: exp(-tau / 4) p_2(mu): an octave, forward-peaked
+#ifndef CLOUDS_MS_W10
 #define CLOUDS_MS_W10 0.0
 #endif
-#ifndef CLOUDS_MS_W11  // D S(tau_B): the diffuse light gathered from the cloud's body below
+// CLOUDS_MS_W11: D S(tau_B): the diffuse light gathered from the cloud's body below
+#ifndef CLOUDS_MS_W11
 #define CLOUDS_MS_W11 0.0
 #endif
-#ifndef CLOUDS_MS_W12  // mu_0 T_d(tau_A): the light let down through the body above
+// CLOUDS_MS_W12: mu_0 T_d(tau_A): the light let down through the body above
+#ifndef CLOUDS_MS_W12
 #define CLOUDS_MS_W12 0.0
 #endif
-#ifndef CLOUDS_MS_W13  // T_d(tau) S(tau_B)
+// CLOUDS_MS_W13: T_d(tau) S(tau_B)
+#ifndef CLOUDS_MS_W13
 #define CLOUDS_MS_W13 0.0
 #endif
-#ifndef CLOUDS_MS_W14  // mu_0 T_d(tau_A) S(tau_B)
+// CLOUDS_MS_W14: mu_0 T_d(tau_A) S(tau_B)
+#ifndef CLOUDS_MS_W14
 #define CLOUDS_MS_W14 0.0
 #endif
-#ifndef CLOUDS_MS_W15  // exp(-tau / 16) S(tau_B)
+// CLOUDS_MS_W15: exp(-tau / 16) S(tau_B)
+#ifndef CLOUDS_MS_W15
 #define CLOUDS_MS_W15 0.0
 #endif
-#ifndef CLOUDS_MS_W16  // mu_0 (1 + 2k tau_B) / (1 + k (tau_A + tau_B)): the diffuse light in a lit slab
+// CLOUDS_MS_W16: mu_0 (1 + 2k tau_B) / (1 + k (tau_A + tau_B)): the diffuse light in a lit slab
+#ifndef CLOUDS_MS_W16
 #define CLOUDS_MS_W16 0.0
 #endif
-#ifndef CLOUDS_MS_W17  // mu_0 (1 + 2k tau_b) / (1 + k (tau_a + tau_b)): the same with the sample's own depths
+// CLOUDS_MS_W17: mu_0 (1 + 2k tau_b) / (1 + k (tau_a + tau_b)): the same with the sample's own depths
+#ifndef CLOUDS_MS_W17
 #define CLOUDS_MS_W17 0.0
 #endif
-#ifndef CLOUDS_MS_W18  // mu_0 D: the diffuse light beyond the direct beam, per unit area of a deck's lit top
+// CLOUDS_MS_W18: mu_0 D: the diffuse light beyond the direct beam, per unit area of a deck's lit top
+#ifndef CLOUDS_MS_W18
 #define CLOUDS_MS_W18 0.0
 #endif
-#ifndef CLOUDS_MS_W19  // mu_0 D S(tau_b)
+// CLOUDS_MS_W19: mu_0 D S(tau_b)
+#ifndef CLOUDS_MS_W19
 #define CLOUDS_MS_W19 0.109061
 #endif
-#ifndef CLOUDS_MS_W20  // mu_0 T_d(tau) S(tau_b)
+// CLOUDS_MS_W20: mu_0 T_d(tau) S(tau_b)
+#ifndef CLOUDS_MS_W20
 #define CLOUDS_MS_W20 0.0553012
 #endif
-#ifndef CLOUDS_MS_W21  // mu_0 D T_d(tau_a)
+// CLOUDS_MS_W21: mu_0 D T_d(tau_a)
+#ifndef CLOUDS_MS_W21
 #define CLOUDS_MS_W21 0.0
 #endif
-#ifndef CLOUDS_MS_W22  // mu_0 exp(-tau / 16)
+// CLOUDS_MS_W22: mu_0 exp(-tau / 16)
+#ifndef CLOUDS_MS_W22
 #define CLOUDS_MS_W22 0.0
 #endif
-#ifndef CLOUDS_MS_W23  // c D, c = clamp(tau_A / tau, mu_0, 1): the cosine at which the light entered the lit surface
+// CLOUDS_MS_W23: c D, c = clamp(tau_A / tau, mu_0, 1): the cosine at which the light entered the lit surface
+#ifndef CLOUDS_MS_W23
 #define CLOUDS_MS_W23 0.119484
 #endif
-#ifndef CLOUDS_MS_W24  // c D S(tau_b)
+// CLOUDS_MS_W24: c D S(tau_b)
+#ifndef CLOUDS_MS_W24
 #define CLOUDS_MS_W24 0.101434
 #endif
-#ifndef CLOUDS_MS_W25  // f D, f the clear fraction of the light march: light let in through gaps and the soft edge
+// CLOUDS_MS_W25: f D, f the clear fraction of the light march: light let in through gaps and the soft edge
+#ifndef CLOUDS_MS_W25
 #define CLOUDS_MS_W25 0.0
 #endif
-#ifndef CLOUDS_MS_W26  // f D S(tau_b)
+// CLOUDS_MS_W26: f D S(tau_b)
+#ifndef CLOUDS_MS_W26
 #define CLOUDS_MS_W26 0.0
 #endif
-#ifndef CLOUDS_MS_W27  // mu_0 exp(-tau / 4)
+// CLOUDS_MS_W27: mu_0 exp(-tau / 4)
+#ifndef CLOUDS_MS_W27
 #define CLOUDS_MS_W27 0.0
 #endif
-#ifndef CLOUDS_MS_W28  // T_d(tau) (1 - mu) / 2: the diffuse light seen from the light's side (a lit surface's reflection)
+// CLOUDS_MS_W28: T_d(tau) (1 - mu) / 2: the diffuse light seen from the light's side (a lit surface's
+// reflection)
+#ifndef CLOUDS_MS_W28
 #define CLOUDS_MS_W28 0.0183174
 #endif
-#ifndef CLOUDS_MS_W29  // D (1 - mu) / 2
+// CLOUDS_MS_W29: D (1 - mu) / 2
+#ifndef CLOUDS_MS_W29
 #define CLOUDS_MS_W29 0.0
 #endif
 #else  // without the detail noise (low): a smoother field than the path tracer's
-#ifndef CLOUDS_MS_W0  // D = T_d(tau) - T(tau): the diffuse light beyond the direct beam, toward the light
+// CLOUDS_MS_W0: D = T_d(tau) - T(tau): the diffuse light beyond the direct beam, toward the light
+#ifndef CLOUDS_MS_W0
 #define CLOUDS_MS_W0 0.0
 #endif
-#ifndef CLOUDS_MS_W1  // D S(tau_b): ... gathered from the cloud below
+// CLOUDS_MS_W1: D S(tau_b): ... gathered from the cloud below
+#ifndef CLOUDS_MS_W1
 #define CLOUDS_MS_W1 0.0
 #endif
-#ifndef CLOUDS_MS_W2  // D p_2(mu): ... forward-peaked
+// CLOUDS_MS_W2: D p_2(mu): ... forward-peaked
+#ifndef CLOUDS_MS_W2
 #define CLOUDS_MS_W2 0.0
 #endif
-#ifndef CLOUDS_MS_W3  // mu_0 T_d(tau_a): the light the top takes in, let down through the cloud above
+// CLOUDS_MS_W3: mu_0 T_d(tau_a): the light the top takes in, let down through the cloud above
+#ifndef CLOUDS_MS_W3
 #define CLOUDS_MS_W3 0.0
 #endif
-#ifndef CLOUDS_MS_W4  // mu_0 T_d(tau_a) S(tau_b): ... and reflected back up from below
+// CLOUDS_MS_W4: mu_0 T_d(tau_a) S(tau_b): ... and reflected back up from below
+#ifndef CLOUDS_MS_W4
 #define CLOUDS_MS_W4 0.0
 #endif
-#ifndef CLOUDS_MS_W5  // T_d(tau): the diffuse light toward the light, direct beam included
+// CLOUDS_MS_W5: T_d(tau): the diffuse light toward the light, direct beam included
+#ifndef CLOUDS_MS_W5
 #define CLOUDS_MS_W5 0.0
 #endif
-#ifndef CLOUDS_MS_W6  // T_d(tau) S(tau_b): ... gathered from the cloud below
+// CLOUDS_MS_W6: T_d(tau) S(tau_b): ... gathered from the cloud below
+#ifndef CLOUDS_MS_W6
 #define CLOUDS_MS_W6 0.0
 #endif
-#ifndef CLOUDS_MS_W7  // D T_d(tau_a): the diffuse light toward the light that the column above lets by
+// CLOUDS_MS_W7: D T_d(tau_a): the diffuse light toward the light that the column above lets by
+#ifndef CLOUDS_MS_W7
 #define CLOUDS_MS_W7 0.0
 #endif
-#ifndef CLOUDS_MS_W8  // exp(-tau / 4): an octave
+// CLOUDS_MS_W8: exp(-tau / 4): an octave
+#ifndef CLOUDS_MS_W8
 #define CLOUDS_MS_W8 0.0
 #endif
-#ifndef CLOUDS_MS_W9  // exp(-tau / 16): an octave
+// CLOUDS_MS_W9: exp(-tau / 16): an octave
+#ifndef CLOUDS_MS_W9
 #define CLOUDS_MS_W9 0.0
 #endif
-#ifndef CLOUDS_MS_W10  // exp(-tau / 4) p_2(mu): an octave, forward-peaked
+// CLOUDS_MS_W10: exp(-tau / 4) p_2(mu): an octave, forward-peaked
+#ifndef CLOUDS_MS_W10
 #define CLOUDS_MS_W10 0.0
 #endif
-#ifndef CLOUDS_MS_W11  // D S(tau_B): the diffuse light gathered from the cloud's body below
+// CLOUDS_MS_W11: D S(tau_B): the diffuse light gathered from the cloud's body below
+#ifndef CLOUDS_MS_W11
 #define CLOUDS_MS_W11 0.0
 #endif
-#ifndef CLOUDS_MS_W12  // mu_0 T_d(tau_A): the light let down through the body above
+// CLOUDS_MS_W12: mu_0 T_d(tau_A): the light let down through the body above
+#ifndef CLOUDS_MS_W12
 #define CLOUDS_MS_W12 0.0
 #endif
-#ifndef CLOUDS_MS_W13  // T_d(tau) S(tau_B)
+// CLOUDS_MS_W13: T_d(tau) S(tau_B)
+#ifndef CLOUDS_MS_W13
 #define CLOUDS_MS_W13 0.0
 #endif
-#ifndef CLOUDS_MS_W14  // mu_0 T_d(tau_A) S(tau_B)
+// CLOUDS_MS_W14: mu_0 T_d(tau_A) S(tau_B)
+#ifndef CLOUDS_MS_W14
 #define CLOUDS_MS_W14 0.0
 #endif
-#ifndef CLOUDS_MS_W15  // exp(-tau / 16) S(tau_B)
+// CLOUDS_MS_W15: exp(-tau / 16) S(tau_B)
+#ifndef CLOUDS_MS_W15
 #define CLOUDS_MS_W15 0.00986143
 #endif
-#ifndef CLOUDS_MS_W16  // mu_0 (1 + 2k tau_B) / (1 + k (tau_A + tau_B)): the diffuse light in a lit slab
+// CLOUDS_MS_W16: mu_0 (1 + 2k tau_B) / (1 + k (tau_A + tau_B)): the diffuse light in a lit slab
+#ifndef CLOUDS_MS_W16
 #define CLOUDS_MS_W16 0.0
 #endif
-#ifndef CLOUDS_MS_W17  // mu_0 (1 + 2k tau_b) / (1 + k (tau_a + tau_b)): the same with the sample's own depths
+// CLOUDS_MS_W17: mu_0 (1 + 2k tau_b) / (1 + k (tau_a + tau_b)): the same with the sample's own depths
+#ifndef CLOUDS_MS_W17
 #define CLOUDS_MS_W17 0.0
 #endif
-#ifndef CLOUDS_MS_W18  // mu_0 D: the diffuse light beyond the direct beam, per unit area of a deck's lit top
+// CLOUDS_MS_W18: mu_0 D: the diffuse light beyond the direct beam, per unit area of a deck's lit top
+#ifndef CLOUDS_MS_W18
 #define CLOUDS_MS_W18 0.0
 #endif
-#ifndef CLOUDS_MS_W19  // mu_0 D S(tau_b)
+// CLOUDS_MS_W19: mu_0 D S(tau_b)
+#ifndef CLOUDS_MS_W19
 #define CLOUDS_MS_W19 0.0
 #endif
-#ifndef CLOUDS_MS_W20  // mu_0 T_d(tau) S(tau_b)
+// CLOUDS_MS_W20: mu_0 T_d(tau) S(tau_b)
+#ifndef CLOUDS_MS_W20
 #define CLOUDS_MS_W20 0.0713593
 #endif
-#ifndef CLOUDS_MS_W21  // mu_0 D T_d(tau_a)
+// CLOUDS_MS_W21: mu_0 D T_d(tau_a)
+#ifndef CLOUDS_MS_W21
 #define CLOUDS_MS_W21 0.0
 #endif
-#ifndef CLOUDS_MS_W22  // mu_0 exp(-tau / 16)
+// CLOUDS_MS_W22: mu_0 exp(-tau / 16)
+#ifndef CLOUDS_MS_W22
 #define CLOUDS_MS_W22 0.0381244
 #endif
-#ifndef CLOUDS_MS_W23  // c D, c = clamp(tau_A / tau, mu_0, 1): the cosine at which the light entered the lit surface
+// CLOUDS_MS_W23: c D, c = clamp(tau_A / tau, mu_0, 1): the cosine at which the light entered the lit surface
+#ifndef CLOUDS_MS_W23
 #define CLOUDS_MS_W23 0.065885
 #endif
-#ifndef CLOUDS_MS_W24  // c D S(tau_b)
+// CLOUDS_MS_W24: c D S(tau_b)
+#ifndef CLOUDS_MS_W24
 #define CLOUDS_MS_W24 0.1339
 #endif
-#ifndef CLOUDS_MS_W25  // f D, f the clear fraction of the light march: light let in through gaps and the soft edge
+// CLOUDS_MS_W25: f D, f the clear fraction of the light march: light let in through gaps and the soft edge
+#ifndef CLOUDS_MS_W25
 #define CLOUDS_MS_W25 0.0
 #endif
-#ifndef CLOUDS_MS_W26  // f D S(tau_b)
+// CLOUDS_MS_W26: f D S(tau_b)
+#ifndef CLOUDS_MS_W26
 #define CLOUDS_MS_W26 0.0
 #endif
-#ifndef CLOUDS_MS_W27  // mu_0 exp(-tau / 4)
+// CLOUDS_MS_W27: mu_0 exp(-tau / 4)
+#ifndef CLOUDS_MS_W27
 #define CLOUDS_MS_W27 0.0
 #endif
-#ifndef CLOUDS_MS_W28  // T_d(tau) (1 - mu) / 2: the diffuse light seen from the light's side (a lit surface's reflection)
+// CLOUDS_MS_W28: T_d(tau) (1 - mu) / 2: the diffuse light seen from the light's side (a lit surface's
+// reflection)
+#ifndef CLOUDS_MS_W28
 #define CLOUDS_MS_W28 0.0
 #endif
-#ifndef CLOUDS_MS_W29  // D (1 - mu) / 2
+// CLOUDS_MS_W29: D (1 - mu) / 2
+#ifndef CLOUDS_MS_W29
 #define CLOUDS_MS_W29 0.0
 #endif
 #endif

@@ -88,7 +88,9 @@ TEST(CloudsPassForms, CompositeAlone) { expect_forms_agree(peer(), "clouds.compo
 // the pixels next to the last frame's silhouettes), the resolve reprojecting the rest. Each pass in
 // compute form alone, then all four.
 TEST(CloudsPassForms, MarchResolveCompositeTurning) {
-  const nlohmann::json doc = peer();
+  nlohmann::json doc = peer();
+  test::entity_with(doc, "clouds.VolumetricClouds")["components"]["clouds.VolumetricClouds"]["march_silhouettes"] =
+      true;
   const testing::FormFrame f = render_turning(doc, {}, 7);
   ASSERT_TRUE(f.ran("clouds.resolve"));
   ASSERT_TRUE(f.ran("clouds.march_silhouettes"));

@@ -91,8 +91,9 @@ struct VolumetricClouds {
   bool temporal_clipping = true;  // off: plain reprojection (for measuring what clipping saves)
   // With temporal upscaling in 2 x 2 blocks: the pixels next to the last frame's strongest silhouettes
   // (its opacity changes by more than 0.5 within 3 x 3 pixels) are marched every frame too, not
-  // reprojected (issue 35).
-  bool march_silhouettes = true;
+  // reprojected (issue 35): a sixth of the error there, for 1.8-2.2 times the frame at `high` on
+  // llvmpipe (docs/performance.md). Off by default until the marked pixels are marched as a dense list.
+  bool march_silhouettes = false;
   // With temporal upscaling: each ray starts where the last frame's rays around it met no cloud, less
   // how far the camera and the clouds moved; one block in eight is marched whole each frame in turn.
   // Off by default: on llvmpipe it saved nothing measurable (README, "Empty space in front").
