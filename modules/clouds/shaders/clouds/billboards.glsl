@@ -17,6 +17,14 @@
 
 #include "clouds/billboard_block.glsl.h"
 
+// An archetype cloud the bake chose (clouds/billboards_bake.comp) and the placement reads: where it
+// lies in the layer's noise (metres) and its score, the sum of the five envelopes it was chosen by.
+struct BillboardArchetype {
+  vec2 place;
+  float score;
+  float unused;  // std430 packs the array by 16 bytes, as it did the vec4s before
+};
+
 uniform ivec4 u_atlas;  // view azimuths, view elevations, archetypes, texels per side
 uniform vec4 u_box;     // half width m, half height m, bounding radius m, volume slices per archetype
 uniform vec4 u_volume;  // texels per side of an archetype's volume, height of the box's centre above the

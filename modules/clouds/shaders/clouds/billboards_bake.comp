@@ -18,7 +18,7 @@
 
 layout(local_size_x = 64) in;
 // place (m in the noise's frame), score
-layout(std430, binding = 7) buffer BillboardArchetypes { vec4 bb_archetypes[]; };
+layout(std430, binding = 7) buffer BillboardArchetypes { BillboardArchetype bb_archetypes[]; };
 #if BILLBOARDS_BAKE_STAGE == 1
 layout(r32f, binding = 0) uniform writeonly image3D o_volume;
 #elif BILLBOARDS_BAKE_STAGE == 2
@@ -72,7 +72,7 @@ void main() {
     }
     if (score > 0.0 && abs(score - target) < best) best = abs(score - target), best_score = score, place = p;
   }
-  bb_archetypes[id] = vec4(place, best_score, 0.0);
+  bb_archetypes[id] = BillboardArchetype(place, best_score, 0.0);
 #elif BILLBOARDS_BAKE_STAGE == 1
   int n = int(u_volume.x), slices = int(u_box.w);
   if (id >= n * n * slices * u_atlas.z) return;
@@ -84,7 +84,7 @@ void main() {
   // The weather faded out toward the box's sides: a cloud inside it, not a cut block of the layer.
   clouds_weather_scale = 1.0 - smoothstep(0.55, 0.95, length(p.xy) / hw);
   clouds_footprint_m = 2.0 * hw / float(n);  // the noise averaged over a voxel
-  vec3 x = vec3(bb_archetypes[archetype].xy + p.xy, centre_h + p.z);
+  vec3 x = vec3(bb_archetypes[archetype].place + p.xy, centre_h + p.z);
   float sigma = clouds_weather_scale > 0.0 ? archetype_field(L, x, centre_h + p.z) : 0.0;
   imageStore(o_volume, ivec3(i, j, l), vec4(sigma));
 #elif BILLBOARDS_BAKE_STAGE == 2

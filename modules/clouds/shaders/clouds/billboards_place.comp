@@ -14,7 +14,7 @@ layout(std430, binding = 1) buffer Billboards { Billboard bb_billboards[]; };
 layout(std430, binding = 2) readonly buffer ClusterCells { float bb_cells[]; };
 layout(std430, binding = 3) readonly buffer ClusterChosen { int bb_chosen[]; };
 layout(std430, binding = 5) buffer ClusterOrder { uvec2 bb_order[]; };
-layout(std430, binding = 7) readonly buffer BillboardArchetypes { vec4 bb_archetypes[]; };
+layout(std430, binding = 7) readonly buffer BillboardArchetypes { BillboardArchetype bb_archetypes[]; };
 uniform int u_layer;
 uniform int u_count;          // billboards
 uniform int u_order_size;     // the sort's power-of-two size
@@ -51,13 +51,13 @@ void main() {
     float score = bb_cells[cell], nearest = 3.4e38;
     int archetype = 0;
     for (int k = 0; k < u_atlas.z; ++k) {
-      float miss = abs(bb_archetypes[k].z - score) + 1e-3 * fract(u.z * 7.0 + float(k) * 0.618);
-      if (bb_archetypes[k].z > 0.0 && miss < nearest) nearest = miss, archetype = k;
+      float miss = abs(bb_archetypes[k].score - score) + 1e-3 * fract(u.z * 7.0 + float(k) * 0.618);
+      if (bb_archetypes[k].score > 0.0 && miss < nearest) nearest = miss, archetype = k;
     }
     float fade =
         smoothstep(u_fade.x, u_fade.y + 1e-3, rho) * (1.0 - smoothstep(u_fade.z - 1e-3, u_fade.w, rho));
     // A cell weaker than the weakest archetype thins it.
-    float weather = clamp(score / max(bb_archetypes[archetype].z, 1e-6), 0.0, 1.0);
+    float weather = clamp(score / max(bb_archetypes[archetype].score, 1e-6), 0.0, 1.0);
     float scale = u_density_scale * fade * weather;
     if (scale > 0.0) {
       vec3 up = normalize(cl.up * cl.camera_radius_m + c);
