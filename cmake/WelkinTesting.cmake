@@ -4,6 +4,7 @@ function(welkin_add_test)
   cmake_parse_arguments(T "" "NAME" "SOURCES;LIBS;LABELS" ${ARGN})
   add_executable(${T_NAME} ${T_SOURCES})
   target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main welkin_warnings)
+  target_include_directories(${T_NAME} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
   # The checkout's absolute paths go only to the sources that name them: the others compile the
   # same in every checkout, so ccache (base_dir) shares them between worktrees.
   foreach(src IN LISTS T_SOURCES)

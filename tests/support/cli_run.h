@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <string>
 
+#include "scratch_folder.h"
+
 namespace welkin::testing {
 
 struct CliRun {
@@ -29,11 +31,5 @@ inline CliRun run_welkin(const std::string& args, bool with_stderr = true) {
   return r;
 }
 
-// A file name in a per-process scratch folder named after the test.
-inline std::filesystem::path scratch_path(const std::string& folder, const std::string& name) {
-  auto d = std::filesystem::temp_directory_path() / (folder + "-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(d);
-  return d / name;
-}
 
 }  // namespace welkin::testing

@@ -16,6 +16,7 @@
 #include "slurm_script.h"
 #include "welkin/core/error.h"
 #include "welkin/core/files.h"
+#include "scratch_folder.h"
 
 namespace {
 
@@ -24,9 +25,7 @@ using namespace welkin::cli;
 
 // A file name in a scratch folder of this process.
 fs::path tmp(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("welkin-farm-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
+  return welkin::testing::scratch_folder("welkin-farm") / name;
 }
 
 std::string error_of(const std::function<void()>& f) {

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "session_fuzz.h"
+#include "scratch_folder.h"
 
 namespace {
 
@@ -83,7 +84,7 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  const FuzzFolder folder(fs::temp_directory_path() / ("welkin-session-fuzz-" + std::to_string(::getpid())));
+  const FuzzFolder folder(welkin::testing::scratch_folder("welkin-session-fuzz") / "folder");
   int status = 0;
   if (!replays.empty()) {
     status = replay(folder, replays);

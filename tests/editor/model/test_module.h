@@ -11,6 +11,7 @@
 
 #include "welkin/core/module.h"
 #include "welkin/core/world.h"
+#include "scratch_folder.h"
 
 namespace editor_test {
 
@@ -94,7 +95,7 @@ inline std::unique_ptr<welkin::World> make_test_world() {
 class ScratchDir {
  public:
   explicit ScratchDir(const std::string& name)
-      : path_(std::filesystem::temp_directory_path() / ("welkin-editor-test-" + name + "-" + std::to_string(::getpid()))) {
+      : path_(welkin::testing::scratch_folder("welkin-editor-test") / name) {
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }

@@ -23,6 +23,7 @@
 #include "welkin/scene/json_fields.h"
 #include "welkin/scene/scene_file.h"
 #include "golden.h"
+#include "scratch_folder.h"
 
 namespace welkin::modules {
 const ModuleDefinition& atmosphere_module();
@@ -201,8 +202,7 @@ GroundLight ground_light() {
 // half-float precision. The light is computed after the surface is drawn (position from the depth,
 // the surface's inputs packed per pixel), so this is also what bounds the packing.
 TEST_F(TerrainRender, GroundShadesAsTheCpuReference) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("welkin-terrain-pbr-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path& dir = welkin::testing::scratch_folder("welkin-terrain-pbr");
   // An emissive texture of one colour (sRGB 132, 65, 206) multiplies the factor.
   ImageU8 glow;
   glow.width = glow.height = 2;
@@ -259,8 +259,7 @@ TEST_F(TerrainRender, GroundShadesAsTheCpuReference) {
 // from the colours' edge carries the CPU reference (emissive, and the PBR light with occlusion
 // 1 + strength (texel - 1)).
 TEST_F(TerrainRender, EachTextureTakesItsOwnTransform) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("welkin-terrain-uv-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path& dir = welkin::testing::scratch_folder("welkin-terrain-uv");
   auto image = [](int side, auto colour) {
     ImageU8 img;
     img.width = img.height = side;
@@ -355,9 +354,7 @@ TEST_F(TerrainRender, CpuCopiesOfTheMeshAreReleasedOnceUploaded) {
 // decoding and building them, and draws the same frame, bit for bit; other build settings miss the
 // mesh but not the images.
 TEST_F(TerrainRender, MeshReadFromTheDiskCacheBitForBit) {
-  // Per process: other checkouts on the machine may run the same test at the same time.
-  const std::filesystem::path folder =
-      std::filesystem::path(::testing::TempDir()) / ("welkin-terrain-cache-" + std::to_string(::getpid()));
+  const std::filesystem::path folder = welkin::testing::scratch_folder("welkin-terrain-cache") / "cache";
   std::filesystem::remove_all(folder);
   const welkin::testing::CacheFolder cache(folder.string());
   size_t image_reads = 0;

@@ -13,6 +13,7 @@
 #include "growth.h"
 #include "welkin/weather/metar.h"
 #include "welkin/weather/station_table.h"
+#include "scratch_folder.h"
 
 namespace {
 
@@ -41,9 +42,7 @@ std::string icao(size_t i) {
 }
 
 TEST(WeatherReaderGrowth, StationTableWithManyStations) {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("welkin-weather-growth-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path& dir = welkin::testing::scratch_folder("welkin-weather-growth");
   auto make = [&](size_t stations) {
     const std::string path = (dir / ("stations-" + std::to_string(stations) + ".csv")).string();
     std::ofstream out(path);

@@ -11,13 +11,14 @@
 #include "welkin/assets/glb_writer.h"
 #include "welkin/assets/gltf_loader.h"
 #include "welkin/core/error.h"
+#include "scratch_folder.h"
 
 namespace welkin::assets::test {
 
 namespace fs = std::filesystem;
 
 inline fs::path temp_dir(const std::string& sub = "") {
-  fs::path d = fs::temp_directory_path() / ("welkin-assets-test-" + std::to_string(::getpid())) / sub;
+  fs::path d = welkin::testing::scratch_folder("welkin-assets-test") / sub;
   fs::create_directories(d);
   return d;
 }

@@ -11,13 +11,14 @@
 #include <fstream>
 #include <map>
 #include <optional>
+#include "scratch_folder.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
 fs::path fresh_dir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("welkin-disk-cache-test-" + std::to_string(::getpid())) / name;
+  fs::path d = welkin::testing::scratch_folder("welkin-disk-cache-test") / name;
   fs::remove_all(d);
   return d;
 }

@@ -15,13 +15,14 @@
 
 #include "welkin/core/error.h"
 #include "welkin/gfx/image.h"
+#include "scratch_folder.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
 fs::path fresh_dir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("welkin-files-test-" + std::to_string(::getpid())) / name;
+  fs::path d = welkin::testing::scratch_folder("welkin-files-test") / name;
   fs::remove_all(d);
   fs::create_directories(d);
   return d;

@@ -10,6 +10,7 @@
 #include "welkin/core/error.h"
 #include "welkin/core/world.h"
 #include "welkin/scene/scene_file.h"
+#include "scratch_folder.h"
 
 namespace {
 
@@ -67,7 +68,7 @@ TEST(Plugins, MissingDependencyIsAClearError) {
 }
 
 TEST(Plugins, ManifestThatDoesNotMatchItsLibraryIsIncompatible) {
-  fs::path dir = fs::temp_directory_path() / ("welkin-plugin-test-" + std::to_string(::getpid()));
+  fs::path dir = welkin::testing::scratch_folder("welkin-plugin-test");
   fs::create_directories(dir);
   fs::copy_file(kModules / "libwelkin_testbase.so", dir / "libwelkin_testbase.so", fs::copy_options::overwrite_existing);
   json m = json::parse(std::ifstream(kModules / "testbase.module.json"));
@@ -81,7 +82,7 @@ TEST(Plugins, ManifestThatDoesNotMatchItsLibraryIsIncompatible) {
 }
 
 TEST(Plugins, AMalformedManifestIsReportedAndSkippedNotFatal) {
-  fs::path dir = fs::temp_directory_path() / ("welkin-plugin-bad-" + std::to_string(::getpid()));
+  fs::path dir = welkin::testing::scratch_folder("welkin-plugin-bad");
   fs::remove_all(dir);
   fs::create_directories(dir);
   std::ofstream(dir / "broken.module.json") << R"({"name": "broken", "version": 3})";
@@ -100,7 +101,7 @@ TEST(Plugins, AMalformedManifestIsReportedAndSkippedNotFatal) {
 }
 
 TEST(Plugins, AManifestsLibraryIsAFileNameBesideIt) {
-  fs::path dir = fs::temp_directory_path() / ("welkin-plugin-path-" + std::to_string(::getpid()));
+  fs::path dir = welkin::testing::scratch_folder("welkin-plugin-path");
   fs::remove_all(dir);
   fs::create_directories(dir);
   json m = json::parse(std::ifstream(kModules / "testbase.module.json"));
@@ -118,7 +119,7 @@ TEST(Plugins, AManifestsLibraryIsAFileNameBesideIt) {
 
 TEST(Plugins, ADependencyThatCannotBeLoadedIsOneErrorNamingBoth) {
   // testsky depends on testbase, whose library here is not a library.
-  fs::path dir = fs::temp_directory_path() / ("welkin-plugin-dep-" + std::to_string(::getpid()));
+  fs::path dir = welkin::testing::scratch_folder("welkin-plugin-dep");
   fs::remove_all(dir);
   fs::create_directories(dir);
   for (const char* f : {"libwelkin_testsky.so", "testsky.module.json", "testbase.module.json"})

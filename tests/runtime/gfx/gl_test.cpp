@@ -15,6 +15,7 @@
 #include "welkin/gfx/renderer.h"
 #include "welkin/gfx/shader.h"
 #include "welkin/scene/scene_file.h"
+#include "scratch_folder.h"
 
 namespace {
 
@@ -96,7 +97,7 @@ TEST_F(Gl, ExrRoundTripPreservesHdrValues) {
     float v[4] = {float(i) * 1000.5f, 1e-3f * float(i + 1), 65000.0f, 1.0f};
     img.rgba.insert(img.rgba.end(), v, v + 4);
   }
-  auto path = std::filesystem::temp_directory_path() / "welkin-roundtrip.exr";
+  auto path = welkin::testing::scratch_folder("welkin-gl-test") / "roundtrip.exr";
   write_exr(path.string(), img, ExrPrecision::full);
   ImageF back = read_exr(path.string());
   EXPECT_EQ(back.rgba, img.rgba);

@@ -9,6 +9,7 @@
 
 #include "welkin/core/error.h"
 #include "welkin/gfx/image.h"
+#include "scratch_folder.h"
 
 namespace {
 
@@ -16,9 +17,7 @@ namespace fs = std::filesystem;
 using welkin::MapFrame;
 
 fs::path temp_dir() {
-  fs::path d = fs::temp_directory_path() / ("welkin-painted-map-test-" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
+  return welkin::testing::scratch_folder("welkin-painted-map-test");
 }
 
 TEST(MapFrame, TheOriginIsTheCentreAndAColumnOfAirStaysOnOnePlace) {

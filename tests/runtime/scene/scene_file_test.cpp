@@ -12,6 +12,7 @@
 #include "welkin/gfx/camera.h"
 #include "welkin/gfx/debug_content.h"
 #include "welkin/scene/json_fields.h"
+#include "scratch_folder.h"
 
 namespace {
 
@@ -24,9 +25,7 @@ std::string slurp(const fs::path& p) {
 }
 
 fs::path temp_dir() {
-  fs::path d = fs::temp_directory_path() / ("welkin-scene-test-" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
+  return welkin::testing::scratch_folder("welkin-scene-test");
 }
 
 welkin::ErrorInfo load_error(const std::string& text) {

@@ -10,6 +10,7 @@
 #include "welkin/core/error.h"
 #include "welkin/gfx/light_environment.h"
 #include "welkin/scene/json_fields.h"
+#include "scratch_folder.h"
 
 namespace welkin::atmosphere {
 namespace {
@@ -120,7 +121,7 @@ TEST(AtmospherePresets, AllLoadAndEarthIsTheDefault) {
 }
 
 TEST(AtmospherePresets, BadPresetNamesFileAndPath) {
-  auto file = std::filesystem::temp_directory_path() / "welkin-bad-preset.json";
+  auto file = welkin::testing::scratch_folder("welkin-atmosphere-test") / "welkin-bad-preset.json";
   write_file_atomically(file.string(), R"({"mie_g": 2})");
   std::string msg = error_of([&] { load_preset_file(file); });
   EXPECT_NE(msg.find("welkin-bad-preset.json"), std::string::npos) << msg;
@@ -194,7 +195,7 @@ TEST(AtmosphereLuts, RegeneratedOnlyWhenTheMediumChanges) {
 // bit for bit, and draws the same frame; another medium is a miss and is built.
 TEST(AtmosphereLuts, ReadFromTheDiskCacheBitForBit) {
   const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("welkin-lut-cache-" + std::to_string(::getpid()));
+      welkin::testing::scratch_folder("welkin-lut-cache") / "cache";
   std::filesystem::remove_all(dir);
   const CacheFolder cache(dir.string());
   const json sun = {{"elevation_deg", -4}};

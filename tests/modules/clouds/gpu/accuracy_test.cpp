@@ -8,6 +8,7 @@
 
 #include "clouds_test_support.h"
 #include "validation/cloud_probe.h"
+#include "scratch_folder.h"
 
 namespace welkin::clouds {
 namespace {
@@ -133,7 +134,7 @@ TEST(CloudsAccuracy, TheSkyAloneFollowsThePathTracer) {
 // and a field the ray sees differently is path traced again under another key.
 TEST(CloudsAccuracy, ReferenceCacheReadsTheSameRayBackAndMissesAChangedField) {
   test::gl_context().make_current();
-  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "welkin-cloud-reference-cache-test";
+  const std::filesystem::path folder = welkin::testing::scratch_folder("welkin-cloud-reference-cache-test") / "cache";
   std::filesystem::remove_all(folder);
   CloudProbe probe(cumulus(), 200.0, 40.0);
   probe.set_reference_cache(DiskCache(folder.string()));
@@ -159,7 +160,7 @@ TEST(CloudsAccuracy, ReferenceCacheReadsTheSameRayBackAndMissesAChangedField) {
 // The reference image is cached whole: read back as it was, path traced again when the field changes.
 TEST(CloudsAccuracy, ReferenceImageCacheReadsTheImageBackAndMissesAChangedField) {
   test::gl_context().make_current();
-  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "welkin-cloud-image-cache-test";
+  const std::filesystem::path folder = welkin::testing::scratch_folder("welkin-cloud-image-cache-test") / "cache";
   std::filesystem::remove_all(folder);
   CloudProbe probe(cumulus(), 200.0, 40.0);
   probe.set_reference_cache(DiskCache(folder.string()));

@@ -14,6 +14,7 @@
 #include "welkin/gfx/debug_content.h"
 #include "welkin/gfx/light_environment.h"
 #include "welkin/scene/field_path.h"
+#include "scratch_folder.h"
 
 namespace welkin::clouds {
 namespace {
@@ -87,9 +88,7 @@ TEST(CloudsGpu, NoiseIsMadeOnceDeterministicFromTheSeedAndTileable) {
 // A start that finds the noise in the disk cache reads it instead of generating it, and gets the
 // same volumes bit for bit, so the same frame; another seed is another key.
 TEST(CloudsGpu, NoiseReadFromTheDiskCacheBitForBit) {
-  // Per process: other checkouts on the machine may run the same test at the same time.
-  const std::filesystem::path folder =
-      std::filesystem::path(::testing::TempDir()) / ("welkin-noise-cache-" + std::to_string(::getpid()));
+  const std::filesystem::path folder = welkin::testing::scratch_folder("welkin-noise-cache") / "cache";
   std::filesystem::remove_all(folder);
   const welkin::testing::CacheFolder cache(folder.string());
   test::Rendered built = render(noon());

@@ -9,6 +9,7 @@
 #include "validation/cloud_field.h"
 #include "welkin/core/error.h"
 #include "welkin/scene/painted_map.h"
+#include "scratch_folder.h"
 
 namespace welkin::clouds {
 namespace {
@@ -18,8 +19,7 @@ namespace fs = std::filesystem;
 
 // A 64-texel map of 40 km: the west half painted `west`, the east half `east`.
 std::string write_map(const std::string& name, uint8_t west, uint8_t east) {
-  const fs::path dir = fs::temp_directory_path() / ("welkin-coverage-map-test-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const fs::path& dir = welkin::testing::scratch_folder("welkin-coverage-map-test");
   const std::string file = (dir / name).string();
   PaintedMaps maps;
   PaintedMap& m = maps.create(file, 64);

@@ -11,6 +11,7 @@
 #include "welkin/gfx/debug_content.h"
 #include "welkin/scene/scene_file.h"
 #include "welkin/timeofday/components.h"
+#include "scratch_folder.h"
 
 namespace welkin::modules {
 const ModuleDefinition& timeofday_module();
@@ -121,7 +122,7 @@ TEST(Sequence, ScrubbingGivesTheSameStateAsPlaying) {
 }
 
 TEST(Sequence, UnknownTargetIsAnErrorUnlessOptional) {
-  auto dir = std::filesystem::temp_directory_path();
+  const auto& dir = welkin::testing::scratch_folder("welkin-sequence-test");
   auto write = [&](const char* name, const std::string& text) {
     std::ofstream(dir / name) << text;
     return (dir / name).string();
