@@ -92,7 +92,13 @@ void march_segment(vec3 dir, vec2 segment, float start, float jitter, inout Accu
   float mu = dot(dir, l);
   float extinction_per_density = cl.scattering + cl.absorption;
   float t = max(segment.x, start);
+  // `first`: the next step starts where the step grid restarts (the stretch's start, past a skipped
+  // block, back after a stride): its length is jittered per pixel and frame, or a flat layer would
+  // show rings where the steps reach its base at the same phase (equal distance from the camera).
   bool first = true;
+  // An empty stride that lands in cloud is taken back: the march returns to its last empty sample
+  // and steps up to where the stride landed (`refine_until`) in steps that do not stride.
+  float stride_from = -1.0, refine_until = -1.0;
   // The light reaching the clouds and the air in front of them change over kilometres, not metres:
   // they are looked up at both ends of the segment and interpolated along it. (A software rasteriser
   // runs a lookup inside the loop for a whole group of pixels whenever any one of them needs it.)
@@ -121,7 +127,8 @@ void march_segment(vec3 dir, vec2 segment, float start, float jitter, inout Accu
     while (t < segment.y && acc.steps < int(cl.max_steps)) {
       // Steps grow with distance (a pixel's footprint grows with it), within [min, max].
       step_m = clamp(cl.min_step_m + t * cl.step_growth, cl.min_step_m, longest_m);
-      if (first) step_m *= jitter, first = false;
+      float phase = first ? jitter : 1.0;  // an empty stride from here keeps the jitter too
+      step_m *= phase, first = false;
       step_m = min(step_m, segment.y - t);
       x = dir * (t + 0.5 * step_m);
       ++acc.steps;
@@ -133,17 +140,26 @@ void march_segment(vec3 dir, vec2 segment, float start, float jitter, inout Accu
       if (skip > 0.0) {
         if (acc.depth_weight == 0.0) acc.clear_m = t + 0.5 * step_m;
         t += 0.5 * step_m + skip;  // from the sample to past the block's side
+        first = true, stride_from = -1.0;
         continue;
       }
       bool empty;
       clouds_view_sample = true;
       density = clouds_density(x, detail, false, empty);
       clouds_view_sample = false;
+      if (density > 0.0 && stride_from >= 0.0) {
+        // The stride's end lies at a phase of the stride's grid that is the same for every pixel at
+        // this distance, and all that it passed counted as empty.
+        refine_until = t + step_m, t = stride_from, stride_from = -1.0, first = true;
+        continue;
+      }
       if (density > 0.0) break;
       if (acc.depth_weight == 0.0) acc.clear_m = t + 0.5 * step_m;
       // Empty space: skip ahead by up to a quarter of the weather's texel (the weather cannot rise
       // from nothing to cloud much faster); where the noise eroded the cloud, the usual step.
-      t += empty ? max(step_m, min(cl.max_step_m, cl.empty_step_m)) : step_m;
+      float stride = empty && t >= refine_until ? max(step_m, min(cl.max_step_m, cl.empty_step_m) * phase) : step_m;
+      stride_from = stride > step_m ? t + 0.5 * step_m : -1.0;
+      t += stride;
     }
     if (density <= 0.0) break;
     {
