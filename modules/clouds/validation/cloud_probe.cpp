@@ -115,8 +115,12 @@ void CloudProbe::aim(const CloudView& view) {
 
 double CloudProbe::march_middle_pixel(const CloudView& view) {
   aim(view);
-  renderer_->render_frame(FrameInfo{.index = frame_++}, 1, kRows);
-  return renderer_->read_hdr().pixel(0, kRows / 2)[1];
+  double sum = 0.0;
+  for (int i = 0; i < kJitterFrames; ++i) {
+    renderer_->render_frame(FrameInfo{.index = frame_++}, 1, kRows);
+    sum += renderer_->read_hdr().pixel(0, kRows / 2)[1];
+  }
+  return sum / kJitterFrames;
 }
 
 // The march under the probe's light: `render` marched once under the sun, or (the sky alone) with
@@ -281,11 +285,14 @@ std::vector<double> CloudProbe::gpu_image(const Camera& camera, int width, int h
   Registry& reg = world_->registry();
   *reg.get<Camera>(reg.first<Camera>()) = camera;
   return under_light([&] {
-    renderer_->render_frame(FrameInfo{.index = frame_++}, width, height);
-    const ImageF hdr = renderer_->read_hdr();
-    std::vector<double> image(size_t(width) * height);
-    for (int y = 0; y < height; ++y)  // read_hdr's rows run from the bottom
-      for (int x = 0; x < width; ++x) image[size_t(y) * width + x] = hdr.pixel(x, height - 1 - y)[1];
+    std::vector<double> image(size_t(width) * height, 0.0);
+    for (int i = 0; i < kJitterFrames; ++i) {
+      renderer_->render_frame(FrameInfo{.index = frame_++}, width, height);
+      const ImageF hdr = renderer_->read_hdr();
+      for (int y = 0; y < height; ++y)  // read_hdr's rows run from the bottom
+        for (int x = 0; x < width; ++x)
+          image[size_t(y) * width + x] += hdr.pixel(x, height - 1 - y)[1] / kJitterFrames;
+    }
     return image;
   });
 }

@@ -29,7 +29,8 @@ struct CloudView {
 
 class CloudProbe {
  public:
-  // Requires a current GL 4.5 context. The clouds' temporal upscaling is turned off: one frame, one ray.
+  // Requires a current GL 4.5 context. The clouds' temporal upscaling is turned off: every frame marches
+  // every ray.
   CloudProbe(const VolumetricClouds& clouds, double sun_azimuth_deg, double sun_elevation_deg);
   ~CloudProbe();
   static constexpr double kSunIlluminance = 100000.0;
@@ -39,6 +40,10 @@ class CloudProbe {
   // away blurred over 35 m, where the reference sees it sharp). Odd, and odd at every quality's march
   // resolution (ceil(17 x 0.25, 0.4, 0.5, 1) = 5, 7, 9, 17): the middle march pixel is the ray.
   static constexpr int kRows = 17;
+  // The march jitters where its steps fall, per pixel and frame, and the temporal resolve averages the
+  // frames: a ray's (and an image's) radiance is the mean of this many frames (one frame of a deck's
+  // top seen from above is up to 4% off the mean).
+  static constexpr int kJitterFrames = 16;
 
   // What lights the rays, on both sides: the sun alone (as built), or the sky alone, the runtime's
   // default sky with kSkyFraction of the sun's illuminance on a plane facing up, over a black ground.

@@ -157,7 +157,8 @@ void march_segment(vec3 dir, vec2 segment, float start, float jitter, inout Accu
       if (acc.depth_weight == 0.0) acc.clear_m = t + 0.5 * step_m;
       // Empty space: skip ahead by up to a quarter of the weather's texel (the weather cannot rise
       // from nothing to cloud much faster); where the noise eroded the cloud, the usual step.
-      float stride = empty && t >= refine_until ? max(step_m, min(cl.max_step_m, cl.empty_step_m) * phase) : step_m;
+      float stride =
+          empty && t >= refine_until ? max(step_m, min(cl.max_step_m, cl.empty_step_m) * phase) : step_m;
       stride_from = stride > step_m ? t + 0.5 * step_m : -1.0;
       t += stride;
     }
