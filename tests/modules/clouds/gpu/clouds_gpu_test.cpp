@@ -337,8 +337,9 @@ TEST(CloudsGpu, FourByFourBlocksRenewEveryPixelOnceIn16Frames) {
         const size_t i = (size_t(y) * w + x) * 4 + c;
         // One step of half precision: the composite's bilinear read of the history lands on texel
         // centres up to rounding, and its vanishing weights on the neighbours (marched in other
-        // frames) can tip the last bit.
-        const float ulp = std::abs(expected.rgba[i]) / 1024.0f;
+        // frames) can tip the last bit. Below half's smallest normal (6.1e-5: a transmittance near
+        // zero) its step is 2^-24.
+        const float ulp = std::max(std::abs(expected.rgba[i]) / 1024.0f, 0x1p-24f);
         differing += std::abs(result.rgba[i] - expected.rgba[i]) > ulp;
         changed += std::abs(result.rgba[i] - stale.rgba[i]) > 8.0f * ulp;
       }

@@ -121,6 +121,8 @@ SilhouetteError measure(SilhouetteMotion motion, int frames, bool march_silhouet
 // 1.07%). Some 45% of the march's pixels at this size lie near a silhouette (3 x 3 opacity range over
 // 0.1), 32% at 320 x 180. The former measure (silhouettes where the full march's luminance steps by a
 // quarter of the frame's mean, the noon scene) read still 1.06% and flying 12.66% before this change.
+// Once the march kept its jitter through empty strides (its frames no longer alike): still 0.23% and
+// 0.41%, turning 2.44% and 1.78%, flying 3.27% and 3.74%.
 TEST(CloudsSilhouettes, UpscaledFramesFollowTheFullMarchAtSilhouettes) {
   const SilhouetteError still = measure(SilhouetteMotion::still, 3),
                         turning = measure(SilhouetteMotion::turning, 6),
@@ -129,7 +131,7 @@ TEST(CloudsSilhouettes, UpscaledFramesFollowTheFullMarchAtSilhouettes) {
   EXPECT_GT(turning.pixels, 2000u);
   EXPECT_GT(flying.pixels, 2000u);
   EXPECT_LT(still.silhouette, 0.004);    // 0.15%
-  EXPECT_LT(still.frame, 0.004);         // 0.16%
+  EXPECT_LT(still.frame, 0.006);         // 0.16%; 0.41% once the march kept its jitter (its noise)
   EXPECT_LT(turning.silhouette, 0.035);  // 2.44%
   EXPECT_LT(turning.frame, 0.025);       // 1.79%
   EXPECT_LT(flying.silhouette, 0.045);   // 3.21%
