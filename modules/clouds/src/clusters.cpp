@@ -64,17 +64,13 @@ const CloudClusters* first_clusters(World& world) {
   return e.is_null() ? nullptr : reg.get<CloudClusters>(e);
 }
 
-// The shape a genus's clusters take: dome (as the field's), form (0 heaps, 1 sheets, 2 streaks).
-glm::vec2 genus_form(Genus genus) {
-  return {genus_model(genus).dome, float(int(genus_traits(genus).cluster_form))};
-}
-
 // What placing a frame's puffs needs, taken when the pass is declared.
 struct PuffPlacement {
   ShaderDefines field;
   PlacementGrid grid;
   int packed, n_clusters, n_puffs, order_size, count;
-  glm::vec4 range, genus;
+  glm::vec4 range;
+  float density_scale;
   glm::vec3 light_dir;
   bool moon, sorted;
   uint32_t seed;
@@ -91,24 +87,21 @@ void place_puffs(CloudsGpu& gpu, RenderContext& rc, World& world, const PuffPlac
   // A cluster spreads over its cell: cells a cell beyond the ring's ends may hold some of it.
   const glm::vec4& range = pp.range;
   const glm::vec2 ring{range.x - 0.5f * range.y - float(grid.cell_m), range.z + float(grid.cell_m)};
-  c.placement.choose(rc.shaders, pp.field, grid, pp.packed, pp.n_clusters, ring, pp.seed);
+  c.placement.choose(rc.shaders, pp.field, grid, pp.packed, pp.n_clusters, ring, pp.seed, /*in_view=*/true);
   const int invocations[2] = {pp.count, pp.order_size};
   for (int stage = 2; stage < 4; ++stage) {
     ShaderDefines d = pp.field;
     d["CLUSTERS_STAGE"] = std::to_string(stage);
     const Program& p = rc.shaders.compute("clouds/clusters_place.comp", d);
     set_placement_uniforms(p, grid, pp.seed);
-    p.set("u_wind_en", grid.wind_en);
     p.set("u_layer", pp.packed);
     p.set("u_clusters", pp.n_clusters);
     p.set("u_puffs", pp.n_puffs);
     p.set("u_range", range);
-    p.set("u_genus", pp.genus);
+    p.set("u_density_scale", pp.density_scale);
     p.set("u_order_size", pp.order_size);
     p.set("u_light_dir", pp.light_dir);
     p.set("u_light", pp.moon ? 1 : 0);
-    p.set("u_axis_wind", grid.axis_wind);
-    p.set("u_axis_across", grid.axis_across);
     p.set("u_axis_up", grid.axis_up);
     dispatch_compute(p, group_count(invocations[stage - 2], 64), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -154,7 +147,6 @@ void clusters_system(SystemContext& sc) {
   const CloudsContext& ctx = gpu.context;
   const bool moon = gpu.block.moon_marched > 0.5f;
   const glm::vec3 light_dir = moon ? glm::vec3(0, 0, 1) : ctx.sun_direction;
-  const glm::vec2 form = genus_form(layer.genus);
   const PuffPlacement placement{
       .field = field_defines(gpu),
       .grid = grid,
@@ -163,8 +155,8 @@ void clusters_system(SystemContext& sc) {
       .n_puffs = clusters->puffs_per_cluster,
       .order_size = order_size,
       .count = count,
-      .range = {gpu.clusters_near_m, clusters->crossfade_m, clusters->far_m, clusters->puff_size},
-      .genus = {form.x, form.y, clusters->density_scale, 0.0f},
+      .range = {gpu.clusters_near_m, clusters->crossfade_m, clusters->far_m, 0.0f},
+      .density_scale = clusters->density_scale,
       .light_dir = light_dir,
       .moon = moon,
       .sorted = clusters->compositing == ClusterCompositing::sorted,
@@ -179,6 +171,8 @@ void clusters_system(SystemContext& sc) {
 
   const FrameTargets t = *sc.targets;
   const int samples = clusters->samples;
+  // The sun's light through the clouds' shadow map where the layer casts shadows into it.
+  const bool shadow_map = !moon && layer.casts_shadow && gpu.shadow.cascade_count > 0;
   const FarCloudTargets targets = far_cloud_targets(g, width, height);
   g.add_pass(
       "clouds.clusters_draw",
@@ -186,7 +180,8 @@ void clusters_system(SystemContext& sc) {
         b.read(t.depth);
         write_far_cloud_targets(b, targets);
       },
-      [gp, &rc, t, targets, count, grid, light_dir, samples, mesh](PassContext& pc) {
+      [gp, &rc, &world, t, targets, count, grid, light_dir, samples, mesh, shadow_map,
+       range = placement.range, field = placement.field](PassContext& pc) {
         ClustersGpu& c = gp->clusters;
         const Framebuffer fb = begin_far_cloud_draw(pc, targets);
         if (mesh) {
@@ -202,9 +197,15 @@ void clusters_system(SystemContext& sc) {
         glBindTextureUnit(3, pc.texture(t.depth).id());
         // The sample count is compiled in: llvmpipe runs a loop of run-time length for its whole group
         // of pixels, and unrolls one of fixed length.
-        ShaderDefines d = light_model_defines(*gp);
+        // The puffs march their layer's field.
+        bind_field(*gp);
+        ShaderDefines d = field;
+        for (const auto& [name, value] : light_model_defines(*gp)) d[name] = value;
         d["PUFF_PROXY_MESH"] = mesh ? "1" : "0";
         d["PUFF_SAMPLES"] = std::to_string(samples);
+        d["PUFF_DETAIL"] = "1";
+        d["PUFF_SHADOW_MAP"] = shadow_map ? "1" : "0";
+        if (shadow_map) world.resource<LightEnvironment>().bind();
         const Program& p = rc.shaders.graphics("clouds/puff.vert", "clouds/puff.frag", d);
         p.use();
         p.set("u_view_projection", rc.view.view_projection);
@@ -212,8 +213,10 @@ void clusters_system(SystemContext& sc) {
         p.set("u_viewport", glm::vec2(targets.width, targets.height));
         p.set("u_light_dir", light_dir);
         p.set("u_up_radius", glm::vec4(glm::vec3(gp->block.up), gp->block.camera_radius_m));
-        p.set("u_axis_wind", grid.axis_wind);
-        p.set("u_axis_across", grid.axis_across);
+        p.set("u_range", glm::vec3(range));
+        // The puffs are columns of the cells, whose grid lies along east and north.
+        p.set("u_axis_wind", glm::vec3(grid.east));
+        p.set("u_axis_across", glm::vec3(grid.north));
         p.set("u_axis_up", grid.axis_up);
         glDrawArraysInstanced(GL_TRIANGLES, 0, mesh ? c.proxy_vertices : 6, count);
         glCullFace(GL_BACK);

@@ -204,11 +204,10 @@ void describe(TypeBuilder<CloudClusters>& t) {
       .unit("m")
       .range(100, 1e6)
       .tooltip("The raymarch draws the layer again beyond this");
-  t.field("puff_size", &CloudClusters::puff_size).range(0.1, 4).tooltip("Scales the genus's puff radii");
   t.field("density_scale", &CloudClusters::density_scale)
       .range(0, 100)
-      .tooltip("Peak extinction per unit of the field's extinction at the puff's centre");
-  t.field("samples", &CloudClusters::samples).range(1, 16).tooltip("Light samples along each puff's chord");
+      .tooltip("The puffs' extinction per unit of the field's");
+  t.field("samples", &CloudClusters::samples).range(1, 16).tooltip("Steps of each pixel's march through a puff");
   t.field("compositing", &CloudClusters::compositing).values({{"sorted", 0}, {"unsorted", 1}})
       .tooltip("Back to front (sorted on the GPU), or in placement order (shows what sorting fixes)");
   t.field("proxy", &CloudClusters::proxy)

@@ -108,7 +108,8 @@ void PlacementBuffers::ensure(int grid, int chosen_count) {
 }
 
 void PlacementBuffers::choose(ShaderLibrary& shaders, const ShaderDefines& field, const PlacementGrid& g,
-                              int layer, int choose_count, glm::vec2 ring, uint32_t seed) const {
+                              int layer, int choose_count, glm::vec2 ring, uint32_t seed,
+                              bool in_view) const {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, cells->id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, chosen->id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, cell_order->id());
@@ -121,6 +122,7 @@ void PlacementBuffers::choose(ShaderLibrary& shaders, const ShaderDefines& field
     p.set("u_layer", layer);
     p.set("u_clusters", choose_count);
     p.set("u_ring", ring);
+    p.set("u_in_view", in_view ? 1 : 0);
     dispatch_compute(p, group_count(invocations[stage], 64), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }

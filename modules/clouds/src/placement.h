@@ -42,9 +42,10 @@ struct PlacementBuffers {
   int cell_order_grid = -1;  // the grid the cells' order (nearest first) was made for
   void ensure(int grid, int chosen_count);
   // Binds them (2 cells, 3 chosen, 4 order) and runs stages 0 and 1 of clusters_place.comp: of
-  // the cells whose centres lie within `ring` (m from the camera), the `choose` nearest that hold cloud.
+  // the cells whose centres lie within `ring` (m from the camera), the `choose` nearest that hold cloud
+  // (`in_view`: only cells whose column reaches into the view).
   void choose(ShaderLibrary& shaders, const ShaderDefines& field, const PlacementGrid& g, int layer,
-              int choose, glm::vec2 ring, uint32_t seed) const;
+              int choose, glm::vec2 ring, uint32_t seed, bool in_view = false) const;
 };
 void ensure_buffer(std::unique_ptr<Buffer>& buffer, size_t& capacity, size_t bytes);
 int next_power_of_two(int n);

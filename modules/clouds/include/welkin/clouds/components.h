@@ -144,9 +144,10 @@ enum class ClusterCompositing : int { sorted = 0, unsorted = 1 };
 // per pixel either way; the proxy only decides which pixels are tried, and what that costs.
 enum class PuffProxy : int { quad = 0, mesh = 1 };
 
-// Mesh-cluster clouds: one layer of the VolumetricClouds drawn at mid range as clusters of soft
-// ellipsoidal puffs (instanced, one draw), placed where that layer's weather and shape noise hold
-// cloud, so a cluster stands where the volumetric cloud would be and drifts with it. The volumetric
+// Mesh-cluster clouds: one layer of the VolumetricClouds drawn at mid range in the cells of a grid
+// that drifts with its wind, where that layer's weather holds cloud: each cell's puffs are boxes that
+// tile it in columns through the layer (instanced, one draw), and each pixel marches the layer's own
+// field through them in a few steps, lit by the clouds' shadow map. The volumetric
 // path draws the layer nearer than near_m and beyond far_m, and cross-fades with the puffs over
 // crossfade_m at both ends (their densities add up to the field's). Clusters fill the ring nearest
 // first: far_m should leave room for about clusters / coverage cells of cell_m.
@@ -154,18 +155,17 @@ struct CloudClusters {
   static constexpr std::string_view kTypeName = "clouds.CloudClusters";
   int layer = 0;                 // index in clouds.VolumetricClouds/layers
   int clusters = 40;             // at most this many, nearest first, where the layer's weather holds cloud
-  int puffs_per_cluster = 25;
+  int puffs_per_cluster = 1;     // n x n columns tile each cell (n: the integer square root)
   float cell_m = 4000.0f;  // at most one cluster per cell of this side (cells drift with the layer's wind)
   float near_m = 8000.0f;        // the volumetric path draws the layer nearer than this
   float crossfade_m = 2000.0f;   // over which the two paths hand over
   float far_m = 25000.0f;        // and beyond this
-  float puff_size = 1.0f;        // scales the genus's puff radii
-  float density_scale = 1.0f;    // a puff's peak extinction per unit of the field's extinction at its centre
-  int samples = 3;               // light samples along each puff's chord (stratified by opacity)
+  float density_scale = 1.0f;    // the puffs' extinction per unit of the field's
+  int samples = 2;               // equal steps of each pixel's march through a puff
   ClusterCompositing compositing = ClusterCompositing::sorted;
   PuffProxy proxy = PuffProxy::quad;
   int subdivision_level = 2;     // of the puff's proxy mesh (OpenSubdiv, Catmull-Clark from a cube)
-  float resolution_scale = 0.5f; // the puffs are drawn at this fraction of the frame's width and height
+  float resolution_scale = 0.25f; // the puffs are drawn at this fraction of the frame's width and height
   int seed = 7;
 };
 void describe(TypeBuilder<CloudClusters>& t);
