@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "cli_run.h"
@@ -85,6 +86,39 @@ TEST(CloudsCli, ImageWritesThePanelsAndTheError) {
   EXPECT_TRUE(fs::exists(out / "clouds-image-stratocumulus-low-sun-low.png"));
   EXPECT_NE(r.out.find("relative RMSE"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find(" over 0 cloud pixels"), std::string::npos) << r.out;  // the deck covers part of the view
+}
+
+// The figures `welkin accuracy clusters|billboards --json` prints at the switch distance (the
+// cheaper path against the raymarch of the same layer alone), from its output.
+nlohmann::json switch_figures(const std::string& path, const std::string& size) {
+  const fs::path out = scratch_path("clouds-cli", "switch-" + path);
+  auto r = run_welkin("accuracy " + path + " --quick --json --frames 1 --size " + size + " --out " + out.string(), false);
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(fs::exists(out / ("switch-" + path + ".png")));
+  const size_t begin = r.out.find("\n{"), end = r.out.rfind("\n}");
+  if (begin == std::string::npos || end == std::string::npos || end < begin) {
+    ADD_FAILURE() << "no JSON in\n" << r.out;
+    return {};
+  }
+  return nlohmann::json::parse(r.out.substr(begin + 1, end - begin + 1));
+}
+
+// The hand-over (issue 35, docs/clouds-far.md): each path against the raymarch over the pixels whose
+// ray meets the layer's base around the switch. Measured at 160x90: the clusters (columns marched
+// through the field, lit by the shadow map) -3.8% in mean and 33.6% per pixel (before, the smooth
+// ellipsoids: -10.7% and 43.6%); the billboards +11.3% and 30.8%. The bounds leave about two points.
+// The issue's aim, 2% and 12%, is not met yet.
+TEST(CloudsCli, CheaperPathsAgreeWithTheMarchAtTheSwitch) {
+  const nlohmann::json clusters = switch_figures("clusters", "160x90");
+  ASSERT_TRUE(clusters.contains("pixel_luminance_difference")) << clusters.dump();
+  EXPECT_GT(clusters["band_pixels"].get<int>(), 500);
+  EXPECT_LE(std::abs(clusters["mean_luminance_difference"].get<double>()), 0.06) << clusters.dump();
+  EXPECT_LE(clusters["pixel_luminance_difference"].get<double>(), 0.36) << clusters.dump();
+  const nlohmann::json billboards = switch_figures("billboards", "160x90");
+  ASSERT_TRUE(billboards.contains("pixel_luminance_difference")) << billboards.dump();
+  EXPECT_GT(billboards["band_pixels"].get<int>(), 100);
+  EXPECT_LE(std::abs(billboards["mean_luminance_difference"].get<double>()), 0.13) << billboards.dump();
+  EXPECT_LE(billboards["pixel_luminance_difference"].get<double>(), 0.33) << billboards.dump();
 }
 
 }  // namespace
