@@ -207,7 +207,9 @@ void describe(TypeBuilder<CloudClusters>& t) {
   t.field("density_scale", &CloudClusters::density_scale)
       .range(0, 100)
       .tooltip("The puffs' extinction per unit of the field's");
-  t.field("samples", &CloudClusters::samples).range(1, 16).tooltip("Steps of each pixel's march through a puff");
+  t.field("samples", &CloudClusters::samples)
+      .range(1, 16)
+      .tooltip("Steps of each pixel's march through a puff");
   t.field("compositing", &CloudClusters::compositing).values({{"sorted", 0}, {"unsorted", 1}})
       .tooltip("Back to front (sorted on the GPU), or in placement order (shows what sorting fixes)");
   t.field("proxy", &CloudClusters::proxy)

@@ -125,7 +125,8 @@ void main() {
   int n = int(floor(sqrt(float(u_puffs)) + 1e-3));
   if (cell >= 0 && index < n * n) {
     float half_width = 0.5 * u_cell_m / float(n);
-    vec2 puff_en = cell_centre_en(cell) + (vec2(index % n, index / n) + 0.5 - 0.5 * float(n)) * (2.0 * half_width);
+    vec2 column = vec2(index % n, index / n) + 0.5 - 0.5 * float(n);
+    vec2 puff_en = cell_centre_en(cell) + column * (2.0 * half_width);
     // From the lowest base to the highest top the weather allows in the column, and a little more
     // (the planet's curvature across it).
     vec2 heights = column_cloud_heights(L, puff_en, half_width);

@@ -24,7 +24,8 @@ void main() {
   // Only the centre and radii: software vertex processing pays for every load.
   vec3 centre = cp_puffs[puff].centre, radii = cp_puffs[puff].radii;
   v_up = normalize(u_up_radius.xyz * u_up_radius.w + centre);
-  v_light = cp_puffs[puff].light, v_sky = cp_puffs[puff].sky, v_system_signal = cp_puffs[puff].system_signal;
+  v_light = cp_puffs[puff].light, v_sky = cp_puffs[puff].sky;
+  v_system_signal = cp_puffs[puff].system_signal;
   v_ap_inscattering = cp_puffs[puff].ap_inscattering, v_ap_transmittance = cp_puffs[puff].ap_transmittance;
   v_light_gradient = vec4(cp_puffs[puff].light_depth_gradient, cp_puffs[puff].light_depth);
   if (cp_puffs[puff].extinction_per_density <= 0.0) {
@@ -38,7 +39,7 @@ void main() {
   v_position = centre + unit.x * u_axis_wind + unit.y * u_axis_across + unit.z * u_axis_up;
   gl_Position = u_view_projection * vec4(v_position, 1.0);
 #else
-  v_position = box_screen_corner(centre, u_axis_wind * radii.x, u_axis_across * radii.y, u_axis_up * radii.z,
-                                 gl_VertexID, gl_Position);
+  v_position = box_screen_corner(centre, u_axis_wind * radii.x, u_axis_across * radii.y,
+                                 u_axis_up * radii.z, gl_VertexID, gl_Position);
 #endif
 }

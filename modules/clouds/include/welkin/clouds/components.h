@@ -161,7 +161,7 @@ struct CloudClusters {
   float crossfade_m = 2000.0f;   // over which the two paths hand over
   float far_m = 25000.0f;        // and beyond this
   float density_scale = 1.0f;    // the puffs' extinction per unit of the field's
-  int samples = 2;               // equal steps of each pixel's march through a puff
+  int samples = 1;               // equal steps of each pixel's march through a puff
   ClusterCompositing compositing = ClusterCompositing::sorted;
   PuffProxy proxy = PuffProxy::quad;
   int subdivision_level = 2;     // of the puff's proxy mesh (OpenSubdiv, Catmull-Clark from a cube)
