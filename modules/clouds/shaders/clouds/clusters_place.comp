@@ -159,8 +159,9 @@ void main() {
     float extinction_per_density = cl.scattering + cl.absorption;
     vec3 half_up = 0.5 * puff.radii.z * u_axis_up;
     clouds_system_g = clouds_weather_system_at(c);
-    float below = clouds_light_optical_depth(c - half_up, u_light_dir, extinction_per_density);
-    float above = clouds_light_optical_depth(c + half_up, u_light_dir, extinction_per_density);
+    float clear;  // the draw reads the light's depth alone
+    float below = clouds_light_optical_depth(c - half_up, u_light_dir, extinction_per_density, clear);
+    float above = clouds_light_optical_depth(c + half_up, u_light_dir, extinction_per_density, clear);
     // Only this stage's fields are written: the other invocations read the centres and radii.
     cp_puffs[id].light_depth = 0.5 * (below + above);
     // per unit of the column's normalised height

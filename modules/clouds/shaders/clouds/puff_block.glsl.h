@@ -1,8 +1,9 @@
 #pragma once
-// One puff of the mesh clusters (a box: a column of its cell through the layer), declared once for GLSL (clouds/clusters.glsl includes this file) and
-// C++ (src/clusters.h includes it inside a namespace; welkin/gfx/gpu_block.h says how). The placement
-// compute (clusters_place.comp) writes it each frame, the puffs' draw reads it (std430). Fields come in
-// rows of 16 bytes; tests/modules/clouds/gpu/gpu_blocks_test.cpp reads every field back in a shader.
+// One puff of the mesh clusters (a box: a column of its cell through the layer), declared once for
+// GLSL (clouds/clusters.glsl includes this file) and C++ (src/clusters.h includes it inside a
+// namespace; welkin/gfx/gpu_block.h says how). The placement compute (clusters_place.comp) writes it
+// each frame, the puffs' draw reads it (std430). Fields come in rows of 16 bytes;
+// tests/modules/clouds/gpu/gpu_blocks_test.cpp reads every field back in a shader.
 // No #include and no initialisers here.
 struct ClusterPuff {
   vec3 centre;                   // camera-relative m

@@ -1,27 +1,26 @@
 #pragma once
 // The cloud genera (WMO), one row each. Adding a genus is a row here and its preset file
-// presets/genera/<name>.json; the Genus enum, the names the JSON reads and writes, the density
-// field's shape model and the mesh clusters' form all come from this table, and a test checks the
-// table against the preset folder.
+// presets/genera/<name>.json; the Genus enum, the names the JSON reads and writes and the density
+// field's shape model all come from this table, and a test checks the table against the preset folder.
 #include <cstddef>
 
-// X(name, dome, weather_frequency, cluster_form, thickness_m, density_per_m, casts_shadow)
+// X(name, dome, weather_frequency, thickness_m, density_per_m, casts_shadow)
 //   dome: 0 a sheet .. 1 domes with flat bases; weather_frequency: the layer's weather frequency
-//   relative to VolumetricClouds::weather_period_m; cluster_form: how mesh clusters place its puffs;
+//   relative to VolumetricClouds::weather_period_m;
 //   thickness_m, density_per_m, casts_shadow: a typical layer of the genus where only its base is
 //   known (a weather report gives bases, not tops: fair-weather cumulus about 1 km deep, sheets a few
 //   hundred metres; the weather module builds its layers from them).
-#define WELKIN_CLOUD_GENERA(X)                                \
-  X(cumulus, 1.0f, 2.5f, heaps, 1000.0f, 0.05f, true)         \
-  X(stratus, 0.0f, 0.5f, sheets, 400.0f, 0.03f, true)         \
-  X(stratocumulus, 0.4f, 1.6f, heaps, 600.0f, 0.04f, true)    \
-  X(cumulonimbus, 1.0f, 0.4f, heaps, 9000.0f, 0.08f, true)    \
-  X(altocumulus, 0.5f, 4.0f, heaps, 500.0f, 0.02f, true)      \
-  X(altostratus, 0.0f, 0.7f, sheets, 1200.0f, 0.005f, true)   \
-  X(nimbostratus, 0.1f, 0.4f, sheets, 2500.0f, 0.04f, true)   \
-  X(cirrus, 0.2f, 2.5f, streaks, 800.0f, 0.002f, false)       \
-  X(cirrostratus, 0.0f, 0.5f, sheets, 600.0f, 0.0008f, false) \
-  X(cirrocumulus, 0.3f, 8.0f, heaps, 300.0f, 0.004f, false)
+#define WELKIN_CLOUD_GENERA(X)                        \
+  X(cumulus, 1.0f, 2.5f, 1000.0f, 0.05f, true)        \
+  X(stratus, 0.0f, 0.5f, 400.0f, 0.03f, true)         \
+  X(stratocumulus, 0.4f, 1.6f, 600.0f, 0.04f, true)   \
+  X(cumulonimbus, 1.0f, 0.4f, 9000.0f, 0.08f, true)   \
+  X(altocumulus, 0.5f, 4.0f, 500.0f, 0.02f, true)     \
+  X(altostratus, 0.0f, 0.7f, 1200.0f, 0.005f, true)   \
+  X(nimbostratus, 0.1f, 0.4f, 2500.0f, 0.04f, true)   \
+  X(cirrus, 0.2f, 2.5f, 800.0f, 0.002f, false)        \
+  X(cirrostratus, 0.0f, 0.5f, 600.0f, 0.0008f, false) \
+  X(cirrocumulus, 0.3f, 8.0f, 300.0f, 0.004f, false)
 
 namespace welkin::clouds {
 
@@ -33,23 +32,19 @@ enum class Genus : int {
 #undef WELKIN_GENUS_ENUMERATOR
 };
 
-// How mesh clusters place a genus's puffs; the values are those of shaders/clouds/clusters_place.comp.
-enum class ClusterForm : int { heaps = 0, sheets = 1, streaks = 2 };
-
 struct GenusTraits {
   Genus genus;
   const char* name;
   float dome;               // 0 a sheet .. 1 domes with flat bases
   float weather_frequency;  // relative to the weather's period
-  ClusterForm cluster_form;
-  float thickness_m;  // a typical layer's
+  float thickness_m;        // a typical layer's
   float density_per_m;
   bool casts_shadow;
 };
 
 inline constexpr GenusTraits kGenera[] = {
-#define WELKIN_GENUS_ROW(name, dome, frequency, form, thickness, density, shadow) \
-  {Genus::name, #name, dome, frequency, ClusterForm::form, thickness, density, shadow},
+#define WELKIN_GENUS_ROW(name, dome, frequency, thickness, density, shadow) \
+  {Genus::name, #name, dome, frequency, thickness, density, shadow},
     WELKIN_CLOUD_GENERA(WELKIN_GENUS_ROW)
 #undef WELKIN_GENUS_ROW
 };
