@@ -13,10 +13,10 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
                                 bool partial, int n, int w, int h, ResourceHandle& clusters, bool clear) {
   const FrameView& view = rc.view;
   // The mesh clusters (and billboards) drawn before the march lie behind it. At the march's resolution
-  // the resolve lays them in as it writes (a read at a quarter of the frame's pixels); otherwise the
-  // composite reads them at the frame's resolution.
+  // or below, the resolve lays them in as it writes (magnified at the march's pixels, a quarter of the
+  // frame's); otherwise the composite reads them at the frame's resolution.
   const bool merge_clusters =
-      clusters.valid() && g.resource_desc(clusters).width == w && g.resource_desc(clusters).height == h;
+      clusters.valid() && g.resource_desc(clusters).width <= w && g.resource_desc(clusters).height <= h;
   const int write = gpu.history_index, read = 1 - write;
   const ResourceHandle out_color = g.import("clouds.history_color", *gpu.history_color[write]);
   const ResourceHandle history = g.import("clouds.history_previous", *gpu.history_color[read]);

@@ -204,10 +204,17 @@ void clouds_march_pixel(ivec2 pixel, out vec4 color, out vec3 distances) {
   vec3 dir = view_ray_direction(cl.inverse_view_projection, ndc);
   float t_max = scene_distance(ndc);
 #if CLOUDS_CLUSTER_FRONT
-  // The farthest of the texels this march pixel covers: behind a cluster's edge the march goes on
-  // (what it adds there is seen through the edge) instead of stepping in blocks.
-  vec4 fronts = textureGather(u_cluster_front, ndc * 0.5 + 0.5, 0);
-  t_max = min(t_max, max(max(fronts.x, fronts.y), max(fronts.z, fronts.w)));
+  // The far clouds are drawn at a fraction of the march's resolution. The march stops at them where
+  // the bilinear weights of their opaque texels around it reach one half (an edge that cuts across
+  // their texels, not their squares' stair steps), at the farthest of those texels' fronts: behind a
+  // cluster's edge the march goes on (what it adds there is seen through the edge).
+  vec2 front_texel = (ndc * 0.5 + 0.5) * vec2(textureSize(u_cluster_front, 0)) - 0.5;
+  vec2 f = front_texel - floor(front_texel);
+  vec4 fronts = textureGather(u_cluster_front, ndc * 0.5 + 0.5, 0);  // (0, 1), (1, 1), (1, 0), (0, 0)
+  vec4 weights = vec4((1.0 - f.x) * f.y, f.x * f.y, f.x * (1.0 - f.y), (1.0 - f.x) * (1.0 - f.y));
+  vec4 opaque = vec4(lessThan(fronts, vec4(1e38)));
+  vec4 finite = fronts * opaque;
+  if (dot(weights, opaque) >= 0.5) t_max = min(t_max, max(max(finite.x, finite.y), max(finite.z, finite.w)));
 #endif
   vec2 ground = clouds_sphere(dir, 0.0);
   if (ground.x <= ground.y && ground.x > 0.0) t_max = min(t_max, ground.x);

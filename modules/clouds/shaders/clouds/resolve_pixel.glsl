@@ -7,11 +7,12 @@
 // inside a cloud (the camera in it) nothing is reprojected: the history there would smear the cloud
 // around the camera. CLOUDS_SILHOUETTES: the pixels next to the last frame's silhouettes were marched
 // too this frame (march_silhouettes_pixel.glsl), and are taken as marched.
-// CLOUDS_WITH_CLUSTERS: the mesh clusters, drawn at this resolution, are also laid behind the result
+// CLOUDS_WITH_CLUSTERS: the mesh clusters, drawn at this resolution or below, are also laid behind the result
 // in a second target (march + T x clusters) for the composite, which then reads one texture at the
 // frame's resolution instead of two; the history stays the march alone.
 #include "clouds/reproject.glsl"
 #if CLOUDS_WITH_CLUSTERS
+#include "clouds/b_spline.glsl"
 layout(binding = 3) uniform sampler2D u_clusters;  // premultiplied, opacity in alpha
 #endif
 layout(binding = 0) uniform sampler2D u_current;           // one pixel per block: colour, transmittance
@@ -133,9 +134,13 @@ float resolved_clear(ivec2 pixel) {
 #endif
 
 #if CLOUDS_WITH_CLUSTERS
-// The clusters laid behind the resolved clouds: march + T x clusters.
+// The clusters laid behind the resolved clouds: march + T x clusters. Drawn at a lower resolution
+// than the march's, they are magnified through a B-spline here, at the march's pixels: four reads
+// at a quarter of the frame's pixels, where the composite would read them at every pixel.
 vec4 with_clusters(ivec2 pixel, vec4 clouds) {
-  vec4 c = texelFetch(u_clusters, pixel, 0);
+  ivec2 size = textureSize(u_history, 0);
+  vec4 c = textureSize(u_clusters, 0) == size ? texelFetch(u_clusters, pixel, 0)
+                                              : clouds_b_spline(u_clusters, (vec2(pixel) + 0.5) / vec2(size));
   return vec4(clouds.rgb + clouds.a * c.rgb, clouds.a * (1.0 - c.a));
 }
 #endif
