@@ -104,20 +104,22 @@ nlohmann::json switch_figures(const std::string& path, const std::string& size) 
 }
 
 // The hand-over (issue 35, docs/clouds-far.md): each path against the raymarch over the pixels whose
-// ray meets the layer's base around the switch. Measured at 160x90: the clusters (columns marched
-// through the field in one step, lit by the shadow map) -14.9% in mean and 35.0% per pixel (before,
-// the smooth ellipsoids: -15.2% and 38.2%); the billboards +8.5% and 26.5%. The bounds leave about
-// two points. The issue's aim, 2% and 12%, is not met yet.
+// ray meets the layer's base around the switch. Measured at 160x90 on main's refitted light model:
+// the clusters (columns marched through the field in one step, lit by the shadow map, magnified
+// through a B-spline) -12.8% in mean and 31.9% per pixel (before the B-spline -14.9% and 35.0%; the
+// smooth ellipsoids -15.2% and 38.2%); the billboards +13.2% and 27.0% (+8.5% and 26.5% under the
+// light model before the refit). The bounds leave about two points. The issue's aim, 2% and 12%, is
+// not met yet.
 TEST(CloudsCli, CheaperPathsAgreeWithTheMarchAtTheSwitch) {
   const nlohmann::json clusters = switch_figures("clusters", "160x90");
   ASSERT_TRUE(clusters.contains("pixel_luminance_difference")) << clusters.dump();
   EXPECT_GT(clusters["band_pixels"].get<int>(), 500);
-  EXPECT_LE(std::abs(clusters["mean_luminance_difference"].get<double>()), 0.17) << clusters.dump();
-  EXPECT_LE(clusters["pixel_luminance_difference"].get<double>(), 0.37) << clusters.dump();
+  EXPECT_LE(std::abs(clusters["mean_luminance_difference"].get<double>()), 0.15) << clusters.dump();
+  EXPECT_LE(clusters["pixel_luminance_difference"].get<double>(), 0.34) << clusters.dump();
   const nlohmann::json billboards = switch_figures("billboards", "160x90");
   ASSERT_TRUE(billboards.contains("pixel_luminance_difference")) << billboards.dump();
   EXPECT_GT(billboards["band_pixels"].get<int>(), 100);
-  EXPECT_LE(std::abs(billboards["mean_luminance_difference"].get<double>()), 0.11) << billboards.dump();
+  EXPECT_LE(std::abs(billboards["mean_luminance_difference"].get<double>()), 0.155) << billboards.dump();
   EXPECT_LE(billboards["pixel_luminance_difference"].get<double>(), 0.29) << billboards.dump();
 }
 

@@ -139,9 +139,9 @@ void describe(TypeBuilder<VolumetricClouds>& t);
 // How overlapping puffs are composited: drawn back to front by their centres' distance (sorted on
 // the GPU each frame), or in the order they were placed (kept to show what sorting fixes).
 enum class ClusterCompositing : int { sorted = 0, unsorted = 1 };
-// What each puff rasterises: a screen-facing quad around its bounding sphere (4 vertices), or the
-// OpenSubdiv-refined closed mesh around the ellipsoid (its far side). The surface itself is exact
-// per pixel either way; the proxy only decides which pixels are tried, and what that costs.
+// What each puff rasterises: a quad over its box's screen rectangle, or the OpenSubdiv-refined closed
+// mesh around the box (its far side). Each pixel marches the box's chord either way; the proxy only
+// decides which pixels are tried, and what that costs.
 enum class PuffProxy : int { quad = 0, mesh = 1 };
 
 // Mesh-cluster clouds: one layer of the VolumetricClouds drawn at mid range in the cells of a grid
