@@ -1,10 +1,11 @@
 // One puff of the mesh clusters (a column of its cell through the layer, src/clusters.cpp), once per
 // pixel its proxy covers. The view ray's chord through the box is clipped to the camera, the scene's
-// depth and the planet, and marched in PUFF_SAMPLES equal steps through the layer's own field
-// (clouds/density.glsl, at the march's level of detail), each lit like a sample of the march
-// (clouds/light_model.glsl). The optical depth toward the light is the march's own, found by the
-// placement half way up and down the column and taken linear in height. Each sample fades as the
-// complement of the march's hand-over, so the two paths' densities add up to the field's.
+// depth, the planet and the clusters' stretch of the hand-over, and marched in PUFF_SAMPLES equal
+// steps through the layer's own field (clouds/density.glsl, at the march's level of detail), each
+// lit like a sample of the march (clouds/light_model.glsl). The optical depth toward the light comes
+// from the clouds' shadow map at each sample (PUFF_SHADOW_MAP 1); else from the march's own light
+// steps, found by the placement half way up and down the column and taken linear in height. Each
+// sample fades as the complement of the march's hand-over, so the two paths' densities add up.
 // PUFF_DETAIL 1: the detail noise erodes the samples, as in the march.
 #include "clouds/density.glsl"
 #include "clouds/phase.glsl"
@@ -47,6 +48,12 @@ void main() {
   // The planet hides what lies beyond its surface (a cluster past the horizon).
   vec2 ground = clouds_sphere(dir, 0.0);
   if (ground.x <= ground.y && ground.x > 0.0) t1 = min(t1, ground.x);
+  // Only where the clusters draw the layer (their fade, below, is zero nearer than the hand-over's
+  // start and beyond far): the steps sample that stretch alone, and the front (where the march
+  // stops) is never nearer than it. Columns of cells that straddle the hand-over reach nearer; with
+  // their whole chord in one step, the front could lie at the box's near face, inside the march's
+  // own stretch.
+  t0 = max(t0, u_range.x - 0.5 * u_range.y), t1 = min(t1, u_range.z);
   if (t1 <= t0) discard;
   float mu = dot(dir, u_light_dir);
   float phase_single = clouds_phase(mu, 1.0);
