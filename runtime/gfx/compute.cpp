@@ -15,6 +15,14 @@ void dispatch_compute(const Program& program, int groups_x, int groups_y, int gr
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
+void dispatch_compute_indirect(const Program& program, const Buffer& commands, size_t offset) {
+  program.use();
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, commands.id());
+  glDispatchComputeIndirect(GLintptr(offset));
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
 void bind_image_for_write(GLuint unit, const Texture& texture) {
   glBindImageTexture(unit, texture.id(), 0, texture.is_3d() ? GL_TRUE : GL_FALSE, 0, GL_WRITE_ONLY,
                      gl_internal_format(texture.desc().format));

@@ -60,6 +60,9 @@ struct CloudsGpu {
   glm::mat4 previous_view_projection{1.0f};
   glm::dvec3 previous_camera_m{0.0};
   uint64_t temporal_frame = 0;
+  // The pixels next to the last frame's silhouettes, listed for their march (silhouette_march.h).
+  std::unique_ptr<Buffer> silhouette_list;
+  size_t silhouette_list_capacity = 0;
   FirstHitHistory first_hit;  // where the last frame's rays met no cloud (first_hit_skip.h)
   // A still view keeps its clouds: the digest of everything the march and the resolve read
   // (clouds_system), and how many frames in a row marched under it. After a whole cycle of the

@@ -12,6 +12,7 @@
 #include "first_hit_skip.h"
 #include "frame_upload.h"
 #include "placement.h"
+#include "silhouette_march.h"
 #include "temporal_resolve.h"
 #include "welkin/core/world.h"
 #include "welkin/gfx/compute.h"
@@ -20,6 +21,15 @@
 #include "welkin/gfx/screen_pass.h"
 
 namespace welkin::clouds {
+
+void bind_march_inputs(PassContext& pc, World& world, const CloudsGpu& gpu, const FrameTargets& t,
+                       ResourceHandle front, GLuint front_unit) {  // (march.h)
+  world.resource<LightEnvironment>().bind();
+  bind_field(gpu);
+  glBindTextureUnit(3, pc.texture(t.depth).id());
+  glBindTextureUnit(4, gpu.blue_noise->id());
+  if (front.valid()) glBindTextureUnit(front_unit, pc.texture(front).id());
+}
 
 namespace {
 
@@ -51,17 +61,6 @@ glm::ivec2 block_offset(CloudsGpu& gpu, bool partial, int n) {
   return !partial ? glm::ivec2(0)
          : n == 4 ? kOffsets4[gpu.temporal_frame++ % 16]
                   : kOffsets2[gpu.temporal_frame++ % 4];
-}
-
-// What both marches read (march_pixel.glsl): the light environment, the field, the scene's depth, the
-// blue noise and, when drawn, where the mesh clusters turn opaque.
-void bind_march_inputs(PassContext& pc, World& world, const CloudsGpu& gpu, const FrameTargets& t,
-                       ResourceHandle front, GLuint front_unit) {
-  world.resource<LightEnvironment>().bind();
-  bind_field(gpu);
-  glBindTextureUnit(3, pc.texture(t.depth).id());
-  glBindTextureUnit(4, gpu.blue_noise->id());
-  if (front.valid()) glBindTextureUnit(front_unit, pc.texture(front).id());
 }
 
 // A march's fragment form over the whole of `fb`.
@@ -125,70 +124,6 @@ MarchOutput add_march_pass(SystemContext& sc, CloudsGpu& gpu, const ShaderDefine
         draw_march(rc, p, Framebuffer({&pc.texture(current.color), &pc.texture(current.distance)}, nullptr));
       });
   return current;
-}
-
-// Issue 35: the pixels next to the last frame's silhouettes marched again, at the march's whole size
-// w x h (-1 where not; clouds/march_silhouettes_pixel.glsl), for the resolve to take as they are: the
-// history it reprojects elsewhere trails a moving silhouette by up to a whole cycle of the blocks.
-ResourceHandle add_silhouette_march_pass(SystemContext& sc, CloudsGpu& gpu, ShaderDefines defines,
-                                         glm::ivec3 stride_offset, const MarchOutput& current, int w, int h,
-                                         ResourceHandle front, GLuint front_unit) {
-  World& world = sc.world;
-  auto& rc = world.resource<RenderContext>();
-  const FrameTargets t = *sc.targets;
-  const FrameView& view = rc.view;
-  // The last frame's opacity range over the 3 x 3 pixels around that marks a pixel: 0.5, the strongest
-  // silhouettes. On the peer scene (`welkin accuracy clouds --silhouettes`) 0.1 left 0.27% and 0.95%
-  // turning and flying, 0.25 0.87% and 1.73%, 0.5 2.40% and 4.28% (9.60% and 16.77% without), the
-  // pass costing 1.9x, 1.2x and 0.8x the march's (llvmpipe runs a group of pixels as long as one of
-  // them marches); 0.8 left 5.48% and 8.81%, not half: docs/performance.md, "Silhouettes".
-  constexpr float kSilhouetteOpacity = 0.5f;
-  const GLuint unit = front_unit + 1;
-  defines["CLOUDS_UNIT_SILHOUETTE_HISTORY"] = std::to_string(unit);
-  defines["CLOUDS_UNIT_SILHOUETTE_CURRENT"] = std::to_string(unit + 1);
-  defines["CLOUDS_UNIT_SILHOUETTE_DISTANCE"] = std::to_string(unit + 2);
-  const ResourceHandle out = sc.graph->create(
-      "clouds.march_silhouettes", TextureDesc{.width = w, .height = h, .format = TextureFormat::rgba16f});
-  const ResourceHandle history =
-      sc.graph->import("clouds.history_previous", *gpu.history_color[1 - gpu.history_index]);
-  const glm::mat4 previous_vp = gpu.previous_view_projection, inverse_vp = view.inverse_view_projection;
-  const glm::vec3 moved = glm::vec3(view.camera_position_m - gpu.previous_camera_m);
-  const bool compute = rc.forms.compute("clouds.march_silhouettes");
-  CloudsGpu* gp = &gpu;
-  sc.graph->add_pass(
-      "clouds.march_silhouettes",
-      [&](PassBuilder& b) {
-        b.read(t.depth);
-        if (front.valid()) b.read(front);
-        b.read(history);
-        b.read(current.color);
-        b.read(current.distance);
-        b.write(out);
-      },
-      [gp, &rc, &world, t, front, front_unit, unit, defines, stride_offset, history, current, out,
-       previous_vp, inverse_vp, moved, compute, w, h, kSilhouetteOpacity](PassContext& pc) {
-        bind_march_inputs(pc, world, *gp, t, front, front_unit);
-        glBindTextureUnit(unit, pc.texture(history).id());
-        glBindTextureUnit(unit + 1, pc.texture(current.color).id());
-        glBindTextureUnit(unit + 2, pc.texture(current.distance).id());
-        const Program& p =
-            compute ? rc.shaders.compute("clouds/march_silhouettes.comp", defines)
-                    : rc.shaders.graphics("fullscreen.vert", "clouds/march_silhouettes.frag", defines);
-        glProgramUniform3i(p.id(), p.location("u_stride_offset"), stride_offset.x, stride_offset.y,
-                           stride_offset.z);
-        p.set("u_inverse_view_projection", inverse_vp);
-        p.set("u_previous_view_projection", previous_vp);
-        p.set("u_camera_moved_m", moved);
-        p.set("u_silhouette_opacity", kSilhouetteOpacity);
-        glProgramUniform2i(p.id(), p.location("u_silhouette_size"), w, h);
-        if (compute) {
-          bind_image_for_write(0, pc.texture(out));
-          dispatch_screen(p, PixelRect{0, 0, w, h});
-          return;
-        }
-        draw_march(rc, p, Framebuffer(&pc.texture(out), nullptr));
-      });
-  return out;
 }
 
 }  // namespace
@@ -277,7 +212,7 @@ void clouds_system(SystemContext& sc) {
   // pass would cost 3.5 times as much as it (llvmpipe, the peer scene at `low`).
   if (partial && clouds->march_silhouettes && n == 2)
     current.silhouettes =
-        add_silhouette_march_pass(sc, gpu, defines, stride_offset, current, w, h, front, front_unit);
+        add_silhouette_march(sc, gpu, defines, stride_offset, current, w, h, front, front_unit);
   ResourceHandle result = current.color;
   if (temporal) {
     result = add_resolve_pass(g, rc, gpu, *clouds, current, offset, partial, n, w, h, clusters, skip.write);

@@ -14,7 +14,7 @@ namespace welkin::clouds {
 struct MarchOutput {
   ResourceHandle color, distance;
   // At the march's whole size, the pixels next to the last frame's silhouettes marched again (-1
-  // elsewhere; clouds/march_silhouettes_pixel.glsl), when they were.
+  // elsewhere; silhouette_march.h), when they were.
   ResourceHandle silhouettes;
 };
 

@@ -21,7 +21,7 @@ struct SilhouetteError {
   double frame = 0.0;       // relative L1 of the luminance over the frame
   size_t pixels = 0;        // silhouette pixels of the frame
   // The march texels whose 3 x 3 neighbourhood spans more than the step in the full march's opacity:
-  // about what the march at silhouettes takes again (clouds/march_silhouettes_pixel.glsl), of all.
+  // about what the march at silhouettes takes again (clouds/silhouettes_mark.glsl), of all.
   double near_silhouette = 0.0;
 };
 

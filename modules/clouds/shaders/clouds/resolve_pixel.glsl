@@ -6,7 +6,7 @@
 // plain reprojection (for the ghosting comparison of `welkin accuracy clouds`). Where the ray starts
 // inside a cloud (the camera in it) nothing is reprojected: the history there would smear the cloud
 // around the camera. CLOUDS_SILHOUETTES: the pixels next to the last frame's silhouettes were marched
-// too this frame (march_silhouettes_pixel.glsl), and are taken as marched.
+// too this frame (silhouettes_mark.glsl), and are taken as marched.
 // CLOUDS_WITH_CLUSTERS: the mesh clusters, drawn at this resolution or below, are also laid behind the result
 // in a second target (march + T x clusters) for the composite, which then reads one texture at the
 // frame's resolution instead of two; the history stays the march alone.
@@ -20,7 +20,7 @@ layout(binding = 0) uniform sampler2D u_current;           // one pixel per bloc
 layout(binding = 1) uniform sampler2D u_current_distance;
 layout(binding = 2) uniform sampler2D u_history;           // the last result at the march resolution
 #if CLOUDS_SILHOUETTES
-// The pixels next to a silhouette marched again this frame (march_silhouettes_pixel.glsl); -1 elsewhere.
+// The pixels next to a silhouette marched again this frame (march_silhouettes.comp); -1 elsewhere.
 layout(binding = 4) uniform sampler2D u_silhouettes;
 #endif
 uniform int u_block;               // N

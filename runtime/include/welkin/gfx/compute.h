@@ -13,6 +13,9 @@ namespace welkin {
 bool ensure_texture(std::unique_ptr<Texture>& texture, const TextureDesc& desc);
 // Uses the program and dispatches; later passes may sample or load what it stored.
 void dispatch_compute(const Program& program, int groups_x, int groups_y, int groups_z = 1);
+// Uses the program and dispatches the work groups that `commands` holds at `offset` (GL's indirect
+// dispatch command: groups x, y, z, written by an earlier pass); later passes may read what it stored.
+void dispatch_compute_indirect(const Program& program, const Buffer& commands, size_t offset = 0);
 // Work groups of `size` covering n invocations.
 inline int group_count(int n, int size) { return (n + size - 1) / size; }
 // Binds every layer of a texture as a write-only image at `unit`.

@@ -85,23 +85,20 @@ TEST(CloudsPassForms, MarchAlone) { expect_forms_agree(peer(), "clouds.march"); 
 TEST(CloudsPassForms, CompositeAlone) { expect_forms_agree(peer(), "clouds.composite"); }
 
 // Seven frames turning and flying: the first marches every pixel, then one of each block a frame (and
-// the pixels next to the last frame's silhouettes), the resolve reprojecting the rest. Each pass in
-// compute form alone, then all four.
+// the pixels next to the last frame's silhouettes, listed and marched in compute whatever the form),
+// the resolve reprojecting the rest. Each pass in compute form alone, then all three.
 TEST(CloudsPassForms, MarchResolveCompositeTurning) {
   nlohmann::json doc = peer();
   test::entity_with(doc, "clouds.VolumetricClouds")["components"]["clouds.VolumetricClouds"]["march_silhouettes"] =
       true;
   const testing::FormFrame f = render_turning(doc, {}, 7);
   ASSERT_TRUE(f.ran("clouds.resolve"));
+  ASSERT_TRUE(f.ran("clouds.silhouettes_mark"));
   ASSERT_TRUE(f.ran("clouds.march_silhouettes"));
-  for (const std::string pass :
-       {"clouds.march", "clouds.march_silhouettes", "clouds.resolve", "clouds.composite"})
+  for (const std::string pass : {"clouds.march", "clouds.resolve", "clouds.composite"})
     expect_equal_frames(f, render_turning(doc, {pass}, 7), pass + " turning");
-  expect_equal_frames(
-      f,
-      render_turning(doc, {"clouds.march", "clouds.march_silhouettes", "clouds.resolve", "clouds.composite"},
-                     7),
-      "all four turning");
+  expect_equal_frames(f, render_turning(doc, {"clouds.march", "clouds.resolve", "clouds.composite"}, 7),
+                      "all three turning");
 }
 
 // The mesh clusters behind the march: the resolve lays them in (or the composite, where their sizes

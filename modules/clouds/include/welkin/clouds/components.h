@@ -89,10 +89,10 @@ struct VolumetricClouds {
   bool temporal_upscaling = true;
   int temporal_block = 2;  // quality custom
   bool temporal_clipping = true;  // off: plain reprojection (for measuring what clipping saves)
-  // With temporal upscaling in 2 x 2 blocks: the pixels next to the last frame's strongest silhouettes
-  // (its opacity changes by more than 0.5 within 3 x 3 pixels) are marched every frame too, not
-  // reprojected (issue 35): a sixth of the error there, for 1.8-2.2 times the frame at `high` on
-  // llvmpipe (docs/performance.md). Off by default until the marked pixels are marched as a dense list.
+  // With temporal upscaling in 2 x 2 blocks (`high`, `ultra`): the pixels next to the last frame's
+  // strongest silhouettes (its opacity changes by more than 0.5 within 3 x 3 pixels) are listed and
+  // marched every frame too, not reprojected (issue 35): a sixth of the error there
+  // (docs/performance.md, "Silhouettes after the temporal upscaling").
   bool march_silhouettes = false;
   // With temporal upscaling: each ray starts where the last frame's rays around it met no cloud, less
   // how far the camera and the clouds moved; one block in eight is marched whole each frame in turn.

@@ -1,12 +1,10 @@
 #pragma once
-// The march again at the pixels next to a silhouette (issue 35; one body for march_silhouettes.frag
-// and .comp), at the march's whole resolution: where the last resolved frame, reprojected, changes its
-// opacity by more than u_silhouette_opacity (0.5) within the 3 x 3 pixels around, a pixel that this
-// frame's march did not take (not its block's pixel this frame) is marched now instead of being left
+// Which march pixels lie next to the last frame's silhouettes (issue 35): where the last resolved
+// frame, reprojected, changes its opacity by more than u_silhouette_opacity within the 3 x 3 pixels
+// around, a pixel that this frame's march did not take (not its block's pixel this frame) is marched
+// now (silhouettes_mark.comp lists it, march_silhouettes.comp marches the list) instead of being left
 // to the resolve's history, which trails a moving silhouette by up to a whole cycle of the blocks.
 // Where the pixel's clouds were out of the last frame's view, the four fresh samples around it decide.
-// Elsewhere it writes -1: the resolve reprojects the history there (resolve_pixel.glsl).
-#include "clouds/march_pixel.glsl"
 #include "clouds/reproject.glsl"
 // The last resolved frame (colour, transmittance) at its own size.
 layout(binding = CLOUDS_UNIT_SILHOUETTE_HISTORY) uniform sampler2D u_silhouette_history;
@@ -15,9 +13,10 @@ layout(binding = CLOUDS_UNIT_SILHOUETTE_CURRENT) uniform sampler2D u_silhouette_
 layout(binding = CLOUDS_UNIT_SILHOUETTE_DISTANCE) uniform sampler2D u_silhouette_distance;
 uniform float u_silhouette_opacity;
 uniform ivec2 u_silhouette_size;  // the march's whole size
+// The block's size and the pixel of it marched this frame (as clouds/march_pixel.glsl's).
+uniform ivec3 u_stride_offset;
 
-// Whether march pixel `pixel` lies next to a silhouette and was not marched this frame. u_stride_offset:
-// the block's size and the pixel marched in it this frame.
+// Whether march pixel `pixel` lies next to a silhouette and was not marched this frame.
 bool clouds_at_silhouette(ivec2 pixel) {
   int n = u_stride_offset.x;
   if (all(equal(pixel % n, u_stride_offset.yz))) return false;
@@ -45,15 +44,4 @@ bool clouds_at_silhouette(ivec2 pixel) {
       }
   }
   return hi - lo > u_silhouette_opacity;
-}
-
-// The march at `pixel` where it lies next to a silhouette, else -1 (the frame block is loaded only
-// there: most pixels are not marched).
-vec4 clouds_march_silhouette(ivec2 pixel) {
-  if (!clouds_at_silhouette(pixel)) return vec4(-1.0);
-  clouds_load();
-  vec4 color;
-  vec3 distances;
-  clouds_march_pixel(pixel, color, distances);
-  return color;
 }
