@@ -17,11 +17,16 @@ namespace welkin::clouds {
 
 namespace {
 
-// The last frame's opacity range over the 3 x 3 pixels around that marks a pixel: 0.5, the strongest
-// silhouettes. On the peer scene (`welkin accuracy clouds --silhouettes`) 0.1 left 0.27% and 0.95%
-// turning and flying, 0.25 0.87% and 1.73%, 0.5 2.40% and 4.28% (9.60% and 16.77% without), 0.8 5.48%
-// and 8.81%, not half: docs/performance.md, "Silhouettes".
-constexpr float kSilhouetteOpacity = 0.5f;
+// The last frame's opacity range over the 3 x 3 pixels around that marks a pixel: 0.6, the strongest
+// silhouettes; and how far the view must have moved the pixel (in the history's pixels) for it to be
+// marked. On the peer scene at `high` (`welkin accuracy clouds --silhouettes --quick --size 640x360`,
+// the frames at 320 x 180: turning / flying at silhouettes, 10.12% / 19.27% without the pass; the
+// pixels listed turning 1 degree a frame, of 57600) 0.5 left 2.43% / 4.10% (3500 listed), 0.6 with
+// the motion 3.35% / 5.77% (2620), 0.65 3.71% / 6.19% (2250), 0.75 4.73% / 7.48% (1630). Still, the
+// motion lists none: 0.94% against 1.13% without the pass, 0.25% when marching the still view's too.
+// A silhouette pixel's march costs 2-3 times a pixel of the block march's (its ray meets thin cloud
+// and goes on through the layer): docs/performance.md, "Silhouettes".
+constexpr float kSilhouetteOpacity = 0.6f, kSilhouetteMotionPx = 0.25f;
 // The list's storage buffer binding (clouds/silhouette_list.glsl); the march's layers hold 0.
 constexpr GLuint kListBinding = 2;
 // The list's head as each frame starts: no work group, no pixel (GL's DispatchIndirectCommand, then
@@ -76,6 +81,7 @@ ResourceHandle add_silhouette_march(SystemContext& sc, CloudsGpu& gpu, ShaderDef
         p.set("u_previous_view_projection", previous_vp);
         p.set("u_camera_moved_m", moved);
         p.set("u_silhouette_opacity", kSilhouetteOpacity);
+        p.set("u_silhouette_motion_px", kSilhouetteMotionPx);
         glProgramUniform2i(p.id(), p.location("u_silhouette_size"), w, h);
         dispatch_screen(p, PixelRect{0, 0, w, h});  // its barrier covers the list's reads and the command
       });

@@ -1,10 +1,11 @@
 #pragma once
 // Which march pixels lie next to the last frame's silhouettes (issue 35): where the last resolved
 // frame, reprojected, changes its opacity by more than u_silhouette_opacity within the 3 x 3 pixels
-// around, a pixel that this frame's march did not take (not its block's pixel this frame) is marched
-// now (silhouettes_mark.comp lists it, march_silhouettes.comp marches the list) instead of being left
-// to the resolve's history, which trails a moving silhouette by up to a whole cycle of the blocks.
-// Where the pixel's clouds were out of the last frame's view, the four fresh samples around it decide.
+// around and the view moved, a pixel that this frame's march did not take (not its block's pixel this
+// frame) is marched now (silhouettes_mark.comp lists it, march_silhouettes.comp marches the list)
+// instead of being left to the resolve's history, which trails a moving silhouette by up to a whole
+// cycle of the blocks. Where the pixel's clouds were out of the last frame's view, the four fresh
+// samples around it decide.
 #include "clouds/reproject.glsl"
 // The last resolved frame (colour, transmittance) at its own size.
 layout(binding = CLOUDS_UNIT_SILHOUETTE_HISTORY) uniform sampler2D u_silhouette_history;
@@ -12,6 +13,7 @@ layout(binding = CLOUDS_UNIT_SILHOUETTE_HISTORY) uniform sampler2D u_silhouette_
 layout(binding = CLOUDS_UNIT_SILHOUETTE_CURRENT) uniform sampler2D u_silhouette_current;
 layout(binding = CLOUDS_UNIT_SILHOUETTE_DISTANCE) uniform sampler2D u_silhouette_distance;
 uniform float u_silhouette_opacity;
+uniform float u_silhouette_motion_px;
 uniform ivec2 u_silhouette_size;  // the march's whole size
 // The block's size and the pixel of it marched this frame (as clouds/march_pixel.glsl's).
 uniform ivec3 u_stride_offset;
@@ -28,6 +30,10 @@ bool clouds_at_silhouette(ivec2 pixel) {
   float lo = 1.0, hi = 0.0;
   if (in_view(uv)) {
     ivec2 history_size = textureSize(u_silhouette_history, 0);
+    // A view that did not move (by less than u_silhouette_motion_px of the history's pixels) keeps
+    // its silhouettes where they were: the history holds them.
+    vec2 moved = uv * vec2(history_size) - (vec2(pixel) + 0.5) * vec2(history_size) / vec2(u_silhouette_size);
+    if (max(abs(moved.x), abs(moved.y)) < u_silhouette_motion_px) return false;
     ivec2 centre = ivec2(floor(uv * vec2(history_size)));
     for (int y = -1; y <= 1; ++y)
       for (int x = -1; x <= 1; ++x) {

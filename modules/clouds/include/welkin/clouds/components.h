@@ -93,7 +93,7 @@ struct VolumetricClouds {
   // strongest silhouettes (its opacity changes by more than 0.5 within 3 x 3 pixels) are listed and
   // marched every frame too, not reprojected (issue 35): a sixth of the error there
   // (docs/performance.md, "Silhouettes after the temporal upscaling").
-  bool march_silhouettes = false;
+  bool march_silhouettes = true;
   // With temporal upscaling: each ray starts where the last frame's rays around it met no cloud, less
   // how far the camera and the clouds moved; one block in eight is marched whole each frame in turn.
   // Off by default: on llvmpipe it saved nothing measurable (README, "Empty space in front").
