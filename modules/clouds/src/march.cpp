@@ -209,7 +209,8 @@ void clouds_system(SystemContext& sc) {
   MarchOutput current =
       add_march_pass(sc, gpu, march_defines, stride_offset, qw, qh, front, front_unit, skip);
   // With 2 x 2 blocks only: at 4 x 4 (`low`, `medium`) the march takes a sixteenth of the pixels and the
-  // pass would cost 3.5 times as much as it (llvmpipe, the peer scene at `low`).
+  // pass over the whole frame cost 3.5 times as much as it (llvmpipe, the peer scene at `low`; the list
+  // of silhouette_march.h was not measured there).
   if (partial && clouds->march_silhouettes && n == 2)
     current.silhouettes =
         add_silhouette_march(sc, gpu, defines, stride_offset, current, w, h, front, front_unit);

@@ -19,11 +19,11 @@ namespace {
 
 // The last frame's opacity range over the 3 x 3 pixels around that marks a pixel: 0.6, the strongest
 // silhouettes; and how far the view must have moved the pixel (in the history's pixels) for it to be
-// marked. On the peer scene at `high` (`welkin accuracy clouds --silhouettes --quick --size 640x360`,
-// the frames at 320 x 180: turning / flying at silhouettes, 10.12% / 19.27% without the pass; the
+// marked. On the peer scene at `high` before cd57934 (`welkin accuracy clouds --silhouettes --quick
+// --size 640x360`, frames at 320 x 180: turning / flying at silhouettes, 10.12% / 19.27% without; the
 // pixels listed turning 1 degree a frame, of 57600) 0.5 left 2.43% / 4.10% (3500 listed), 0.6 with
 // the motion 3.35% / 5.77% (2620), 0.65 3.71% / 6.19% (2250), 0.75 4.73% / 7.48% (1630). Still, the
-// motion lists none: 0.94% against 1.13% without the pass, 0.25% when marching the still view's too.
+// motion lists none: 0.94% against 1.13% without the pass, 0.25% marching the still view's too.
 // A silhouette pixel's march costs 2-3 times a pixel of the block march's (its ray meets thin cloud
 // and goes on through the layer): docs/performance.md, "Silhouettes".
 constexpr float kSilhouetteOpacity = 0.6f, kSilhouetteMotionPx = 0.25f;
