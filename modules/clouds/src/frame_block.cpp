@@ -41,7 +41,7 @@ std::vector<glm::vec2> altitude_bands(std::vector<glm::vec2> ranges, int max_ban
 
 GenusModel genus_model(Genus genus) {
   const GenusTraits& g = genus_traits(genus);
-  return {g.dome, g.weather_frequency};
+  return {g.dome, g.weather_frequency, g.billow, g.wisp, g.edge};
 }
 
 PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& ctx,
@@ -76,6 +76,7 @@ PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& ct
     b.weather_origin = tile_origin(p - drift + offset, period);
     b.weather_per_m = float(1.0 / period);
     b.dome = g.dome, b.weather_channel = float(i % 3);
+    b.billow = g.billow, b.wisp = g.wisp, b.edge = g.edge;
     b.casts_shadow = L.casts_shadow ? 1.0f : 0.0f, b.follows_map = follows_map ? 1.0f : 0.0f;
     out.layers.push_back(b);
     out.source_index.push_back(int(i));

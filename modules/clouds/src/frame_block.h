@@ -21,7 +21,7 @@ using namespace welkin::gpu_block_types;
 using FrameBlock = gpu_blocks::CloudsFrameGpu;
 using LayerBlock = gpu_blocks::CloudLayerGpu;
 static_assert(sizeof(FrameBlock) == 368, "FrameBlock: the std140 CloudsFrame block's size");
-static_assert(sizeof(LayerBlock) == 96, "LayerBlock: the std430 CloudLayerGpu struct's size");
+static_assert(sizeof(LayerBlock) == 112, "LayerBlock: the std430 CloudLayerGpu struct's size");
 
 // Where the planet is and when it is: what the clouds read of other modules (through reflection).
 struct CloudsContext {
@@ -68,10 +68,12 @@ PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& co
 FrameBlock make_frame_block(const VolumetricClouds& clouds, const CloudsContext& context,
                             const NoiseFacts& noise, const FrameView& view, const PackedLayers& layers,
                             int march_width, int march_height, uint64_t frame_index);
-// The shape model of a genus: dome (0 sheet .. 1 dome) and weather frequency relative to the period.
+// The shape model of a genus: dome (0 sheet .. 1 dome), weather frequency relative to the period, and
+// its erosion (welkin/clouds/genera.h).
 struct GenusModel {
   float dome;
   float weather_frequency;
+  float billow, wisp, edge;
 };
 GenusModel genus_model(Genus genus);
 

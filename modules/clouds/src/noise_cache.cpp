@@ -11,7 +11,7 @@ namespace {
 
 // Bump when the C++ that finishes the volumes (equalise, pack_turbulence, void_and_cluster) changes:
 // the cache's key holds the shaders' sources, not this code.
-constexpr int kNoiseCacheVersion = 2;
+constexpr int kNoiseCacheVersion = 7;
 
 }  // namespace
 

@@ -183,6 +183,9 @@ NoiseBytes generate_noise(RenderContext& rc, CloudsGpu& gpu, int seed) {
   glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
   NoiseBytes n;
   n.weather = equalise(*gpu.weather, GL_RGBA, 4, 3);
+  // The shape noise too (its Perlin-Worley values crowd between 0.69 and 0.86): spread evenly, its
+  // erosion reaches every depth of a cloud and draws the edges, where the weather's slow ramp did.
+  equalise(*gpu.shape, GL_RGBA, 4, 1);
   n.shape = pack_turbulence(*gpu.shape, curl);
   n.systems = equalise(*gpu.systems, GL_RED, 1, 1);
   n.detail = read_volume(*gpu.detail, GL_RED, kDetailBytes);

@@ -125,15 +125,17 @@ double CloudField::layer_density(const LayerBlock& L, const glm::dvec3& x, doubl
   const double lo = (1.0 - c) * (1.0 + fw) - fw;
   const double d0 = clamp01((w - lo) / fw);
   if (d0 <= 0.0) return 0.0;
-  const double top = (1.0 - L.dome) * 1.0 + L.dome * std::max(d0, 0.05);
-  const double envelope = smoothstep(0.0, 0.08, t) * (1.0 - smoothstep(top * 0.75, top, t));
-  const double profile = clamp01(L.profile_exp_term * std::exp(L.profile_exponent * t) +
-                                 L.profile_linear_term * t + L.profile_constant_term);
-  const double b = d0 * envelope * profile;
+  // Domes: the top rises with the weather's strength over the threshold, rounded (density.glsl's
+  // clouds_layer_top); the density falls toward it as 1 - u^k.
+  const double strength = clamp01((w - lo) / std::max(1.0 - lo, fw));
+  const double top = (1.0 - L.dome) + L.dome * std::max(1.0 - (1.0 - strength) * (1.0 - strength), 0.1);
+  const double u = t / top;
+  if (u >= 1.0) return 0.0;
+  const double b = d0 * smoothstep(0.0, 0.06, t) * (1.0 - std::pow(u, 6.0 + (2.0 - 6.0) * L.dome));
   if (b <= 0.0) return 0.0;
   const glm::dvec3 shape_uvw = glm::dvec3(frame_.shape_origin) + x * double(frame_.shape_per_m);
   const double s = sample(noise_.shape, noise_.shape_size, 4, 0, shape_uvw);
-  const double erosion = (1.0 - s) * L.shape_amount;
+  const double erosion = (1.0 - s) * L.shape_amount * 0.6;  // the shape noise is equalised
   double d = clamp01((b - erosion) / std::max(1.0 - erosion, 1e-3));
   if (detail && d > 0.0 && L.detail_amount > 0.0) {
     // Curl turbulence: the detail noise is read where the curl field (the shape volume's gba) moves
@@ -145,11 +147,15 @@ double CloudField::layer_density(const LayerBlock& L, const glm::dvec3& x, doubl
         xd[a] += k * (2.0 * sample(noise_.shape, noise_.shape_size, 4, 1 + a, shape_uvw) - 1.0);
     const double n = sample(noise_.detail, noise_.detail_size, 1, 0,
                             glm::dvec3(frame_.detail_origin) + xd * double(frame_.detail_per_m));
-    const double m = clamp01(t * 4.0);
-    const double e = (n * (1.0 - m) + (1.0 - n) * m) * L.detail_amount * 0.35 * (1.0 - d);
+    // Wisps at the base, billows above, as deep as the genus erodes.
+    const double m = smoothstep(0.05, 0.35, t);
+    const double e = (L.wisp * n * (1.0 - m) + L.billow * (1.0 - n) * m) * L.detail_amount;
     d = clamp01((d - e) / std::max(1.0 - e, 1e-3));
   }
-  return d * L.density_per_m;
+  // The density's rise inside the edge, and the layer's vertical profile.
+  const double profile = clamp01(L.profile_exp_term * std::exp(L.profile_exponent * t) +
+                                 L.profile_linear_term * t + L.profile_constant_term);
+  return std::min(d * L.edge, 1.0) * profile * L.density_per_m;
 }
 
 double CloudField::extinction(const glm::dvec3& x, bool detail) const {

@@ -92,4 +92,10 @@ struct CloudLayerGpu {
   float handover_crossfade_m;
   float handover_far_m;
   float handover_unused;  // (padding)
+  // The genus's erosion (welkin/clouds/genera.h): the detail noise's depth at the top (billows) and
+  // at the base (wisps), and the density's rise inside the noise's edge.
+  float billow;
+  float wisp;
+  float edge;
+  float erosion_unused;  // (padding)
 };

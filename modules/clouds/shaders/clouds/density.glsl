@@ -113,6 +113,14 @@ vec4 clouds_weather_fetch(CloudLayerGpu L, vec3 x) {
 // Scales what the weather allows (the billboards' bake windows the field around each cloud it bakes).
 float clouds_weather_scale = 1.0;
 
+// The top of a layer's column (a fraction of its thickness) where the weather's strength over the
+// coverage threshold is a (0 at the threshold, 1 at the strongest weather): domes rise fast from
+// their edge and round over, and since the strength does not saturate inside a cloud neither do they
+// (no plateaus, no outlines traced by the weather's texels); sheets fill the layer.
+float clouds_layer_top(CloudLayerGpu L, float a) { return mix(1.0, max(1.0 - (1.0 - a) * (1.0 - a), 0.1), L.dome); }
+// The envelope's last top (clouds_layer_envelope sets it).
+float clouds_envelope_top = 1.0;
+
 // `w4`: the layer's weather sample at x; `follows_map`: the painted map adds to its coverage.
 float clouds_layer_envelope(CloudLayerGpu L, vec4 w4, bool follows_map, vec3 x, float h, out float t,
                             out float d0) {
@@ -131,13 +139,12 @@ float clouds_layer_envelope(CloudLayerGpu L, vec4 w4, bool follows_map, vec3 x, 
   float lo = (1.0 - c) * (1.0 + fw) - fw;
   d0 = clamp((w - lo) / fw, 0.0, 1.0) * clouds_weather_scale;
   if (d0 <= 0.0) return 0.0;
-  // Domes: the top rises with the weather's strength; sheets fill the layer. Flat, soft bases.
-  float top = mix(1.0, max(d0, 0.05), L.dome);
-  float envelope = smoothstep(0.0, 0.08, t) * (1.0 - smoothstep(top * 0.75, top, t));
-  float profile = clamp(
-      L.profile_exp_term * exp(L.profile_exponent * t) + L.profile_linear_term * t + L.profile_constant_term,
-      0.0, 1.0);
-  return d0 * envelope * profile;
+  clouds_envelope_top = clouds_layer_top(L, clamp((w - lo) / max(1.0 - lo, fw), 0.0, 1.0));
+  float u = t / clouds_envelope_top;
+  if (u >= 1.0) return 0.0;
+  // Flat bases; over the column the density falls as 1 - u^k toward the top: rounded domes (k 2),
+  // sheets even to near their top (k 6). The noise then carves the billows out of the rounded part.
+  return d0 * smoothstep(0.0, 0.06, t) * (1.0 - pow(u, mix(6.0, 2.0, L.dome)));
 }
 
 // The detail noise at xd (what the layers erode with).
@@ -156,7 +163,9 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
   envelope = clouds_layer_envelope(L, w4, follows_map, x, h, t, d0);
   if (envelope <= 0.0) return 0.0;
   float s = clouds_shape_sample.x;
-  float erosion = (1.0 - s) * L.shape_amount;
+  // The shape noise is equalised (noise_volumes.cpp): shape_amount 1 erodes up to 60% of the density,
+  // enough for heaps with gaps and lobes, not so much that they fall apart into shreds.
+  float erosion = (1.0 - s) * L.shape_amount * 0.6;
   float d = clamp((envelope - erosion) / max(1.0 - erosion, 1e-3), 0.0, 1.0);
   if (detail && d > 0.0 && L.detail_amount > 0.0) {
 #if CLOUDS_TURBULENCE
@@ -174,10 +183,18 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
     if (clouds_detail_sample < 0.0) clouds_detail_sample = clouds_detail_fetch(x);
 #endif
     float n = clouds_detail_sample;
-    // Wisps at the base, billows at the top (Schneider): the detail erodes thin parts most.
-    float e = mix(n, 1.0 - n, clamp(t * 4.0, 0.0, 1.0)) * L.detail_amount * 0.35 * (1.0 - d);
+    // Wisps at the base, billows above (Schneider 2015's height blend): the inverted Worley noise
+    // erodes between its cells' centres and leaves rounded lobes, the Worley noise erodes at the
+    // centres and leaves the cells' thin walls; each as deep as the genus erodes (genera.h).
+    float e = mix(L.wisp * n, L.billow * (1.0 - n), smoothstep(0.05, 0.35, t)) * L.detail_amount;
     d = clamp((d - e) / max(1.0 - e, 1e-3), 0.0, 1.0);
   }
+  // The density rises over the first 1 / edge of the eroded field inside its edge (crisp heaps, soft
+  // veils), and follows the layer's vertical profile.
+  float profile = clamp(
+      L.profile_exp_term * exp(L.profile_exponent * t) + L.profile_linear_term * t + L.profile_constant_term,
+      0.0, 1.0);
+  d = min(d * L.edge, 1.0) * profile;
 #if CLOUDS_HANDOVER
   // Seen from the camera, a layer the mesh clusters take over fades out across the hand-over; its
   // light and shadow samples keep the whole layer (the clusters' clouds still shade what is near).
@@ -191,8 +208,8 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
   }
 #endif
   clouds_depth_below_m += d * L.density_per_m * t * L.thickness_m;
-  // The column's top: where the envelope's fade from top * 0.75 to top is half way.
-  float above_m = max(0.875 * mix(1.0, max(d0, 0.05), L.dome) - t, 0.0) * L.thickness_m;
+  // The column's top: where the envelope has fallen most of the way.
+  float above_m = max(0.875 * clouds_envelope_top - t, 0.0) * L.thickness_m;
   clouds_depth_above_m += d * L.density_per_m * above_m;
   clouds_column_below += d * L.density_per_m * (L.density_per_m * d0 * t * L.thickness_m);
   clouds_column_above += d * L.density_per_m * (L.density_per_m * d0 * above_m);

@@ -4,23 +4,27 @@
 // field's shape model all come from this table, and a test checks the table against the preset folder.
 #include <cstddef>
 
-// X(name, dome, weather_frequency, thickness_m, density_per_m, casts_shadow)
+// X(name, dome, weather_frequency, thickness_m, density_per_m, casts_shadow, billow, wisp, edge)
 //   dome: 0 a sheet .. 1 domes with flat bases; weather_frequency: the layer's weather frequency
 //   relative to VolumetricClouds::weather_period_m;
 //   thickness_m, density_per_m, casts_shadow: a typical layer of the genus where only its base is
 //   known (a weather report gives bases, not tops: fair-weather cumulus about 1 km deep, sheets a few
-//   hundred metres; the weather module builds its layers from them).
-#define WELKIN_CLOUD_GENERA(X)                        \
-  X(cumulus, 1.0f, 2.5f, 1000.0f, 0.05f, true)        \
-  X(stratus, 0.0f, 0.5f, 400.0f, 0.03f, true)         \
-  X(stratocumulus, 0.4f, 1.6f, 600.0f, 0.04f, true)   \
-  X(cumulonimbus, 1.0f, 0.4f, 9000.0f, 0.08f, true)   \
-  X(altocumulus, 0.5f, 4.0f, 500.0f, 0.02f, true)     \
-  X(altostratus, 0.0f, 0.7f, 1200.0f, 0.005f, true)   \
-  X(nimbostratus, 0.1f, 0.4f, 2500.0f, 0.04f, true)   \
-  X(cirrus, 0.2f, 2.5f, 800.0f, 0.002f, false)        \
-  X(cirrostratus, 0.0f, 0.5f, 600.0f, 0.0008f, false) \
-  X(cirrocumulus, 0.3f, 8.0f, 300.0f, 0.004f, false)
+//   hundred metres; the weather module builds its layers from them);
+//   billow, wisp: how deep the detail noise erodes the layer's upper part into rounded billows
+//   (cauliflower tops: the inverted Worley noise) and its base into wisps (the Worley noise), as a
+//   fraction of the density (Schneider 2015's height blend; heaps billow, cirrus is wisps, sheets
+//   hardly either); edge: how fast the density rises inside the noise's edge (crisp heaps, soft veils).
+#define WELKIN_CLOUD_GENERA(X)                                          \
+  X(cumulus, 1.0f, 2.5f, 1000.0f, 0.05f, true, 0.35f, 0.3f, 3.0f)       \
+  X(stratus, 0.0f, 0.5f, 400.0f, 0.03f, true, 0.1f, 0.2f, 1.5f)         \
+  X(stratocumulus, 0.4f, 1.6f, 600.0f, 0.04f, true, 0.3f, 0.25f, 2.5f)  \
+  X(cumulonimbus, 1.0f, 0.4f, 9000.0f, 0.08f, true, 0.4f, 0.3f, 3.0f)   \
+  X(altocumulus, 0.5f, 4.0f, 500.0f, 0.02f, true, 0.3f, 0.25f, 2.0f)    \
+  X(altostratus, 0.0f, 0.7f, 1200.0f, 0.005f, true, 0.05f, 0.15f, 1.0f) \
+  X(nimbostratus, 0.1f, 0.4f, 2500.0f, 0.04f, true, 0.1f, 0.2f, 1.5f)   \
+  X(cirrus, 0.2f, 2.5f, 800.0f, 0.002f, false, 0.1f, 0.5f, 1.0f)        \
+  X(cirrostratus, 0.0f, 0.5f, 600.0f, 0.0008f, false, 0.0f, 0.1f, 1.0f) \
+  X(cirrocumulus, 0.3f, 8.0f, 300.0f, 0.004f, false, 0.3f, 0.2f, 1.5f)
 
 namespace welkin::clouds {
 
@@ -40,11 +44,14 @@ struct GenusTraits {
   float thickness_m;        // a typical layer's
   float density_per_m;
   bool casts_shadow;
+  float billow;  // the detail noise's erosion at the top (rounded billows)
+  float wisp;    // and at the base (wisps)
+  float edge;    // the density's rise inside the edge
 };
 
 inline constexpr GenusTraits kGenera[] = {
-#define WELKIN_GENUS_ROW(name, dome, frequency, thickness, density, shadow) \
-  {Genus::name, #name, dome, frequency, thickness, density, shadow},
+#define WELKIN_GENUS_ROW(name, dome, frequency, thickness, density, shadow, billow, wisp, edge) \
+  {Genus::name, #name, dome, frequency, thickness, density, shadow, billow, wisp, edge},
     WELKIN_CLOUD_GENERA(WELKIN_GENUS_ROW)
 #undef WELKIN_GENUS_ROW
 };
