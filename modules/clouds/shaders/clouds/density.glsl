@@ -118,7 +118,8 @@ float clouds_weather_scale = 1.0;
 // their edge and round over, and since the strength does not saturate inside a cloud neither do they
 // (no plateaus, no outlines traced by the weather's texels); sheets fill the layer.
 float clouds_layer_top(CloudLayerGpu L, float a) { return mix(1.0, max(1.0 - (1.0 - a) * (1.0 - a), 0.1), L.dome); }
-// The envelope's last top (clouds_layer_envelope sets it).
+// Where the envelope clouds_layer_envelope last evaluated has fallen half way (a fraction of the
+// layer's thickness): the top of its column, as the light sees it.
 float clouds_envelope_top = 1.0;
 
 // `w4`: the layer's weather sample at x; `follows_map`: the painted map adds to its coverage.
@@ -139,12 +140,14 @@ float clouds_layer_envelope(CloudLayerGpu L, vec4 w4, bool follows_map, vec3 x, 
   float lo = (1.0 - c) * (1.0 + fw) - fw;
   d0 = clamp((w - lo) / fw, 0.0, 1.0) * clouds_weather_scale;
   if (d0 <= 0.0) return 0.0;
-  clouds_envelope_top = clouds_layer_top(L, clamp((w - lo) / max(1.0 - lo, fw), 0.0, 1.0));
-  float u = t / clouds_envelope_top;
+  float top = clouds_layer_top(L, clamp((w - lo) / max(1.0 - lo, fw), 0.0, 1.0));
+  float u = t / top;
   if (u >= 1.0) return 0.0;
   // Flat bases; over the column the density falls as 1 - u^k toward the top: rounded domes (k 2),
   // sheets even to near their top (k 6). The noise then carves the billows out of the rounded part.
-  return d0 * smoothstep(0.0, 0.06, t) * (1.0 - pow(u, mix(6.0, 2.0, L.dome)));
+  float k = mix(6.0, 2.0, L.dome);
+  clouds_envelope_top = top * exp2(-1.0 / k);
+  return d0 * smoothstep(0.0, 0.06, t) * (1.0 - pow(u, k));
 }
 
 // The detail noise at xd (what the layers erode with).
@@ -208,11 +211,12 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
   }
 #endif
   clouds_depth_below_m += d * L.density_per_m * t * L.thickness_m;
-  // The column's top: where the envelope has fallen most of the way.
-  float above_m = max(0.875 * clouds_envelope_top - t, 0.0) * L.thickness_m;
+  float above_m = max(clouds_envelope_top - t, 0.0) * L.thickness_m;
   clouds_depth_above_m += d * L.density_per_m * above_m;
-  clouds_column_below += d * L.density_per_m * (L.density_per_m * d0 * t * L.thickness_m);
-  clouds_column_above += d * L.density_per_m * (L.density_per_m * d0 * above_m);
+  // The column's body: the weather's density before the noise erodes it, risen as the edge makes it.
+  float body = min(d0 * L.edge, 1.0) * L.density_per_m;
+  clouds_column_below += d * L.density_per_m * (body * t * L.thickness_m);
+  clouds_column_above += d * L.density_per_m * (body * above_m);
   return d * L.density_per_m;
 }
 
