@@ -35,12 +35,11 @@ void place_shadow_cascades(CloudsGpu& gpu, const VolumetricClouds& clouds, const
   key.size = clouds.shadow_map_size;
   key.max_wind_mps = glm::length(clouds.wind_mps);
   for (const LayerBlock& b : layers.layers) {
-    key.settings.insert(
-        key.settings.end(),
-        {b.base_m, b.thickness_m, b.base_variation_m, b.density_per_m, b.coverage, b.shape_amount,
-         b.detail_amount, b.filter_width, b.profile_exp_term, b.profile_exponent, b.profile_linear_term,
-         b.profile_constant_term, b.dome, b.weather_channel, b.casts_shadow, b.follows_map, b.billow, b.wisp,
-         b.edge});
+    key.settings.insert(key.settings.end(),
+                        {b.base_m, b.thickness_m, b.base_variation_m, b.density_per_m, b.coverage,
+                         b.shape_amount, b.detail_amount, b.filter_width, b.profile_exp_term,
+                         b.profile_exponent, b.profile_linear_term, b.profile_constant_term, b.dome,
+                         b.weather_channel, b.casts_shadow, b.follows_map, b.billow, b.wisp, b.edge});
   }
   for (const CloudLayer& L : clouds.layers)
     key.max_wind_mps = std::max(key.max_wind_mps, glm::length(L.wind_mps));

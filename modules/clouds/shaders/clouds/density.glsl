@@ -117,7 +117,9 @@ float clouds_weather_scale = 1.0;
 // coverage threshold is a (0 at the threshold, 1 at the strongest weather): domes rise fast from
 // their edge and round over, and since the strength does not saturate inside a cloud neither do they
 // (no plateaus, no outlines traced by the weather's texels); sheets fill the layer.
-float clouds_layer_top(CloudLayerGpu L, float a) { return mix(1.0, max(1.0 - (1.0 - a) * (1.0 - a), 0.1), L.dome); }
+float clouds_layer_top(CloudLayerGpu L, float a) {
+  return mix(1.0, max(1.0 - (1.0 - a) * (1.0 - a), 0.1), L.dome);
+}
 // Where the envelope clouds_layer_envelope last evaluated has fallen half way (a fraction of the
 // layer's thickness): the top of its column, as the light sees it.
 float clouds_envelope_top = 1.0;
