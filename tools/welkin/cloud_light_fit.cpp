@@ -38,7 +38,8 @@ constexpr const char* kTerms[] = {
     "CLOUDS_MS_W6",  "CLOUDS_MS_W7",  "CLOUDS_MS_W8",  "CLOUDS_MS_W9",  "CLOUDS_MS_W10", "CLOUDS_MS_W11",
     "CLOUDS_MS_W12", "CLOUDS_MS_W13", "CLOUDS_MS_W14", "CLOUDS_MS_W15", "CLOUDS_MS_W16", "CLOUDS_MS_W17",
     "CLOUDS_MS_W18", "CLOUDS_MS_W19", "CLOUDS_MS_W20", "CLOUDS_MS_W21", "CLOUDS_MS_W22", "CLOUDS_MS_W23",
-    "CLOUDS_MS_W24", "CLOUDS_MS_W25", "CLOUDS_MS_W26", "CLOUDS_MS_W27", "CLOUDS_MS_W28", "CLOUDS_MS_W29"};
+    "CLOUDS_MS_W24", "CLOUDS_MS_W25", "CLOUDS_MS_W26", "CLOUDS_MS_W27", "CLOUDS_MS_W28", "CLOUDS_MS_W29",
+    "CLOUDS_MS_W30", "CLOUDS_MS_W31"};
 constexpr const char* kTermMeaning[] = {
     "D = T_d(tau) - T(tau): the diffuse light beyond the direct beam, toward the light",
     "D S(tau_b): ... gathered from the cloud below",
@@ -69,7 +70,9 @@ constexpr const char* kTermMeaning[] = {
     "f D S(tau_b)",
     "mu_0 exp(-tau / 4)",
     "T_d(tau) (1 - mu) / 2: the diffuse light seen from the light's side (a lit surface's reflection)",
-    "D (1 - mu) / 2"};
+    "D (1 - mu) / 2",
+    "F mu_0 D S(tau_b), F the sample's density over its un-eroded envelope's: light leaks between billows",
+    "F c D S(tau_b)"};
 static_assert(std::size(kTermMeaning) == std::size(kTerms));
 constexpr size_t kTermCount = std::size(kTerms);
 

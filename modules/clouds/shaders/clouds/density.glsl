@@ -69,6 +69,10 @@ float clouds_depth_above_m = 0.0;
 // The optical depths of the column under and over the point at the density the weather gives it
 // before the noise erodes it (the cloud's body, where the point itself may be a thin wisp).
 float clouds_column_below = 0.0, clouds_column_above = 0.0;
+// How much of the un-eroded envelope the noise left at the point (1: solid; small: between billows,
+// where light diffused in the cloud leaks out through the gaps): the layers' eroded extinction over
+// their envelope's, both summed over the layers.
+float clouds_fill = 1.0, clouds_envelope_sigma = 0.0;
 float clouds_painted_sample = 2.0;  // > 1: not read yet at this point
 // CLOUDS_HANDOVER: some layer is handed over to the mesh clusters beyond a distance; the march sets
 // this while it samples what the camera sees (not toward the light).
@@ -200,6 +204,8 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
       L.profile_exp_term * exp(L.profile_exponent * t) + L.profile_linear_term * t + L.profile_constant_term,
       0.0, 1.0);
   d = min(d * L.edge, 1.0) * profile;
+  clouds_envelope_sigma += min(envelope * L.edge, 1.0) * profile * L.density_per_m;
+  clouds_fill += d * L.density_per_m;
 #if CLOUDS_HANDOVER
   // Seen from the camera, a layer the mesh clusters take over fades out across the hand-over; its
   // light and shadow samples keep the whole layer (the clusters' clouds still shade what is near).
@@ -268,6 +274,7 @@ float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
   clouds_detail_displacement = 0.0;
   clouds_depth_below_m = 0.0, clouds_depth_above_m = 0.0;
   clouds_column_below = 0.0, clouds_column_above = 0.0;
+  clouds_fill = 0.0, clouds_envelope_sigma = 0.0;
   float h = clouds_altitude(x);
   if (h < cl.lowest_m || h > cl.highest_m) return 0.0;
   // The shape noise is the same for every layer: read once.
@@ -299,6 +306,7 @@ float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
   clouds_depth_below_m /= max(sum, 1e-12);
   clouds_depth_above_m /= max(sum, 1e-12);
   clouds_column_below /= max(sum, 1e-12), clouds_column_above /= max(sum, 1e-12);
+  clouds_fill = clouds_envelope_sigma > 0.0 ? min(clouds_fill / clouds_envelope_sigma, 1.0) : 1.0;
   return sum;
 }
 float clouds_density(vec3 x, bool detail, bool shadow_only) {

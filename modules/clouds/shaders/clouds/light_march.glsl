@@ -5,11 +5,11 @@
 // The cloud around a sample, from the density evaluation that found it: read before the light march
 // evaluates other points.
 struct CloudsSampleGeometry {
-  float depth_below_m, depth_above_m, column_below, column_above;
+  float depth_below_m, depth_above_m, column_below, column_above, fill;
 };
 CloudsSampleGeometry clouds_sample_geometry() {
   return CloudsSampleGeometry(clouds_depth_below_m, clouds_depth_above_m, clouds_column_below,
-                              clouds_column_above);
+                              clouds_column_above, clouds_fill);
 }
 
 // Optical depth toward the light from x: steps that double from the first light step, then, toward
@@ -56,6 +56,6 @@ vec3 clouds_marched_source(vec3 x, vec3 l, float mu, float phase_single, float s
     return clouds_sample_source(mu, phase_single, tau, sigma_t, g.depth_below_m, g.depth_above_m, l, up,
                                 e_light, e_sky);
   CloudsLightInputs s = clouds_light_inputs(tau, sigma_t, g.depth_below_m, g.depth_above_m);
-  s.column_below = g.column_below, s.column_above = g.column_above, s.clear = clear;
+  s.column_below = g.column_below, s.column_above = g.column_above, s.clear = clear, s.fill = g.fill;
   return clouds_light_source(mu, phase_single, s, l, up, e_light, e_sky);
 }

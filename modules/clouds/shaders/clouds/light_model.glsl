@@ -29,6 +29,7 @@ struct CloudsLightInputs {
   float column_below, column_above;  // the optical depths of the cloud's body under and over the sample
   float tau;                         // the optical depth toward the light
   float clear;                       // the fraction of the light march's way that was clear (0: unknown)
+  float fill;                        // the sample's density over its un-eroded envelope's (1: unknown)
 };
 
 // Schneider's beer-powder darkening of thin edges (cl.powder = 0: off).
@@ -76,6 +77,9 @@ float clouds_powder(float sigma_t) {
 //  27  mu_0 exp(-tau / 4)
 //  28  T_d(tau) (1 - mu) / 2    the diffuse light seen from the light's side: a lit surface reflects
 //  29  D (1 - mu) / 2           more than the cloud lets through (the cloud's brighter face)
+//  30  F mu_0 D S(tau_b)      terms 19 and 24 times F, the fraction of the un-eroded envelope's
+//  31  F c D S(tau_b)         density the noise left at the sample: between billows (small F)
+//                               light diffused in the cloud leaks out through the gaps and sides
 // All fade where the cloud around the sample is thin (its outskirts, wisps: little light has been
 // scattered toward it by neighbours, the physical side of Schneider's "powder"), by
 // 1 - exp(-n sigma_t l_1), l_1 the first light step.
@@ -129,6 +133,7 @@ float clouds_multiple_scattering(float mu, CloudsLightInputs s, vec3 l, vec3 up)
   sum += beyond * (entered * (CLOUDS_MS_W23 + CLOUDS_MS_W24 * reflection) +
                    s.clear * (CLOUDS_MS_W25 + CLOUDS_MS_W26 * reflection));
   sum += 0.5 * (1.0 - mu) * (CLOUDS_MS_W28 * s.diffuse + CLOUDS_MS_W29 * beyond);
+  sum += s.fill * beyond * reflection * (CLOUDS_MS_W30 * mu_0 + CLOUDS_MS_W31 * entered);
   return sum * (1.0 - exp(-CLOUDS_MS_POWDER * s.sigma_t * cl.light_step_m));
 }
 
@@ -164,7 +169,7 @@ vec3 clouds_light_source(float mu, float phase_single, CloudsLightInputs s, vec3
 CloudsLightInputs clouds_light_inputs(float tau, float sigma_t, float depth_below_m, float depth_above_m) {
   return CloudsLightInputs(clouds_direct_transmittance(tau), clouds_slab_diffuse(tau), sigma_t, depth_below_m,
                            depth_above_m, exp(-0.25 * tau), exp(-0.0625 * tau), sigma_t * depth_below_m,
-                           sigma_t * depth_above_m, tau, 0.0);
+                           sigma_t * depth_above_m, tau, 0.0, 1.0);
 }
 
 vec3 clouds_sample_source(float mu, float phase_single, float tau, float sigma_t, float depth_below_m,

@@ -80,7 +80,7 @@ void main() {
     float tau = max(v_light_gradient.w + v_light_gradient.z * (o.z + d.z * t), 0.0);
 #endif
     CloudsLightInputs s = clouds_light_inputs(tau, sigma, clouds_depth_below_m, clouds_depth_above_m);
-    s.column_below = clouds_column_below, s.column_above = clouds_column_above;
+    s.column_below = clouds_column_below, s.column_above = clouds_column_above, s.fill = clouds_fill;
     vec3 source = clouds_diffusion_model
                       ? clouds_light_source(mu, phase_single, s, u_light_dir, v_up, v_light, v_sky)
                       : clouds_sample_source(mu, phase_single, tau, sigma, clouds_depth_below_m,

@@ -58,9 +58,11 @@ TEST(CloudsAccuracy, DiffusionBeatsOctavesAndStaysWithinItsStatedError) {
   // model: 14.6%, worst 30.8%.
   // On the eroded field (billowed tops, wispy bases: docs/clouds.md, "Shape"), refitted on it: 37.6%,
   // worst 86.0% (the side away from the sun seen from above, too bright: light that the path tracer
-  // loses through the gaps between the billows; the bases within 3-20%).
-  EXPECT_LT(rmse_diffusion, 0.40);
-  EXPECT_LT(worst[1], 0.90);
+  // loses through the gaps between the billows; the bases within 3-20%). With the terms that weigh the
+  // diffuse light by how much of the un-eroded envelope the noise left at the sample (30, 31): 29.8%,
+  // worst 64.6% (that side still, too bright; the top -21.7%, the base 30 degrees up -20.7%).
+  EXPECT_LT(rmse_diffusion, 0.32);
+  EXPECT_LT(worst[1], 0.68);
 }
 
 // A stratus deck (0.8-1.3 km, coverage 0.9) under a sun 12 degrees up: the bases' multiple scattering
@@ -98,9 +100,10 @@ TEST(CloudsAccuracy, DeckUnderALowSunStaysWithinItsStatedError) {
   // jitter through empty strides (the top seen from above 5% too bright, within the reference's 95%
   // interval; one jitter for every frame had put it at +1.7%); the model fitted on the cumulus alone,
   // on the same rays' marched terms: 201%, worst 364% (every ray too bright, the top from above most).
-  // On the eroded field, refitted on it: 26.7%, worst 47.8% (the inside and the top too bright).
-  EXPECT_LT(rmse, 0.29);
-  EXPECT_LT(worst, 0.50);
+  // On the eroded field, refitted on it: 26.7%, worst 47.8% (the inside and the top too bright); with
+  // the envelope's fill terms (30, 31): 20.5%, worst 30.5% (the inside 41% too bright, the top 12%).
+  EXPECT_LT(rmse, 0.23);
+  EXPECT_LT(worst, 0.33);
 }
 
 // The sky alone (CloudProbe::Light::sky: a uniform sky over a black ground, no sun) on the same rays:
