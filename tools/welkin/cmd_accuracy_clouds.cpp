@@ -296,26 +296,31 @@ int write_cloud_images(const CloudAccuracyOptions& o, const std::map<std::string
     probe.clouds().quality = names.at(q);
     const std::vector<double> gpu = probe.gpu_image(measured.camera, width, height);
     ComparisonPanels panels{.width = width, .height = height};
-    double sum = 0.0, mean = 0.0, noise = 0.0;
+    double sum = 0.0, mean = 0.0, noise = 0.0, gpu_mean = 0.0;
     int cloud_pixels = 0;
     for (size_t i = 0; i < gpu.size(); ++i) {
       const double r = reference[i].radiance();
       panels.approximation.push_back(glm::dvec3(gpu[i])), panels.reference.push_back(glm::dvec3(r));
       panels.relative.push_back(0.0);
       if (reference[i].transmittance.mean > 0.999 && gpu[i] <= 0.0) continue;  // no cloud on this pixel
-      sum += (gpu[i] - r) * (gpu[i] - r), mean += r, ++cloud_pixels;
+      sum += (gpu[i] - r) * (gpu[i] - r), mean += r, gpu_mean += gpu[i], ++cloud_pixels;
       noise += std::pow(reference[i].scattered.ci95 / 1.96, 2.0);
     }
     mean /= std::max(cloud_pixels, 1);
     for (size_t i = 0; i < gpu.size(); ++i) panels.relative[i] = mean > 0.0 ? (gpu[i] - reference[i].radiance()) / mean : 0.0;
     const double rmse = std::sqrt(sum / std::max(cloud_pixels, 1)) / std::max(mean, 1e-30);
     const double noise_rmse = std::sqrt(noise / std::max(cloud_pixels, 1)) / std::max(mean, 1e-30);
+    // The squared difference's expectation is the squared bias plus the reference's variance: what is
+    // left after the variance is the real-time frame's own error, less noisy than the RMSE itself.
+    const double bias = std::sqrt(std::max(rmse * rmse - noise_rmse * noise_rmse, 0.0));
+    gpu_mean /= std::max(cloud_pixels, 1);
     const std::string png = (fs::path(o.out) / ("clouds-image-" + stem + "-" + q + ".png")).string();
     write_comparison_panels(png, panels, std::max(1, 384 / width), 0.25);
     std::printf("%s at %s, %dx%d: real time above, path tracer (%d paths a pixel) in the middle, difference below "
                 "(full red or blue at 25%% of the mean): relative RMSE %.1f%% over %d cloud pixels (the reference's "
-                "own noise %.1f%%); wrote %s\n",
-                stem.c_str(), q.c_str(), width, height, o.paths_per_pixel, 100 * rmse, cloud_pixels, 100 * noise_rmse, png.c_str());
+                "own noise %.1f%%; net of it %.1f%%), mean %.1f%% of the reference's; wrote %s\n",
+                stem.c_str(), q.c_str(), width, height, o.paths_per_pixel, 100 * rmse, cloud_pixels, 100 * noise_rmse,
+                100 * bias, 100 * gpu_mean / std::max(mean, 1e-30), png.c_str());
   }
   return kOk;
 }

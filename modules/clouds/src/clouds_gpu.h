@@ -47,6 +47,7 @@ struct CloudsGpu {
   ShadowKey shadow_keys[kMaxShadowCascades];     // what each cascade holds
   bool shadow_rebuild[kMaxShadowCascades] = {};  // this frame remakes it
   int shadow_builds = 0;                         // cascades made
+  glm::vec2 shadow_altitudes_m{0.0f};            // the lowest and highest altitude of a layer that casts one
   FrameBlock block;                              // this frame's, uploaded before the geometry
   std::vector<LayerBlock> layers;                // and its packed layers (the CPU reference reads them)
   // Temporal upscaling: the last two results at the march resolution. The one a frame writes is made

@@ -78,6 +78,7 @@ void place_shadow_cascades(CloudsGpu& gpu, const VolumetricClouds& clouds, const
     gpu.shadow.cascades[k].origin = glm::vec3(held.anchor_m - view.camera_position_m);
     gpu.shadow.cascades[k].valid = 1;
   }
+  gpu.shadow_altitudes_m = {layers.lowest_shadow_m, layers.highest_shadow_m};
   gpu.shadow.light = l;
   gpu.shadow.column_vertical = std::abs(l.z);
   gpu.shadow.up = block.up;
@@ -116,7 +117,7 @@ void shadow_system(SystemContext& sc) {
         b.write(map);
         b.side_effect();  // read by every material through the light environment
       },
-      [gp, &rc, s, remade, size, defines = field_defines(gpu)](PassContext&) {
+      [gp, &rc, s, remade, size, altitudes = gpu.shadow_altitudes_m, defines = field_defines(gpu)](PassContext&) {
         bind_field(*gp);
         bind_image_for_write(0, *gp->shadow_map);
         const Program& p = rc.shaders.compute("clouds/shadow_map.comp", defines);
@@ -130,6 +131,7 @@ void shadow_system(SystemContext& sc) {
           p.set("u_extent_m", c.side_m);
           p.set("u_start_m", c.start_m);
           p.set("u_steps", kShadowSteps);
+          p.set("u_altitudes_m", altitudes);
           glProgramUniform2i(p.id(), p.location("u_region"), k * size, size);
           const int g = group_count(size, 8);
           dispatch_compute(p, g, g);

@@ -289,9 +289,9 @@ std::vector<double> CloudProbe::gpu_image(const Camera& camera, int width, int h
     for (int i = 0; i < kJitterFrames; ++i) {
       renderer_->render_frame(FrameInfo{.index = frame_++}, width, height);
       const ImageF hdr = renderer_->read_hdr();
-      for (int y = 0; y < height; ++y)  // read_hdr's rows run from the bottom
+      for (int y = 0; y < height; ++y)  // read_hdr's rows run from the top, as pixel_direction's
         for (int x = 0; x < width; ++x)
-          image[size_t(y) * width + x] += hdr.pixel(x, height - 1 - y)[1] / kJitterFrames;
+          image[size_t(y) * width + x] += hdr.pixel(x, y)[1] / kJitterFrames;
     }
     return image;
   });

@@ -12,6 +12,11 @@ uniform vec3 u_axis_u, u_axis_v;  // the map plane's axes through the camera, un
 uniform float u_extent_m;    // side of the map
 uniform float u_start_m;     // columns start this far toward the sun from the plane
 uniform int u_steps;
+// The altitudes of the layers that cast shadows, lowest base to highest top: the columns span those
+// alone. Spanning every layer's (a haze at the ground, cirrus at 8 km) made a column under a sun 10
+// degrees up 46 km long instead of 8: stretches of 1.2 km stepped over whole cumulus, and the haze
+// under them was lit as if they were not there (a tenth of the path tracer's shadow).
+uniform vec2 u_altitudes_m;
 
 void main() {
   clouds_load();
@@ -22,8 +27,8 @@ void main() {
   vec3 start =
       u_centre + ((uv.x - 0.5) * u_axis_u + (uv.y - 0.5) * u_axis_v) * u_extent_m + u_light * u_start_m;
   vec3 dir = -u_light;
-  vec2 outer = clouds_sphere_from(start, dir, cl.highest_m),
-       inner = clouds_sphere_from(start, dir, cl.lowest_m);
+  vec2 outer = clouds_sphere_from(start, dir, u_altitudes_m.y),
+       inner = clouds_sphere_from(start, dir, u_altitudes_m.x);
   // No cloud: the front at the column's end and no optical depth, so that filtering between a cloudy
   // texel and a clear one blends their optical depths instead of jumping at the texel's edge.
   // The column is the whole line through the texel along the light, its distances measured from
