@@ -199,6 +199,33 @@ TEST(CloudsAccuracy, ReferenceImageCacheReadsTheImageBackAndMissesAChangedField)
   std::filesystem::remove_all(folder);
 }
 
+// The march's image and the path tracer's run their rows the same way: level with the layer's base
+// from 100 m, the top quarter of the view sees cloud in both and the bottom quarter (20-30 degrees
+// down, the ground) in neither (the march's pixels between blur across the horizon: it runs at a
+// quarter of the size and is magnified). The probe once turned the march's rows over, and every
+// image figure compared the sky with the ground.
+TEST(CloudsAccuracy, ProbeImagesRunTheirRowsTheSameWay) {
+  test::gl_context().make_current();
+  CloudProbe probe(cumulus(), 200.0, 40.0);
+  reference::PathTraceSettings s;
+  s.samples = 2;
+  Camera camera;
+  camera.position_m = {0.0, 0.0, 100.0}, camera.heading_deg = 0.0f, camera.pitch_deg = 0.0f;
+  const int w = 16, h = 16;
+  const std::vector<double> march = probe.gpu_image(camera, w, h);
+  const auto traced = probe.reference_image(camera, w, h, s);
+  double march_top = 0.0, march_bottom = 0.0, traced_top = 0.0, traced_bottom = 0.0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * w + x;
+      if (y < h / 4) march_top += march[i], traced_top += traced[i].scattered.mean;
+      if (y >= h - h / 4) march_bottom += march[i], traced_bottom += traced[i].scattered.mean;
+    }
+  EXPECT_GT(march_top, 0.0);
+  EXPECT_GT(traced_top, 0.0);
+  EXPECT_EQ(march_bottom, 0.0);
+  EXPECT_EQ(traced_bottom, 0.0);
+}
+
 }  // namespace
 }  // namespace welkin::clouds
-
