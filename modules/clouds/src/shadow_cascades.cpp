@@ -117,7 +117,8 @@ void shadow_system(SystemContext& sc) {
         b.write(map);
         b.side_effect();  // read by every material through the light environment
       },
-      [gp, &rc, s, remade, size, altitudes = gpu.shadow_altitudes_m, defines = field_defines(gpu)](PassContext&) {
+      [gp, &rc, s, remade, size, altitudes = gpu.shadow_altitudes_m,
+       defines = field_defines(gpu)](PassContext&) {
         bind_field(*gp);
         bind_image_for_write(0, *gp->shadow_map);
         const Program& p = rc.shaders.compute("clouds/shadow_map.comp", defines);
