@@ -32,6 +32,8 @@ struct BillboardBakeKey {
 // The billboards' GPU state (src/billboards.cpp).
 struct BillboardsGpu {
   std::unique_ptr<Texture> volume, atlas;  // the archetypes' extinction, and their views
+  // the fill the light model reads beside each (r8): per voxel, and per texel averaged along the view
+  std::unique_ptr<Texture> fill_volume, fill_atlas;
   std::unique_ptr<Buffer> archetypes;      // each archetype's place in the noise and its weather's score
   PlacementBuffers placement;
   std::unique_ptr<Buffer> billboards, order;
