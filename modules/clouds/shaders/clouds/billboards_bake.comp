@@ -89,7 +89,9 @@ void main() {
       vec3((vec2(i, j) + 0.5) / float(n) * 2.0 - 1.0, (float(l % slices) + 0.5) / float(slices) * 2.0 - 1.0) *
       vec3(hw, hw, hh);
   // The weather faded out toward the box's sides: a cloud inside it, not a cut block of the layer.
-  clouds_weather_scale = 1.0 - smoothstep(0.55, 0.95, length(p.xy) / hw);
+  // From 0.8 of the half width (was 0.55): the disc kept 44% of the cell, and the billboards covered
+  // less of the horizon than the field (docs/clouds-far.md, "The billboards' fill and cover").
+  clouds_weather_scale = 1.0 - smoothstep(0.8, 0.95, length(p.xy) / hw);
   clouds_footprint_m = 2.0 * hw / float(n);  // the noise averaged over a voxel
   vec3 x = vec3(bb_archetypes[archetype].place + p.xy, centre_h + p.z);
   vec2 sigma_fill = clouds_weather_scale > 0.0 ? archetype_field(L, x, centre_h + p.z) : vec2(0.0);
