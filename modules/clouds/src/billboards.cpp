@@ -104,6 +104,18 @@ void add_bake_pass(RenderGraph& g, CloudsGpu& gpu, RenderContext& rc, const Shad
                                                    .depth = 2 * views * billboards.archetypes,
                                                    .array = true,
                                                    .format = TextureFormat::rgba16f});
+  // The fill beside them, a byte a voxel and a texel (a quarter of the volumes', a sixteenth of the
+  // atlas's memory, bounded with them: validate()).
+  bg.fill_volume = std::make_unique<Texture>(TextureDesc{.width = box.resolution,
+                                                         .height = box.resolution,
+                                                         .depth = box.slices * billboards.archetypes,
+                                                         .format = TextureFormat::r8});
+  bg.fill_atlas = std::make_unique<Texture>(TextureDesc{.width = billboards.atlas_resolution,
+                                                        .height = billboards.atlas_resolution,
+                                                        // an array even of one view and archetype
+                                                        .depth = std::max(2, views * billboards.archetypes),
+                                                        .array = true,
+                                                        .format = TextureFormat::r8});
   bg.archetypes = std::make_unique<Buffer>(size_t(billboards.archetypes) * sizeof(glm::vec4));
   bg.baked = key;
   ++bg.bakes;
@@ -115,7 +127,10 @@ void add_bake_pass(RenderGraph& g, CloudsGpu& gpu, RenderContext& rc, const Shad
                glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, bb.archetypes->id());
                bind_image_for_write(0, *bb.volume);
                bind_image_for_write(1, *bb.atlas);
+               bind_image_for_write(2, *bb.fill_volume);
+               bind_image_for_write(3, *bb.fill_atlas);
                glBindTextureUnit(8, bb.volume->id());
+               glBindTextureUnit(9, bb.fill_volume->id());
                const int r = billboards.atlas_resolution;
                const int64_t invocations[3] = {
                    billboards.archetypes,
@@ -124,7 +139,7 @@ void add_bake_pass(RenderGraph& g, CloudsGpu& gpu, RenderContext& rc, const Shad
                for (int stage = 0; stage < 3; ++stage) {
                  ShaderDefines d = field;
                  d["BILLBOARDS_BAKE_STAGE"] = std::to_string(stage);
-                 if (stage == 2) d["BILLBOARDS_VOLUME"] = "8";
+                 if (stage == 2) d["BILLBOARDS_VOLUME"] = "8", d["BILLBOARDS_FILL_VOLUME"] = "9";
                  const Program& p = rc.shaders.compute("clouds/billboards_bake.comp", d);
                  set_atlas_uniforms(p, billboards, box);
                  glProgramUniform1ui(p.id(), p.location("u_seed"), GLuint(billboards.seed));
@@ -226,9 +241,10 @@ void billboards_system(SystemContext& sc) {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, bb.order->id());
         glBindTextureUnit(3, pc.texture(t.depth).id());
         glBindTextureUnit(4, volume ? bb.volume->id() : bb.atlas->id());
+        glBindTextureUnit(volume ? 9 : 8, volume ? bb.fill_volume->id() : bb.fill_atlas->id());
         ShaderDefines d = light_model_defines(*gp);
         d["BILLBOARDS_RENDER_VOLUME"] = volume ? "1" : "0";
-        if (volume) d["BILLBOARDS_VOLUME"] = "4";
+        if (volume) d["BILLBOARDS_VOLUME"] = "4", d["BILLBOARDS_FILL_VOLUME"] = "9";
         const Program& p = rc.shaders.graphics("clouds/billboard.vert", "clouds/billboard.frag", d);
         p.use();
         set_atlas_uniforms(p, billboards, box);

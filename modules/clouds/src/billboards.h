@@ -33,6 +33,8 @@ struct BillboardBakeKey {
 struct BillboardsGpu {
   std::unique_ptr<Texture> volume, atlas;  // the archetypes' extinction, and their views
   std::unique_ptr<Buffer> archetypes;      // each archetype's place in the noise and its weather's score
+  // The fill the light model reads beside each (r8): per voxel, and per texel averaged along the view.
+  std::unique_ptr<Texture> fill_volume, fill_atlas;
   PlacementBuffers placement;
   std::unique_ptr<Buffer> billboards, order;
   size_t billboard_capacity = 0, order_capacity = 0;

@@ -311,7 +311,9 @@ void validate(const CloudBillboards& b) {
                                       std::to_string(kMaxBillboardAtlasLayers / 2),
                           .found = std::to_string(layers / 2)});
   // Memory bounded before it is spent: the archetypes' volumes (up to atlas_resolution voxels on
-  // every side, 4 bytes each) and the atlas (8 bytes a texel).
+  // every side, 4 bytes each) and the atlas (8 bytes a texel). The fill beside each (a byte a voxel
+  // and a texel, src/billboards.cpp) is a quarter of the one and a sixteenth of the other, each a
+  // texture of its own within the same bound.
   const int64_t r = b.atlas_resolution;
   if (r * r * r * b.archetypes * 4 > kMaxBillboardVolumeBytes)
     throw Error(ErrorInfo{

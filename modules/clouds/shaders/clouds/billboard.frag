@@ -12,6 +12,7 @@
 layout(binding = 3) uniform sampler2D u_depth;  // the scene's (reversed Z; 0 = nothing)
 #if !BILLBOARDS_RENDER_VOLUME
 layout(binding = 4) uniform sampler2DArray u_atlas_texture;  // 2 layers per view and archetype
+layout(binding = 8) uniform sampler2DArray u_fill_atlas;     // 1 layer per view and archetype: the fill
 #endif
 uniform mat4 u_inverse_view_projection;  // camera-relative
 uniform vec2 u_viewport;
@@ -65,14 +66,19 @@ void main() {
   for (int s = 0; s < 64; ++s) {
     float t = span.x + (float(s) + 0.5) * dt;
     vec3 p = o + d * t;
-    float sigma = billboard_extinction(p, archetype) * scale;
+    vec2 sigma_fill = billboard_extinction_fill(p, archetype);
+    float sigma = sigma_fill.x * scale;
     if (sigma <= 0.0) continue;
     float tau = billboard_march_depth(p, l_local, archetype, 24) * scale;
     float step_opacity = 1.0 - exp(-sigma * dt);
     float below_m = max(p.z + u_volume.y, 0.0), above_m = max(u_box.y - p.z, 0.0);
+    CloudsLightInputs inputs = clouds_light_inputs(tau, sigma, below_m, above_m);
+    inputs.fill = sigma_fill.y;
     light += transmittance * step_opacity *
-             clouds_sample_source(mu, phase_single, tau, sigma, below_m, above_m, u_light_dir, v_up,
-                                  b.light, b.sky);
+             (clouds_diffusion_model
+                  ? clouds_light_source(mu, phase_single, inputs, u_light_dir, v_up, b.light, b.sky)
+                  : clouds_sample_source(mu, phase_single, tau, sigma, below_m, above_m, u_light_dir, v_up,
+                                         b.light, b.sky));
     if (transmittance > 0.5 && transmittance * (1.0 - step_opacity) <= 0.5) front = t;
     transmittance *= 1.0 - step_opacity;
   }
@@ -97,7 +103,7 @@ void main() {
     opacity += v_weights[i] * view_opacity[i];
   }
   if (opacity < 1e-5) discard;
-  float weight = 0.0, t_half = 0.0, height = 0.0, sigma = 0.0;
+  float weight = 0.0, t_half = 0.0, height = 0.0, sigma = 0.0, fill = 0.0;
   vec4 sh_diffuse = vec4(0.0);
   for (int i = 0; i < 3; ++i) {
     float w = v_weights[i] * view_opacity[i];
@@ -107,8 +113,9 @@ void main() {
     height += w * a[i].z;
     sigma += w * a[i].w;
     sh_diffuse += w * textureLod(u_atlas_texture, uvw[i] + vec3(0.0, 0.0, 1.0), 0.0);
+    fill += w * textureLod(u_fill_atlas, vec3(uvw[i].xy, floor(0.5 * uvw[i].z)), 0.0).r;
   }
-  t_half /= weight, height /= weight, sigma /= weight, sh_diffuse /= weight;
+  t_half /= weight, height /= weight, sigma /= weight, sh_diffuse /= weight, fill /= weight;
   // Soft where the scene or the planet comes within the cloud's half height of its middle.
   opacity *= clamp((ray_end(dir) - t_half) / u_box.y + 0.5, 0.0, 1.0);
   // The averaged diffuse transmittance toward the light, and the optical depth it stands for (the
@@ -117,10 +124,10 @@ void main() {
   float phase_single = clouds_phase(mu, 1.0);
   Billboard b = bb_billboards[v_billboard];
   float above_m = max(u_volume.y + u_box.y - height, 0.0);  // to the box's top
+  CloudsLightInputs inputs = clouds_light_inputs(tau, sigma * scale, max(height, 0.0), above_m);
+  inputs.fill = fill;
   vec3 source = clouds_diffusion_model
-      ? clouds_light_source(mu, phase_single,
-                            clouds_light_inputs(tau, sigma * scale, max(height, 0.0), above_m), u_light_dir,
-                            v_up, b.light, b.sky)
+      ? clouds_light_source(mu, phase_single, inputs, u_light_dir, v_up, b.light, b.sky)
       : clouds_sample_source(mu, phase_single, tau, sigma * scale, max(height, 0.0), above_m,
                              u_light_dir, v_up, b.light, b.sky);
   light = opacity * source;

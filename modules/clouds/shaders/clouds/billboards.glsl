@@ -14,6 +14,9 @@
 //           (clouds/light_model.glsl), so the average over the view of that part of what the samples
 //           scatter is found from it toward the light, at any time of day; the direct beam is taken
 //           from the optical depth it stands for.
+// And a third texture (r8, one layer per view and archetype): the fill the light model's terms 30-31
+// read (the eroded density over the envelope's, clouds/density.glsl), averaged along the view with
+// each sample's share of the opacity (what it adds to the pixel), as the march's samples add it.
 
 #include "clouds/billboard_block.glsl.h"
 
@@ -89,16 +92,31 @@ vec2 billboard_box_span(vec3 p, vec3 d) {
 }
 
 #ifdef BILLBOARDS_VOLUME
-// Archetypes' extinction volumes (1/m), stacked along z: archetype k holds slices [k n, (k + 1) n).
+// Archetypes' extinction volumes (1/m), stacked along z: archetype k holds slices [k n, (k + 1) n);
+// and beside them (BILLBOARDS_FILL_VOLUME) the fill the march's light model reads (clouds_fill: the
+// eroded density over the un-eroded envelope's; 0 outside the envelope, so that the filtered fill
+// falls toward a cloud's edge as the field's does).
 layout(binding = BILLBOARDS_VOLUME) uniform sampler3D u_billboard_volume;
-float billboard_extinction(vec3 p, int archetype) {
+layout(binding = BILLBOARDS_FILL_VOLUME) uniform sampler3D u_billboard_fill_volume;
+// Where p (the archetype's frame, m) lies in the volumes' texture coordinates; x < 0: outside the box.
+vec3 billboard_volume_coordinates(vec3 p, int archetype) {
   vec3 f = p / vec3(u_box.x, u_box.x, u_box.y) * 0.5 + 0.5;
-  if (any(lessThan(f, vec3(0.0))) || any(greaterThan(f, vec3(1.0)))) return 0.0;
+  if (any(lessThan(f, vec3(0.0))) || any(greaterThan(f, vec3(1.0)))) return vec3(-1.0);
   float slices = u_box.w;
   // Kept half a slice inside its own stack: no archetype reads its neighbour's.
   float z =
       (clamp(f.z * slices, 0.5, slices - 0.5) + float(archetype) * slices) / (slices * float(u_atlas.z));
-  return textureLod(u_billboard_volume, vec3(f.xy, z), 0.0).r;
+  return vec3(f.xy, z);
+}
+float billboard_extinction(vec3 p, int archetype) {
+  vec3 c = billboard_volume_coordinates(p, archetype);
+  return c.x < 0.0 ? 0.0 : textureLod(u_billboard_volume, c, 0.0).r;
+}
+// The extinction (1/m) and the fill at p.
+vec2 billboard_extinction_fill(vec3 p, int archetype) {
+  vec3 c = billboard_volume_coordinates(p, archetype);
+  if (c.x < 0.0) return vec2(0.0);
+  return vec2(textureLod(u_billboard_volume, c, 0.0).r, textureLod(u_billboard_fill_volume, c, 0.0).r);
 }
 // The optical depth from p toward w, to where the ray leaves the box, in `steps` midpoint steps.
 float billboard_march_depth(vec3 p, vec3 w, int archetype, int steps) {

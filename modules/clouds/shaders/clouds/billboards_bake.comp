@@ -5,10 +5,12 @@
 //              archetype), so that the archetypes range from a small cloud to a large one and each
 //              cell gets the one its own weather matches;
 //   1 volume:  the layer's extinction in the archetype's box, from the field's own functions
-//              (clouds/density.glsl) with its weather windowed to a disc inside the box;
+//              (clouds/density.glsl) with its weather windowed to a disc inside the box, and its fill
+//              (the eroded density over the envelope's, which the light model reads);
 //   2 atlas:   each view's texel: the optical depth through the volume, the point that hides half of
-//              the opacity, and the diffuse transmittance toward 16 directions from four points
-//              along the view, projected on spherical harmonics (clouds/billboards.glsl).
+//              the opacity, the diffuse transmittance toward 16 directions from four points along
+//              the view, projected on spherical harmonics, and the fill averaged over what each
+//              sample adds to the view (clouds/billboards.glsl).
 // The bake reads the noise in a frame of its own (the noise's origin at zero, the world's axes), so
 // it depends on the settings alone, not on where the camera is or when: scrubbing equals playing.
 #include "clouds/density.glsl"
@@ -21,8 +23,10 @@ layout(local_size_x = 64) in;
 layout(std430, binding = 7) buffer BillboardArchetypes { BillboardArchetype bb_archetypes[]; };
 #if BILLBOARDS_BAKE_STAGE == 1
 layout(r32f, binding = 0) uniform writeonly image3D o_volume;
+layout(r8, binding = 2) uniform writeonly image3D o_fill_volume;
 #elif BILLBOARDS_BAKE_STAGE == 2
 layout(rgba16f, binding = 1) uniform writeonly image2DArray o_atlas;
+layout(r8, binding = 3) uniform writeonly image2DArray o_fill_atlas;
 #endif
 uniform int u_layer;
 uniform float u_coverage;  // the coverage the archetypes are baked at
@@ -36,15 +40,18 @@ CloudLayerGpu bake_layer() {
   return L;
 }
 
-// The layer's extinction (1/m) at x (the noise's frame) and height h above the planet's surface.
-float archetype_field(CloudLayerGpu L, vec3 x, float h) {
+// The layer's extinction (1/m) at x (the noise's frame) and height h above the planet's surface, and
+// its fill there (0 outside the envelope).
+vec2 archetype_field(CloudLayerGpu L, vec3 x, float h) {
   clouds_detail_sample = -1.0, clouds_painted_sample = 2.0, clouds_detail_displacement = 0.0;
   clouds_system_g = 0.5;
   clouds_shape_sample =
       textureLod(cl_shape_noise, x * cl.shape_per_m, clouds_lod(1.0 / (cl.shape_per_m * 128.0)));
   float envelope;
-  return clouds_layer_density(L, clouds_weather_fetch(L, x), false, true, x, h, envelope) *
-         (cl.scattering + cl.absorption);
+  clouds_fill = 0.0, clouds_envelope_sigma = 0.0;
+  float sigma = clouds_layer_density(L, clouds_weather_fetch(L, x), false, true, x, h, envelope) *
+                (cl.scattering + cl.absorption);
+  return vec2(sigma, clouds_envelope_sigma > 0.0 ? min(clouds_fill / clouds_envelope_sigma, 1.0) : 0.0);
 }
 
 void main() {
@@ -82,11 +89,14 @@ void main() {
       vec3((vec2(i, j) + 0.5) / float(n) * 2.0 - 1.0, (float(l % slices) + 0.5) / float(slices) * 2.0 - 1.0) *
       vec3(hw, hw, hh);
   // The weather faded out toward the box's sides: a cloud inside it, not a cut block of the layer.
-  clouds_weather_scale = 1.0 - smoothstep(0.55, 0.95, length(p.xy) / hw);
+  // From 0.8 of the half width (was 0.55): the disc kept 44% of the cell, and the billboards covered
+  // less of the horizon than the field (docs/clouds-far.md, "The billboards' fill and cover").
+  clouds_weather_scale = 1.0 - smoothstep(0.8, 0.95, length(p.xy) / hw);
   clouds_footprint_m = 2.0 * hw / float(n);  // the noise averaged over a voxel
   vec3 x = vec3(bb_archetypes[archetype].place + p.xy, centre_h + p.z);
-  float sigma = clouds_weather_scale > 0.0 ? archetype_field(L, x, centre_h + p.z) : 0.0;
-  imageStore(o_volume, ivec3(i, j, l), vec4(sigma));
+  vec2 sigma_fill = clouds_weather_scale > 0.0 ? archetype_field(L, x, centre_h + p.z) : vec2(0.0);
+  imageStore(o_volume, ivec3(i, j, l), vec4(sigma_fill.x));
+  imageStore(o_fill_volume, ivec3(i, j, l), vec4(sigma_fill.y));
 #elif BILLBOARDS_BAKE_STAGE == 2
   int r = u_atlas.w, views = u_atlas.x * u_atlas.y;
   if (id >= r * r * views * u_atlas.z) return;
@@ -98,9 +108,15 @@ void main() {
   vec2 span = billboard_box_span(q, f);
   int steps = 2 * int(u_volume.x);
   float dt = max(span.y - span.x, 0.0) / float(steps);
-  float tau = 0.0;
-  for (int s = 0; s < steps; ++s)
-    tau += billboard_extinction(q + f * (span.x + (float(s) + 0.5) * dt), archetype) * dt;
+  // The optical depth, and the fill weighted by what each step adds to the view (its opacity times
+  // the transmittance in front of it).
+  float tau = 0.0, fill_sum = 0.0, fill_weight = 0.0;
+  for (int s = 0; s < steps; ++s) {
+    vec2 sigma_fill = billboard_extinction_fill(q + f * (span.x + (float(s) + 0.5) * dt), archetype);
+    float added = exp(-tau) * (1.0 - exp(-sigma_fill.x * dt));
+    fill_sum += added * sigma_fill.y, fill_weight += added;
+    tau += sigma_fill.x * dt;
+  }
   // Empty: no depth, the transmittance 1 toward every direction.
   vec4 a = vec4(0.0), sh_diffuse = vec4(1.0 / 0.282095, 0.0, 0.0, 0.0);
   if (tau > 1e-5) {
@@ -139,5 +155,7 @@ void main() {
   int layer = 2 * (archetype * views + v);
   imageStore(o_atlas, ivec3(i, j, layer), a);
   imageStore(o_atlas, ivec3(i, j, layer + 1), sh_diffuse);
+  imageStore(o_fill_atlas, ivec3(i, j, archetype * views + v),
+             vec4(fill_weight > 0.0 ? fill_sum / fill_weight : 1.0));
 #endif
 }

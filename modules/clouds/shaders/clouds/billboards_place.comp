@@ -48,16 +48,18 @@ void main() {
     vec3 c = layer_point(en, L.base_m + u_volume.y);
     float rho = length(c);
     // The archetype whose own weather is nearest the cell's (of two equally near, one by the hash).
-    float score = bb_cells[cell], nearest = 3.4e38;
+    float score = bb_cells[cell], nearest = 3.4e38, weakest = 3.4e38;
     int archetype = 0;
     for (int k = 0; k < u_atlas.z; ++k) {
       float miss = abs(bb_archetypes[k].score - score) + 1e-3 * fract(u.z * 7.0 + float(k) * 0.618);
       if (bb_archetypes[k].score > 0.0 && miss < nearest) nearest = miss, archetype = k;
+      if (bb_archetypes[k].score > 0.0) weakest = min(weakest, bb_archetypes[k].score);
     }
     float fade =
         smoothstep(u_fade.x, u_fade.y + 1e-3, rho) * (1.0 - smoothstep(u_fade.z - 1e-3, u_fade.w, rho));
-    // A cell weaker than the weakest archetype thins it.
-    float weather = clamp(score / max(bb_archetypes[archetype].score, 1e-6), 0.0, 1.0);
+    // A cell weaker than the weakest archetype thins it (only then: a cell between two archetypes
+    // shows the nearer whole, as the field shows smaller clouds, not thinner ones).
+    float weather = clamp(score / max(weakest, 1e-6), 0.0, 1.0);
     float scale = u_density_scale * fade * weather;
     if (scale > 0.0) {
       vec3 up = normalize(cl.up * cl.camera_radius_m + c);

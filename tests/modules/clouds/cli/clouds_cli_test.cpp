@@ -111,8 +111,10 @@ nlohmann::json switch_figures(const std::string& path, const std::string& size) 
 // light model before the refit). The bounds leave about two points. On the billowed field (docs/clouds.md,
 // "Shape") the billboards measure +20.3% and 25.2% (their cover 79% against the march's 90%); with
 // the light model's terms 30-31 (the fill of the un-eroded envelope, which the billboards' atlas does
-// not carry: they read 1, the march less between billows) +30.0% and 31.2%. The aim, 2% and
-// 12%, is not met yet.
+// not carry: they read 1, the march less between billows) +30.0% and 31.2%; with the fill baked into
+// the atlas +15.1% and 19.4%; with the archetypes windowed from 0.8 of their half width (was 0.55) and
+// thinned only below the weakest archetype +8.7% and 15.6%. The aim, 2% and 12%, is not met
+// yet.
 TEST(CloudsCli, CheaperPathsAgreeWithTheMarchAtTheSwitch) {
   const nlohmann::json clusters = switch_figures("clusters", "160x90");
   ASSERT_TRUE(clusters.contains("pixel_luminance_difference")) << clusters.dump();
@@ -122,8 +124,8 @@ TEST(CloudsCli, CheaperPathsAgreeWithTheMarchAtTheSwitch) {
   const nlohmann::json billboards = switch_figures("billboards", "160x90");
   ASSERT_TRUE(billboards.contains("pixel_luminance_difference")) << billboards.dump();
   EXPECT_GT(billboards["band_pixels"].get<int>(), 100);
-  EXPECT_LE(std::abs(billboards["mean_luminance_difference"].get<double>()), 0.32) << billboards.dump();
-  EXPECT_LE(billboards["pixel_luminance_difference"].get<double>(), 0.33) << billboards.dump();
+  EXPECT_LE(std::abs(billboards["mean_luminance_difference"].get<double>()), 0.11) << billboards.dump();
+  EXPECT_LE(billboards["pixel_luminance_difference"].get<double>(), 0.18) << billboards.dump();
 }
 
 }  // namespace
