@@ -38,16 +38,19 @@ ShaderDefines field_defines(const CloudsGpu& gpu) {
   const std::vector<LayerBlock>& layers = gpu.layers;
   if (layers.empty() || layers.size() > size_t(kLocalLayers)) return d;
   const bool detail = gpu.block.shape_detail > 0.5f, map = gpu.block.has_map > 0.5f;
-  int detail_mask = 0, map_mask = 0, shadow_mask = 0;
+  int detail_mask = 0, map_mask = 0, shadow_mask = 0, streak_mask = 0, anvil_mask = 0;
   for (size_t i = 0; i < layers.size(); ++i) {
     const LayerBlock& L = layers[i];
     if (detail && L.detail_amount > 0.0f) detail_mask |= 1 << i;
     if (map && L.follows_map > 0.5f) map_mask |= 1 << i;
     if (L.casts_shadow > 0.5f) shadow_mask |= 1 << i;
+    if (L.streak > 1.0f || L.hook_m != 0.0f) streak_mask |= 1 << i;  // the genus's shapes (genera.h)
+    if (L.anvil_start > 0.0f) anvil_mask |= 1 << i;
     // The first layer with the same weather origin and period (the same place: one fetch, other channels).
     size_t source = i;
     for (size_t j = 0; j < i && source == i; ++j)
-      if (layers[j].weather_origin == L.weather_origin && layers[j].weather_per_m == L.weather_per_m)
+      if (layers[j].weather_origin == L.weather_origin && layers[j].weather_per_m == L.weather_per_m &&
+          layers[j].streak == L.streak && layers[j].streak_axis == L.streak_axis)
         source = j;
     if (i > 0) d["CLOUDS_WEATHER_SOURCE_" + std::to_string(i)] = std::to_string(source);
   }
@@ -57,6 +60,10 @@ ShaderDefines field_defines(const CloudsGpu& gpu) {
   d["CLOUDS_DETAIL_MASK"] = std::to_string(detail_mask);
   d["CLOUDS_MAP_MASK"] = std::to_string(map_mask);
   d["CLOUDS_SHADOW_MASK"] = std::to_string(shadow_mask);
+  d["CLOUDS_STREAK_MASK"] = std::to_string(streak_mask);
+  d["CLOUDS_ANVIL_MASK"] = std::to_string(anvil_mask);
+  d["CLOUDS_STREAKS"] = streak_mask != 0 ? "1" : "0";
+  d["CLOUDS_ANVILS"] = anvil_mask != 0 ? "1" : "0";
   return d;
 }
 

@@ -13,13 +13,14 @@ namespace welkin::clouds {
 
 namespace {
 
-// The field without its drift: the layers with their weather origins left out, the noise and map
+// The field without its drift: the layers with their noises' origins left out, the noise and map
 // builds, the shaders' permutation.
 uint64_t field_digest(const CloudsGpu& gpu, const ShaderDefines& defines) {
   uint64_t h = fnv1a_64_of(gpu.noise_builds, fnv1a_64_of(gpu.noise_seed));
   h = fnv1a_64_of(gpu.noise_cache_reads, fnv1a_64_of(gpu.coverage_map_revision, h));
   for (LayerBlock layer : gpu.layers) {
     layer.weather_origin = glm::vec3(0.0f);
+    layer.streak_shape_origin = layer.streak_detail_origin = glm::vec3(0.0f);  // they move as the others do
     h = fnv1a_64_of(layer, h);
   }
   const FrameBlock& b = gpu.block;
@@ -46,7 +47,8 @@ float field_drift_m(const CloudsGpu& gpu, const FirstHitHistory& last) {
                       moved_m(b.system_origin, p.system_origin, b.system_per_m)});
   for (size_t i = 0; i < gpu.layers.size() && i < last.layers.size(); ++i)
     m = std::max(m, moved_m(gpu.layers[i].weather_origin, last.layers[i].weather_origin,
-                            gpu.layers[i].weather_per_m));
+                            gpu.layers[i].weather_per_m) *
+                        gpu.layers[i].streak);  // a streaked weather moves `streak` times less along the wind
   return m;
 }
 

@@ -18,6 +18,12 @@ glm::vec3 tile_origin(const glm::dvec3& p_m, double period_m) {
   return glm::vec3(q - glm::floor(q));
 }
 
+// A position in a genus's streaked frame (density.glsl's clouds_streaked): stretched by `streak` along
+// the unit `axis` (the noise varies `streak` times more slowly along the wind).
+glm::dvec3 streaked(const glm::dvec3& p_m, const glm::dvec3& axis, double streak) {
+  return p_m - axis * (glm::dot(p_m, axis) * (1.0 - 1.0 / streak));
+}
+
 }  // namespace
 
 std::vector<glm::vec2> altitude_bands(std::vector<glm::vec2> ranges, int max_bands) {
@@ -41,7 +47,8 @@ std::vector<glm::vec2> altitude_bands(std::vector<glm::vec2> ranges, int max_ban
 
 GenusModel genus_model(Genus genus) {
   const GenusTraits& g = genus_traits(genus);
-  return {g.dome, g.weather_frequency, g.billow, g.wisp, g.edge};
+  return {g.dome, g.weather_frequency, g.billow, g.wisp, g.edge, g.streak, g.hook_s, g.anvil_start,
+          g.anvil_spread};
 }
 
 PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& ctx,
@@ -73,10 +80,20 @@ PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& ct
     b.filter_width = std::max(L.coverage_filter_width, 0.01f);
     b.profile_exp_term = L.profile_exp_term, b.profile_exponent = L.profile_exponent;
     b.profile_linear_term = L.profile_linear_term, b.profile_constant_term = L.profile_constant_term;
-    b.weather_origin = tile_origin(p - drift + offset, period);
     b.weather_per_m = float(1.0 / period);
     b.dome = g.dome, b.weather_channel = float(i % 3);
     b.billow = g.billow, b.wisp = g.wisp, b.edge = g.edge;
+    // Streaks along the layer's wind, their noise's origins in the streaked frame (the shape and
+    // detail noise drift with the clouds' wind); an anvil under the layer's ceiling.
+    const double wind = glm::length(glm::dvec2(L.wind_mps));
+    const glm::dvec3 axis = wind > 0.0 ? glm::dvec3(glm::dvec2(L.wind_mps) / wind, 0.0) : glm::dvec3(0.0);
+    const glm::dvec3 noise_p = p - glm::dvec3(clouds.wind_mps, 0.0) * ctx.time_s;
+    b.streak_axis = glm::vec3(axis), b.streak = std::max(g.streak, 1.0f);
+    b.hook_m = float(g.hook_s * wind);
+    b.streak_shape_origin = tile_origin(streaked(noise_p, axis, b.streak), clouds.shape_period_m);
+    b.streak_detail_origin = tile_origin(streaked(noise_p, axis, b.streak), clouds.detail_period_m);
+    b.weather_origin = tile_origin(streaked(p - drift + offset, axis, b.streak), period);
+    b.anvil_start = g.anvil_start, b.anvil_spread = g.anvil_spread;
     b.casts_shadow = L.casts_shadow ? 1.0f : 0.0f, b.follows_map = follows_map ? 1.0f : 0.0f;
     out.layers.push_back(b);
     out.source_index.push_back(int(i));

@@ -21,7 +21,7 @@ using namespace welkin::gpu_block_types;
 using FrameBlock = gpu_blocks::CloudsFrameGpu;
 using LayerBlock = gpu_blocks::CloudLayerGpu;
 static_assert(sizeof(FrameBlock) == 368, "FrameBlock: the std140 CloudsFrame block's size");
-static_assert(sizeof(LayerBlock) == 112, "LayerBlock: the std430 CloudLayerGpu struct's size");
+static_assert(sizeof(LayerBlock) == 160, "LayerBlock: the std430 CloudLayerGpu struct's size");
 
 // Where the planet is and when it is: what the clouds read of other modules (through reflection).
 struct CloudsContext {
@@ -74,6 +74,7 @@ struct GenusModel {
   float dome;
   float weather_frequency;
   float billow, wisp, edge;
+  float streak, hook_s, anvil_start, anvil_spread;
 };
 GenusModel genus_model(Genus genus);
 

@@ -111,8 +111,34 @@ double CloudField::coverage(const LayerBlock& L, const glm::dvec3& x) const {
   return L.follows_map > 0.5f ? clamp01(c + painted_coverage(x)) : c;
 }
 
+namespace {
+
+// The anvil's envelope at height t (density.glsl's clouds_anvil): the towers tall enough to reach it
+// spread out under the layer's ceiling, wider with height, flat at the top; a0 the weather's density.
+double anvil_envelope(const LayerBlock& L, double w, double lo, double t, double& a0) {
+  a0 = 0.0;
+  const double s = (t - L.anvil_start) / std::max(1.0 - double(L.anvil_start), 1e-3);
+  if (s <= 0.0) return 0.0;
+  const double tall = std::max(1.0 - lo, double(L.filter_width)) * (1.0 - std::sqrt(1.0 - double(L.anvil_start)));
+  const double la = lo + tall * (1.0 - L.anvil_spread * smoothstep(0.0, 0.7, s));
+  a0 = clamp01((w - la) / L.filter_width);
+  return a0 * smoothstep(0.0, 0.3, s) * (1.0 - smoothstep(0.88, 1.0, s));
+}
+
+// A camera-relative offset in the layer's stretched frame (density.glsl's clouds_stretched), and a
+// point at height t in its streaked frame (clouds_streaked).
+glm::dvec3 stretched(const LayerBlock& L, const glm::dvec3& v) {
+  const glm::dvec3 axis(L.streak_axis);
+  return v - axis * (glm::dot(v, axis) * (1.0 - 1.0 / double(L.streak)));
+}
+glm::dvec3 streaked(const LayerBlock& L, const glm::dvec3& x, double t) {
+  return stretched(L, x + glm::dvec3(L.streak_axis) * (double(L.hook_m) * (1.0 - t) * (1.0 - t)));
+}
+
+}  // namespace
+
 double CloudField::layer_density(const LayerBlock& L, const glm::dvec3& x, double h, bool detail) const {
-  const glm::dvec3 wuv = glm::dvec3(L.weather_origin) + x * double(L.weather_per_m);
+  const glm::dvec3 wuv = glm::dvec3(L.weather_origin) + stretched(L, x) * double(L.weather_per_m);
   const int channel = int(L.weather_channel);
   const double w = sample(noise_.weather, noise_.weather_size, 4, channel, wuv);
   const double variation = sample(noise_.weather, noise_.weather_size, 4, 3, wuv);
@@ -123,19 +149,34 @@ double CloudField::layer_density(const LayerBlock& L, const glm::dvec3& x, doubl
   const double c = coverage(L, x);
   if (c <= 0.0) return 0.0;
   const double lo = (1.0 - c) * (1.0 + fw) - fw;
-  const double d0 = clamp01((w - lo) / fw);
-  if (d0 <= 0.0) return 0.0;
+  double d0 = clamp01((w - lo) / fw);
   // Domes: the top rises with the weather's strength over the threshold, rounded (density.glsl's
   // clouds_layer_top); the density falls toward it as 1 - u^k.
-  const double strength = clamp01((w - lo) / std::max(1.0 - lo, fw));
-  const double top = (1.0 - L.dome) + L.dome * std::max(1.0 - (1.0 - strength) * (1.0 - strength), 0.1);
-  const double u = t / top;
-  if (u >= 1.0) return 0.0;
-  const double b = d0 * smoothstep(0.0, 0.06, t) * (1.0 - std::pow(u, 6.0 + (2.0 - 6.0) * L.dome));
+  double b = 0.0;
+  if (d0 > 0.0) {
+    const double strength = clamp01((w - lo) / std::max(1.0 - lo, fw));
+    const double top = (1.0 - L.dome) + L.dome * std::max(1.0 - (1.0 - strength) * (1.0 - strength), 0.1);
+    const double u = t / top;
+    if (u < 1.0) b = d0 * smoothstep(0.0, 0.06, t) * (1.0 - std::pow(u, 6.0 + (2.0 - 6.0) * L.dome));
+  }
+  // The anvil under the ceiling (genera.h), which the noise hardly erodes.
+  double anvil_weight = 0.0;
+  if (L.anvil_start > 0.0f) {
+    double a0 = 0.0;
+    const double a = anvil_envelope(L, w, lo, t, a0);
+    if (a > b) d0 = std::max(d0, a0);
+    b = std::max(b, a);
+    anvil_weight = b > 0.0 ? a / b : 0.0;
+  }
   if (b <= 0.0) return 0.0;
-  const glm::dvec3 shape_uvw = glm::dvec3(frame_.shape_origin) + x * double(frame_.shape_per_m);
+  // A streaked layer reads the shape and detail noise in its own frame.
+  const bool streaks = L.streak > 1.0f || L.hook_m != 0.0f;
+  const glm::dvec3 shape_uvw =
+      streaks ? glm::dvec3(L.streak_shape_origin) + streaked(L, x, t) * double(frame_.shape_per_m)
+              : glm::dvec3(frame_.shape_origin) + x * double(frame_.shape_per_m);
   const double s = sample(noise_.shape, noise_.shape_size, 4, 0, shape_uvw);
-  const double erosion = (1.0 - s) * L.shape_amount * 0.6;  // the shape noise is equalised
+  const double erosion =
+      (1.0 - s) * L.shape_amount * 0.6 * (1.0 - 0.8 * anvil_weight);  // the shape noise is equalised
   double d = clamp01((b - erosion) / std::max(1.0 - erosion, 1e-3));
   if (detail && d > 0.0 && L.detail_amount > 0.0) {
     // Curl turbulence: the detail noise is read where the curl field (the shape volume's gba) moves
@@ -145,11 +186,14 @@ double CloudField::layer_density(const LayerBlock& L, const glm::dvec3& x, doubl
     if (k > 0.0)
       for (int a = 0; a < 3; ++a)
         xd[a] += k * (2.0 * sample(noise_.shape, noise_.shape_size, 4, 1 + a, shape_uvw) - 1.0);
-    const double n = sample(noise_.detail, noise_.detail_size, 1, 0,
-                            glm::dvec3(frame_.detail_origin) + xd * double(frame_.detail_per_m));
+    const glm::dvec3 detail_uvw =
+        streaks ? glm::dvec3(L.streak_detail_origin) + streaked(L, xd, t) * double(frame_.detail_per_m)
+                : glm::dvec3(frame_.detail_origin) + xd * double(frame_.detail_per_m);
+    const double n = sample(noise_.detail, noise_.detail_size, 1, 0, detail_uvw);
     // Wisps at the base, billows above, as deep as the genus erodes.
     const double m = smoothstep(0.05, 0.35, t);
-    const double e = (L.wisp * n * (1.0 - m) + L.billow * (1.0 - n) * m) * L.detail_amount;
+    const double e =
+        (L.wisp * n * (1.0 - m) + L.billow * (1.0 - n) * m) * L.detail_amount * (1.0 - 0.6 * anvil_weight);
     d = clamp01((d - e) / std::max(1.0 - e, 1e-3));
   }
   // The density's rise inside the edge, and the layer's vertical profile.

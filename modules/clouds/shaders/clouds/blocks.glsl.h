@@ -97,5 +97,14 @@ struct CloudLayerGpu {
   float billow;
   float wisp;
   float edge;
-  float erosion_unused;  // (padding)
+  float anvil_spread;  // the fraction of the clear sky around the towers the anvil covers (genera.h)
+  // Streaks (welkin/clouds/genera.h): the shape and detail noise are read in a frame stretched by
+  // `streak` along `streak_axis` (the layer's wind, unit, world axes; 0 without wind), the base trailing
+  // the top downwind by hook_m; the noises' origins in that frame (fractions of their periods).
+  vec3 streak_axis;
+  float streak;
+  vec3 streak_shape_origin;
+  float hook_m;
+  vec3 streak_detail_origin;
+  float anvil_start;  // where the anvil starts (a fraction of the thickness; 0: no anvil)
 };

@@ -108,9 +108,24 @@ float clouds_painted_coverage(vec3 x) {
   return clouds_painted_sample;
 }
 
-// The weather sample a layer reads at x (its three genus channels and the base's variation).
+#ifndef CLOUDS_STREAKS
+#define CLOUDS_STREAKS 1
+#endif
+// A camera-relative offset v in a layer's stretched frame: `streak` times shorter along its wind (the
+// noise read there varies that much more slowly along the wind; the identity for streak 1). Its
+// noises' origins are in that frame (frame_block.cpp's `streaked`).
+vec3 clouds_stretched(CloudLayerGpu L, vec3 v) {
+#if CLOUDS_STREAKS
+  return v - L.streak_axis * (dot(v, L.streak_axis) * (1.0 - 1.0 / L.streak));
+#else
+  return v;
+#endif
+}
+
+// The weather sample a layer reads at x (its three genus channels and the base's variation): a
+// streaked genus's weather is stretched along its wind too (bands of fibres).
 vec4 clouds_weather_fetch(CloudLayerGpu L, vec3 x) {
-  return textureLod(cl_weather_noise, L.weather_origin + x * L.weather_per_m,
+  return textureLod(cl_weather_noise, L.weather_origin + clouds_stretched(L, x) * L.weather_per_m,
                     clouds_lod(1.0 / (L.weather_per_m * 64.0)));
 }
 
@@ -127,11 +142,55 @@ float clouds_layer_top(CloudLayerGpu L, float a) {
 // Where the envelope clouds_layer_envelope last evaluated has fallen half way (a fraction of the
 // layer's thickness): the top of its column, as the light sees it.
 float clouds_envelope_top = 1.0;
+// How much of that envelope is the anvil's (0: none; genera.h): the noise erodes it less.
+float clouds_anvil_weight = 0.0;
+
+// Which of the genus's shapes (genera.h) the layer about to be evaluated has: 1 yes, 0 no, -1 decided
+// from the layer's values at run time. The field's compiled layers set them as compile-time constants
+// (CLOUDS_STREAK_MASK, CLOUDS_ANVIL_MASK), so that no other layer carries their code; a shader
+// compiled without any (CLOUDS_STREAKS, CLOUDS_ANVILS 0) has none of it.
+#ifndef CLOUDS_ANVILS
+#define CLOUDS_ANVILS 1
+#endif
+int clouds_layer_streaks = -1, clouds_layer_anvil = -1;
+
+// The flat-based domes or sheets of a layer, where its weather signal w is d0 over the threshold lo
+// (rising over the filter's width) at height t in the layer.
+float clouds_dome_envelope(CloudLayerGpu L, float w, float lo, float d0, float t) {
+  if (d0 <= 0.0) return 0.0;
+  float top = clouds_layer_top(L, clamp((w - lo) / max(1.0 - lo, L.filter_width), 0.0, 1.0));
+  float u = t / top;
+  if (u >= 1.0) return 0.0;
+  // Flat bases; over the column the density falls as 1 - u^k toward the top: rounded domes (k 2),
+  // sheets even to near their top (k 6). The noise then carves the billows out of the rounded part.
+  float k = mix(6.0, 2.0, L.dome);
+  clouds_envelope_top = top * exp2(-1.0 / k);
+  return d0 * smoothstep(0.0, 0.06, t) * (1.0 - pow(u, k));
+}
+
+// How far below the layer's threshold lo an anvil reaches at the most (clouds_anvil; 0 without one).
+float clouds_anvil_reach(CloudLayerGpu L, float lo) {
+  return max(1.0 - lo, L.filter_width) * (1.0 - sqrt(1.0 - L.anvil_start)) * max(L.anvil_spread - 1.0, 0.0);
+}
+// The anvil (cumulonimbus): from anvil_start up, the towers tall enough to reach it (those whose
+// weather is strong enough that clouds_layer_top puts their top above anvil_start) spread out under
+// the layer's ceiling (the tropopause): the weather's threshold falls from theirs, more with height (a
+// flaring underside), to anvil_spread times lower at the top (1: the whole cloud's footprint; more:
+// beyond it), and the top is flat. Returns its envelope at height t; a0 the weather's density there.
+float clouds_anvil(CloudLayerGpu L, float w, float lo, float t, out float a0) {
+  a0 = 0.0;
+  float s = (t - L.anvil_start) / max(1.0 - L.anvil_start, 1e-3);
+  if (s <= 0.0) return 0.0;
+  float tall = max(1.0 - lo, L.filter_width) * (1.0 - sqrt(1.0 - L.anvil_start));
+  float la = lo + tall * (1.0 - L.anvil_spread * smoothstep(0.0, 0.7, s));
+  a0 = clamp((w - la) / L.filter_width, 0.0, 1.0) * clouds_weather_scale;
+  return a0 * smoothstep(0.0, 0.3, s) * (1.0 - smoothstep(0.88, 1.0, s));
+}
 
 // `w4`: the layer's weather sample at x; `follows_map`: the painted map adds to its coverage.
 float clouds_layer_envelope(CloudLayerGpu L, vec4 w4, bool follows_map, vec3 x, float h, out float t,
                             out float d0) {
-  t = 0.0, d0 = 0.0;
+  t = 0.0, d0 = 0.0, clouds_anvil_weight = 0.0;
   if (h < L.base_m - L.base_variation_m || h > L.base_m + L.thickness_m + L.base_variation_m) return 0.0;
   float c = clouds_system_coverage(L.coverage, clouds_system_g);
   if (follows_map) c = clamp(c + clouds_painted_coverage(x), 0.0, 1.0);
@@ -145,20 +204,34 @@ float clouds_layer_envelope(CloudLayerGpu L, vec4 w4, bool follows_map, vec3 x, 
   float fw = L.filter_width;
   float lo = (1.0 - c) * (1.0 + fw) - fw;
   d0 = clamp((w - lo) / fw, 0.0, 1.0) * clouds_weather_scale;
-  if (d0 <= 0.0) return 0.0;
-  float top = clouds_layer_top(L, clamp((w - lo) / max(1.0 - lo, fw), 0.0, 1.0));
-  float u = t / top;
-  if (u >= 1.0) return 0.0;
-  // Flat bases; over the column the density falls as 1 - u^k toward the top: rounded domes (k 2),
-  // sheets even to near their top (k 6). The noise then carves the billows out of the rounded part.
-  float k = mix(6.0, 2.0, L.dome);
-  clouds_envelope_top = top * exp2(-1.0 / k);
-  return d0 * smoothstep(0.0, 0.06, t) * (1.0 - pow(u, k));
+  float e = clouds_dome_envelope(L, w, lo, d0, t);
+#if CLOUDS_ANVILS
+  if (clouds_layer_anvil > 0 || (clouds_layer_anvil < 0 && L.anvil_start > 0.0)) {
+    float a0, a = clouds_anvil(L, w, lo, t, a0);
+    if (a > e) clouds_envelope_top = 0.97, d0 = max(d0, a0);
+    e = max(e, a);
+    clouds_anvil_weight = e > 0.0 ? a / e : 0.0;
+  }
+#endif
+  return e;
 }
 
 // The detail noise at xd (what the layers erode with).
 float clouds_detail_fetch(vec3 xd) {
   return textureLod(cl_detail_noise, cl.detail_origin + xd * cl.detail_per_m,
+                    clouds_lod(1.0 / (cl.detail_per_m * 32.0)))
+      .r;
+}
+
+// A camera-relative point x at height t in a layer, in the layer's streaked frame (genera.h): the base
+// trails the top downwind by hook_m, curving away from the top (fall streaks, hooks), and the frame is
+// stretched `streak` times along the wind (the noise varies that much more slowly along it: fibres).
+// frame_block.cpp's `streaked` gives the noises' origins in it.
+vec3 clouds_streaked(CloudLayerGpu L, vec3 x, float t) {
+  return clouds_stretched(L, x + L.streak_axis * (L.hook_m * (1.0 - t) * (1.0 - t)));
+}
+float clouds_streaked_detail_fetch(CloudLayerGpu L, vec3 xs) {
+  return textureLod(cl_detail_noise, L.streak_detail_origin + xs * cl.detail_per_m,
                     clouds_lod(1.0 / (cl.detail_per_m * 32.0)))
       .r;
 }
@@ -171,12 +244,39 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
   float t, d0;
   envelope = clouds_layer_envelope(L, w4, follows_map, x, h, t, d0);
   if (envelope <= 0.0) return 0.0;
-  float s = clouds_shape_sample.x;
+  vec4 s4 = clouds_shape_sample;
+#if CLOUDS_STREAKS
+  // A streaked layer reads the shape and detail noise in its own frame.
+  bool streaked = clouds_layer_streaks > 0 || (clouds_layer_streaks < 0 && (L.streak > 1.0 || L.hook_m != 0.0));
+  vec3 xs = vec3(0.0);
+  if (streaked) {
+    xs = clouds_streaked(L, x, t);
+    s4 = textureLod(cl_shape_noise, L.streak_shape_origin + xs * cl.shape_per_m,
+                    clouds_lod(1.0 / (cl.shape_per_m * 128.0)));
+  }
+#endif
+  float s = s4.x;
   // The shape noise is equalised (noise_volumes.cpp): shape_amount 1 erodes up to 60% of the density,
   // enough for heaps with gaps and lobes, not so much that they fall apart into shreds.
   float erosion = (1.0 - s) * L.shape_amount * 0.6;
+#if CLOUDS_ANVILS
+  // The anvil's cloud has spread out smooth and flat: the noise hardly carves it.
+  erosion *= 1.0 - 0.8 * clouds_anvil_weight;
+#endif
   float d = clamp((envelope - erosion) / max(1.0 - erosion, 1e-3), 0.0, 1.0);
   if (detail && d > 0.0 && L.detail_amount > 0.0) {
+    float n;
+#if CLOUDS_STREAKS
+    if (streaked) {
+#if CLOUDS_TURBULENCE
+      // The curl field moves the point as for any layer (below), in the streaked frame.
+      float k = cl.turbulence_m * d0 * clamp(1.0 - t / 0.3, 0.0, 1.0);
+      n = clouds_streaked_detail_fetch(L, clouds_streaked(L, x + (s4.yzw * 2.0 - 1.0) * k, t));
+#else
+      n = clouds_streaked_detail_fetch(L, xs);
+#endif
+    } else {
+#endif
 #if CLOUDS_TURBULENCE
     // Curl turbulence (Schneider 2015): the detail noise is read where the curl field, fetched with
     // the shape, moves the point; in the lowest 30% of the layer, as far as the weather there holds
@@ -185,17 +285,23 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
     float k = cl.turbulence_m * d0 * clamp(1.0 - t / 0.3, 0.0, 1.0);
     if (k != clouds_detail_displacement || clouds_detail_sample < 0.0) {
       clouds_detail_displacement = k;
-      clouds_detail_sample = clouds_detail_fetch(x + (clouds_shape_sample.yzw * 2.0 - 1.0) * k);
+      clouds_detail_sample = clouds_detail_fetch(x + (s4.yzw * 2.0 - 1.0) * k);
     }
 #else
     // Read once per point for every layer (clouds_density), before the layers.
     if (clouds_detail_sample < 0.0) clouds_detail_sample = clouds_detail_fetch(x);
 #endif
-    float n = clouds_detail_sample;
+    n = clouds_detail_sample;
+#if CLOUDS_STREAKS
+    }
+#endif
     // Wisps at the base, billows above (Schneider 2015's height blend): the inverted Worley noise
     // erodes between its cells' centres and leaves rounded lobes, the Worley noise erodes at the
     // centres and leaves the cells' thin walls; each as deep as the genus erodes (genera.h).
     float e = mix(L.wisp * n, L.billow * (1.0 - n), smoothstep(0.05, 0.35, t)) * L.detail_amount;
+#if CLOUDS_ANVILS
+    e *= 1.0 - 0.6 * clouds_anvil_weight;
+#endif
     d = clamp((d - e) / max(1.0 - e, 1e-3), 0.0, 1.0);
   }
   // The density rises over the first 1 / edge of the eroded field inside its edge (crisp heaps, soft
@@ -233,8 +339,9 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
 // branch for its whole group of pixels) does not pay for what no layer uses. Bit i of a mask is
 // layer i's (density_field.cpp's field_defines writes them):
 //   CLOUDS_DETAIL_MASK  the detail noise erodes it;  CLOUDS_MAP_MASK  it follows the painted map;
-//   CLOUDS_SHADOW_MASK  it casts shadows;  CLOUDS_WEATHER_SOURCE_i  the layer (<= i) whose weather
-//   sample it shares (the same place and period, other channels).
+//   CLOUDS_SHADOW_MASK  it casts shadows;  CLOUDS_STREAK_MASK  it streaks;  CLOUDS_ANVIL_MASK  it has
+//   an anvil;  CLOUDS_WEATHER_SOURCE_i  the layer (<= i) whose weather sample it shares (the same place
+//   and period, other channels).
 // CLOUDS_LAYERS 0: any number of layers, read from the buffer with run-time checks.
 #ifndef CLOUDS_LAYERS
 #define CLOUDS_LAYERS 0
@@ -243,6 +350,8 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
 #define CLOUDS_DETAIL_MASK 15
 #define CLOUDS_MAP_MASK 15
 #define CLOUDS_SHADOW_MASK 15
+#define CLOUDS_STREAK_MASK 15
+#define CLOUDS_ANVIL_MASK 15
 #define CLOUDS_WEATHER_SOURCE_1 1
 #define CLOUDS_WEATHER_SOURCE_2 2
 #define CLOUDS_WEATHER_SOURCE_3 3
@@ -261,8 +370,11 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
 
 #define CLOUDS_ADD_LAYER(i)                                                                           \
   if (!shadow_only || CLOUDS_HAS(CLOUDS_SHADOW_MASK, i)) {                                            \
+    clouds_layer_streaks = CLOUDS_HAS(CLOUDS_STREAK_MASK, i) ? 1 : 0;                                 \
+    clouds_layer_anvil = CLOUDS_HAS(CLOUDS_ANVIL_MASK, i) ? 1 : 0;                                    \
     sum += clouds_layer_density(cl_local_layers[i], w[i], CLOUDS_HAS(CLOUDS_MAP_MASK, i),             \
                                 detail && CLOUDS_HAS(CLOUDS_DETAIL_MASK, i), x, h, envelope);         \
+    clouds_layer_streaks = -1, clouds_layer_anvil = -1;                                               \
     empty = empty && envelope <= 0.0;                                                                 \
   }
 
@@ -277,13 +389,19 @@ float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
   clouds_fill = 0.0, clouds_envelope_sigma = 0.0;
   float h = clouds_altitude(x);
   if (h < cl.lowest_m || h > cl.highest_m) return 0.0;
-  // The shape noise is the same for every layer: read once.
-  clouds_shape_sample = textureLod(cl_shape_noise, cl.shape_origin + x * cl.shape_per_m,
-                                   clouds_lod(1.0 / (cl.shape_per_m * 128.0)));
+  // The shape noise is the same for every layer that does not streak (those read their own): read once.
+#if CLOUDS_LAYERS > 0
+  const bool shared_shape = (((1 << CLOUDS_LAYERS) - 1) & ~CLOUDS_STREAK_MASK) != 0;
+#else
+  const bool shared_shape = true;
+#endif
+  if (shared_shape)
+    clouds_shape_sample = textureLod(cl_shape_noise, cl.shape_origin + x * cl.shape_per_m,
+                                     clouds_lod(1.0 / (cl.shape_per_m * 128.0)));
   float sum = 0.0, envelope;
 #if CLOUDS_LAYERS > 0
 #if !CLOUDS_TURBULENCE
-  if (detail && CLOUDS_DETAIL_MASK != 0) clouds_detail_sample = clouds_detail_fetch(x);
+  if (detail && (CLOUDS_DETAIL_MASK & ~CLOUDS_STREAK_MASK) != 0) clouds_detail_sample = clouds_detail_fetch(x);
 #endif
   vec4 w[CLOUDS_LOCAL_LAYERS];
   CLOUDS_FOR_COMPILED_LAYERS(w, clouds_weather_fetch)
@@ -316,7 +434,7 @@ float clouds_density(vec3 x, bool detail, bool shadow_only) {
 
 // The occupancy of a layer's weather around x: the largest signal in the 16^3 block x lies in.
 vec4 clouds_weather_block(CloudLayerGpu L, vec3 x) {
-  vec3 cells = fract(L.weather_origin + x * L.weather_per_m) * 16.0;
+  vec3 cells = fract(L.weather_origin + clouds_stretched(L, x) * L.weather_per_m) * 16.0;
   return texelFetch(cl_weather_maximum, clamp(ivec3(cells), ivec3(0), ivec3(15)), 0);
 }
 
@@ -337,10 +455,11 @@ float clouds_skip_layer(CloudLayerGpu L, vec4 m, vec3 x, vec3 dir, float h, floa
   float g = min(clouds_system_g + cl.system_slope_per_m * 1.8 * block_m + 0.03, 1.0);
   float fw = L.filter_width,
         c = min(clouds_system_coverage(L.coverage, g) + L.follows_map * max(cl.map_raise, 0.0), 1.0);
-  if (w > (1.0 - c) * (1.0 + fw) - fw) return 0.0;
+  float lo = (1.0 - c) * (1.0 + fw) - fw;
+  if (w > lo - clouds_anvil_reach(L, lo)) return 0.0;  // an anvil may reach past the layer's threshold
   // Metres to the block's far side along dir (cells per metre: 16 x the layer's 1 / period).
-  vec3 f = fract(fract(L.weather_origin + x * L.weather_per_m) * 16.0);
-  vec3 rate = abs(dir) * (16.0 * L.weather_per_m) + 1e-12;
+  vec3 f = fract(fract(L.weather_origin + clouds_stretched(L, x) * L.weather_per_m) * 16.0);
+  vec3 rate = abs(clouds_stretched(L, dir)) * (16.0 * L.weather_per_m) + 1e-12;
   vec3 to_side = mix(f, 1.0 - f, step(0.0, dir)) / rate;
   return min(skip, min(to_side.x, min(to_side.y, to_side.z)) + 1.0);
 }
