@@ -2,6 +2,7 @@
 // compile-time description of this frame's layers and light model.
 #include "density_field.h"
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,11 @@ ShaderDefines field_defines(const CloudsGpu& gpu) {
   ShaderDefines d = {{"CLOUDS_TURBULENCE", gpu.block.turbulence_m > 0.0f ? "1" : "0"}};
   if (gpu.clusters_layer >= 0 || gpu.billboards_layer >= 0) d["CLOUDS_HANDOVER"] = "1";
   const std::vector<LayerBlock>& layers = gpu.layers;
+  // The genera's streaks and anvils (genera.h) compile in only when some layer has them.
+  const auto streaks = [](const LayerBlock& L) { return L.streak > 1.0f || L.hook_m != 0.0f; };
+  const auto anvil = [](const LayerBlock& L) { return L.anvil_start > 0.0f; };
+  d["CLOUDS_STREAKS"] = std::any_of(layers.begin(), layers.end(), streaks) ? "1" : "0";
+  d["CLOUDS_ANVILS"] = std::any_of(layers.begin(), layers.end(), anvil) ? "1" : "0";
   if (layers.empty() || layers.size() > size_t(kLocalLayers)) return d;
   const bool detail = gpu.block.shape_detail > 0.5f, map = gpu.block.has_map > 0.5f;
   int detail_mask = 0, map_mask = 0, shadow_mask = 0, streak_mask = 0, anvil_mask = 0;
@@ -44,8 +50,8 @@ ShaderDefines field_defines(const CloudsGpu& gpu) {
     if (detail && L.detail_amount > 0.0f) detail_mask |= 1 << i;
     if (map && L.follows_map > 0.5f) map_mask |= 1 << i;
     if (L.casts_shadow > 0.5f) shadow_mask |= 1 << i;
-    if (L.streak > 1.0f || L.hook_m != 0.0f) streak_mask |= 1 << i;  // the genus's shapes (genera.h)
-    if (L.anvil_start > 0.0f) anvil_mask |= 1 << i;
+    if (streaks(L)) streak_mask |= 1 << i;
+    if (anvil(L)) anvil_mask |= 1 << i;
     // The first layer with the same weather origin and period (the same place: one fetch, other channels).
     size_t source = i;
     for (size_t j = 0; j < i && source == i; ++j)
@@ -62,8 +68,6 @@ ShaderDefines field_defines(const CloudsGpu& gpu) {
   d["CLOUDS_SHADOW_MASK"] = std::to_string(shadow_mask);
   d["CLOUDS_STREAK_MASK"] = std::to_string(streak_mask);
   d["CLOUDS_ANVIL_MASK"] = std::to_string(anvil_mask);
-  d["CLOUDS_STREAKS"] = streak_mask != 0 ? "1" : "0";
-  d["CLOUDS_ANVILS"] = anvil_mask != 0 ? "1" : "0";
   return d;
 }
 

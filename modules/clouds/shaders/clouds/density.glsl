@@ -350,11 +350,15 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
 #define CLOUDS_DETAIL_MASK 15
 #define CLOUDS_MAP_MASK 15
 #define CLOUDS_SHADOW_MASK 15
-#define CLOUDS_STREAK_MASK 15
-#define CLOUDS_ANVIL_MASK 15
 #define CLOUDS_WEATHER_SOURCE_1 1
 #define CLOUDS_WEATHER_SOURCE_2 2
 #define CLOUDS_WEATHER_SOURCE_3 3
+#endif
+#ifndef CLOUDS_STREAK_MASK
+#define CLOUDS_STREAK_MASK 15
+#endif
+#ifndef CLOUDS_ANVIL_MASK
+#define CLOUDS_ANVIL_MASK 15
 #endif
 #define CLOUDS_HAS(mask, i) ((((mask) >> (i)) & 1) != 0)
 
