@@ -47,8 +47,9 @@ std::vector<glm::vec2> altitude_bands(std::vector<glm::vec2> ranges, int max_ban
 
 GenusModel genus_model(Genus genus) {
   const GenusTraits& g = genus_traits(genus);
-  return {g.dome, g.weather_frequency, g.billow, g.wisp, g.edge, g.streak, g.hook_s, g.anvil_start,
-          g.anvil_spread};
+  GenusModel m{g.dome, g.weather_frequency, g.billow, g.wisp, g.edge};
+  m.streak = g.streak, m.hook_s = g.hook_s, m.anvil_start = g.anvil_start, m.anvil_spread = g.anvil_spread;
+  return m;
 }
 
 PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& ctx,

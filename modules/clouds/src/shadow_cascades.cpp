@@ -39,9 +39,9 @@ void place_shadow_cascades(CloudsGpu& gpu, const VolumetricClouds& clouds, const
                         {b.base_m, b.thickness_m, b.base_variation_m, b.density_per_m, b.coverage,
                          b.shape_amount, b.detail_amount, b.filter_width, b.profile_exp_term,
                          b.profile_exponent, b.profile_linear_term, b.profile_constant_term, b.dome,
-                         b.weather_channel, b.casts_shadow, b.follows_map, b.billow, b.wisp, b.edge,
-                         b.streak, b.hook_m, b.streak_axis.x, b.streak_axis.y, b.anvil_start,
-                         b.anvil_spread});
+                         b.weather_channel, b.casts_shadow, b.follows_map, b.billow, b.wisp, b.edge});
+    key.settings.insert(key.settings.end(), {b.streak, b.hook_m, b.streak_axis.x, b.streak_axis.y,
+                                             b.anvil_start, b.anvil_spread});
   }
   for (const CloudLayer& L : clouds.layers)
     key.max_wind_mps = std::max(key.max_wind_mps, glm::length(L.wind_mps));

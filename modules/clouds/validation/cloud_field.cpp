@@ -119,7 +119,8 @@ double anvil_envelope(const LayerBlock& L, double w, double lo, double t, double
   a0 = 0.0;
   const double s = (t - L.anvil_start) / std::max(1.0 - double(L.anvil_start), 1e-3);
   if (s <= 0.0) return 0.0;
-  const double tall = std::max(1.0 - lo, double(L.filter_width)) * (1.0 - std::sqrt(1.0 - double(L.anvil_start)));
+  const double tall =
+      std::max(1.0 - lo, double(L.filter_width)) * (1.0 - std::sqrt(1.0 - double(L.anvil_start)));
   const double la = lo + tall * (1.0 - L.anvil_spread * smoothstep(0.0, 0.7, s));
   a0 = clamp01((w - la) / L.filter_width);
   return a0 * smoothstep(0.0, 0.3, s) * (1.0 - smoothstep(0.88, 1.0, s));

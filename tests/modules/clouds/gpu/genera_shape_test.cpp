@@ -27,8 +27,11 @@ struct Layer {
 Layer layer(const std::string& genus, double base_m, double thickness_m, double coverage, json wind) {
   json d = test::noon({{"temporal_upscaling", false},
                        {"weather_system_amount", 0.0},  // the coverage is the layer's everywhere
-                       {"layers", json::array({{{"genus", genus}, {"coverage", coverage}, {"base_altitude_m", base_m},
-                                                {"thickness_m", thickness_m}, {"base_variation_m", 0},
+                       {"layers", json::array({{{"genus", genus},
+                                                {"coverage", coverage},
+                                                {"base_altitude_m", base_m},
+                                                {"thickness_m", thickness_m},
+                                                {"base_variation_m", 0},
                                                 {"wind_mps", wind}}})}});
   Layer L{test::render(d, 8, 4), nullptr, {}};
   const CloudsGpu& gpu = L.rendered.world->resource<CloudsGpu>();
@@ -96,8 +99,10 @@ TEST(CloudsGenera, CumulonimbusSpreadsIntoAFlatAnvilUnderItsCeiling) {
   EXPECT_EQ(cb.block.streak, 1.0f);  // no streaks: it reads the noise where every genus does
   // The towers thin out as they rise (the domes' tops); under the ceiling the tallest spread out
   // wider than the towers are anywhere below the anvil; at the ceiling the top is flat (nothing above).
-  const double base = covered(cb, 0.2), below = covered(cb, 0.65), anvil = covered(cb, 0.92), top = covered(cb, 0.999);
-  std::printf("cumulonimbus: covered at 20%% %.3f, 65%% %.3f, 92%% %.3f, 99.9%% %.3f\n", base, below, anvil, top);
+  const double base = covered(cb, 0.2), below = covered(cb, 0.65), anvil = covered(cb, 0.92),
+               top = covered(cb, 0.999);
+  std::printf("cumulonimbus: covered at 20%% %.3f, 65%% %.3f, 92%% %.3f, 99.9%% %.3f\n", base, below, anvil,
+              top);
   EXPECT_GT(base, 0.2);
   EXPECT_LT(below, base);
   EXPECT_GT(anvil, 1.5 * below);
@@ -183,9 +188,10 @@ TEST(CloudsGenera, TheShaderAndTheCpuMirrorAgreeOnStreaksAndAnvils) {
       const double e = std::abs(double(g[k]) - cpu) / B.density_per_m;
       diff += e, far += e > 0.05;
     }
-    std::printf("%s: cloud at %d points on the GPU, %d on the CPU, %d both; mean difference %.4f of the "
-                "layer's density, %d points over 5%%\n",
-                c.name, cloud_gpu, cloud_cpu, both, diff / points.size(), far);
+    std::printf(
+        "%s: cloud at %d points on the GPU, %d on the CPU, %d both; mean difference %.4f of the "
+        "layer's density, %d points over 5%%\n",
+        c.name, cloud_gpu, cloud_cpu, both, diff / points.size(), far);
     EXPECT_GT(cloud_cpu, 200);
     EXPECT_GT(both, 0.95 * std::max(cloud_gpu, cloud_cpu));
     EXPECT_LT(diff / points.size(), 0.005);
