@@ -35,6 +35,7 @@ CloudLayerGpu bake_layer() {
   CloudLayerGpu L = cl_layers[u_layer];
   L.coverage = u_coverage;
   L.weather_origin = vec3(0.0);
+  L.streak_shape_origin = vec3(0.0), L.streak_detail_origin = vec3(0.0);  // the noise's frame, as below
   L.follows_map = 0.0;  // no painted map
   L.handover_near_m = 0.0, L.handover_crossfade_m = 0.0, L.handover_far_m = 0.0;
   return L;
