@@ -39,7 +39,8 @@ constexpr const char* kTerms[] = {
     "CLOUDS_MS_W12", "CLOUDS_MS_W13", "CLOUDS_MS_W14", "CLOUDS_MS_W15", "CLOUDS_MS_W16", "CLOUDS_MS_W17",
     "CLOUDS_MS_W18", "CLOUDS_MS_W19", "CLOUDS_MS_W20", "CLOUDS_MS_W21", "CLOUDS_MS_W22", "CLOUDS_MS_W23",
     "CLOUDS_MS_W24", "CLOUDS_MS_W25", "CLOUDS_MS_W26", "CLOUDS_MS_W27", "CLOUDS_MS_W28", "CLOUDS_MS_W29",
-    "CLOUDS_MS_W30", "CLOUDS_MS_W31"};
+    "CLOUDS_MS_W30", "CLOUDS_MS_W31", "CLOUDS_MS_W32", "CLOUDS_MS_W33", "CLOUDS_MS_W34", "CLOUDS_MS_W35",
+    "CLOUDS_MS_W36", "CLOUDS_MS_W37"};
 constexpr const char* kTermMeaning[] = {
     "D = T_d(tau) - T(tau): the diffuse light beyond the direct beam, toward the light",
     "D S(tau_b): ... gathered from the cloud below",
@@ -72,7 +73,14 @@ constexpr const char* kTermMeaning[] = {
     "T_d(tau) (1 - mu) / 2: the diffuse light seen from the light's side (a lit surface's reflection)",
     "D (1 - mu) / 2",
     "F mu_0 D S(tau_b), F the sample's density over its un-eroded envelope's: light leaks between billows",
-    "F c D S(tau_b)"};
+    "F c D S(tau_b)",
+    "E F mu_0 D S(tau_b), E = k tau_e / (1 + k tau_e), tau_e the optical depth to the cloud's side: the diffuse "
+    "light falls toward the side where it escapes",
+    "E F c D S(tau_b)",
+    "E c D",
+    "E mu_0 (1 + 2k tau_B) / (1 + k (tau_A + tau_B))",
+    "E T_d(tau) (1 - mu) / 2",
+    "E mu_0 exp(-tau / 16)"};
 static_assert(std::size(kTermMeaning) == std::size(kTerms));
 constexpr size_t kTermCount = std::size(kTerms);
 

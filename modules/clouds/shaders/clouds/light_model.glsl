@@ -30,6 +30,7 @@ struct CloudsLightInputs {
   float tau;                         // the optical depth toward the light
   float clear;                       // the fraction of the light march's way that was clear (0: unknown)
   float fill;                        // the sample's density over its un-eroded envelope's (1: unknown)
+  float escape;                      // the optical depth to the cloud's side nearest known (1e4: unknown)
 };
 
 // Schneider's beer-powder darkening of thin edges (cl.powder = 0: off).
@@ -80,6 +81,11 @@ float clouds_powder(float sigma_t) {
 //  30  F mu_0 D S(tau_b)      terms 19 and 24 times F, the fraction of the un-eroded envelope's
 //  31  F c D S(tau_b)         density the noise left at the sample: between billows (small F)
 //                               light diffused in the cloud leaks out through the gaps and sides
+//  32-37  terms 30, 31, 23, 16, 28 and 22 times E = k tau_e / (1 + k tau_e), tau_e the optical
+//         depth to the cloud's side (the march: two level probes, clouds_side_optical_depth): the diffuse
+//         light falls toward a free surface, where it escapes (diffusion theory's boundary: the
+//         fluence near the side grows with the depth behind it); a shadowed side is lit by the
+//         diffuse light alone and is the darker for it
 // All fade where the cloud around the sample is thin (its outskirts, wisps: little light has been
 // scattered toward it by neighbours, the physical side of Schneider's "powder"), by
 // 1 - exp(-n sigma_t l_1), l_1 the first light step.
@@ -134,6 +140,10 @@ float clouds_multiple_scattering(float mu, CloudsLightInputs s, vec3 l, vec3 up)
                    s.clear * (CLOUDS_MS_W25 + CLOUDS_MS_W26 * reflection));
   sum += 0.5 * (1.0 - mu) * (CLOUDS_MS_W28 * s.diffuse + CLOUDS_MS_W29 * beyond);
   sum += s.fill * beyond * reflection * (CLOUDS_MS_W30 * mu_0 + CLOUDS_MS_W31 * entered);
+  float escape = k * s.escape / (1.0 + k * s.escape);
+  sum += escape * (s.fill * beyond * reflection * (CLOUDS_MS_W32 * mu_0 + CLOUDS_MS_W33 * entered) +
+                   CLOUDS_MS_W34 * entered * beyond + CLOUDS_MS_W35 * mu_0 * slab_body +
+                   CLOUDS_MS_W36 * 0.5 * (1.0 - mu) * s.diffuse + CLOUDS_MS_W37 * mu_0 * s.octave16);
   return sum * (1.0 - exp(-CLOUDS_MS_POWDER * s.sigma_t * cl.light_step_m));
 }
 
@@ -169,7 +179,7 @@ vec3 clouds_light_source(float mu, float phase_single, CloudsLightInputs s, vec3
 CloudsLightInputs clouds_light_inputs(float tau, float sigma_t, float depth_below_m, float depth_above_m) {
   return CloudsLightInputs(clouds_direct_transmittance(tau), clouds_slab_diffuse(tau), sigma_t, depth_below_m,
                            depth_above_m, exp(-0.25 * tau), exp(-0.0625 * tau), sigma_t * depth_below_m,
-                           sigma_t * depth_above_m, tau, 0.0, 1.0);
+                           sigma_t * depth_above_m, tau, 0.0, 1.0, 1e4);
 }
 
 vec3 clouds_sample_source(float mu, float phase_single, float tau, float sigma_t, float depth_below_m,

@@ -167,6 +167,31 @@
 #ifndef CLOUDS_MS_W31
 #define CLOUDS_MS_W31 0.0516174
 #endif
+// CLOUDS_MS_W32: E F mu_0 D S(tau_b), E = k tau_e / (1 + k tau_e), tau_e the optical depth to the cloud's
+// side: the diffuse light falls toward the side where it escapes
+#ifndef CLOUDS_MS_W32
+#define CLOUDS_MS_W32 0.0
+#endif
+// CLOUDS_MS_W33: E F c D S(tau_b)
+#ifndef CLOUDS_MS_W33
+#define CLOUDS_MS_W33 0.0
+#endif
+// CLOUDS_MS_W34: E c D
+#ifndef CLOUDS_MS_W34
+#define CLOUDS_MS_W34 0.0
+#endif
+// CLOUDS_MS_W35: E mu_0 (1 + 2k tau_B) / (1 + k (tau_A + tau_B))
+#ifndef CLOUDS_MS_W35
+#define CLOUDS_MS_W35 0.0
+#endif
+// CLOUDS_MS_W36: E T_d(tau) (1 - mu) / 2
+#ifndef CLOUDS_MS_W36
+#define CLOUDS_MS_W36 0.0
+#endif
+// CLOUDS_MS_W37: E mu_0 exp(-tau / 16)
+#ifndef CLOUDS_MS_W37
+#define CLOUDS_MS_W37 0.0
+#endif
 #else  // without the detail noise (low): a smoother field than the path tracer's
 // CLOUDS_MS_W0: D = T_d(tau) - T(tau): the diffuse light beyond the direct beam, toward the light
 #ifndef CLOUDS_MS_W0
@@ -297,5 +322,30 @@
 // CLOUDS_MS_W31: F c D S(tau_b)
 #ifndef CLOUDS_MS_W31
 #define CLOUDS_MS_W31 0.180782
+#endif
+// CLOUDS_MS_W32: E F mu_0 D S(tau_b), E = k tau_e / (1 + k tau_e), tau_e the optical depth to the cloud's
+// side: the diffuse light falls toward the side where it escapes
+#ifndef CLOUDS_MS_W32
+#define CLOUDS_MS_W32 0.0
+#endif
+// CLOUDS_MS_W33: E F c D S(tau_b)
+#ifndef CLOUDS_MS_W33
+#define CLOUDS_MS_W33 0.0
+#endif
+// CLOUDS_MS_W34: E c D
+#ifndef CLOUDS_MS_W34
+#define CLOUDS_MS_W34 0.0
+#endif
+// CLOUDS_MS_W35: E mu_0 (1 + 2k tau_B) / (1 + k (tau_A + tau_B))
+#ifndef CLOUDS_MS_W35
+#define CLOUDS_MS_W35 0.0
+#endif
+// CLOUDS_MS_W36: E T_d(tau) (1 - mu) / 2
+#ifndef CLOUDS_MS_W36
+#define CLOUDS_MS_W36 0.0
+#endif
+// CLOUDS_MS_W37: E mu_0 exp(-tau / 16)
+#ifndef CLOUDS_MS_W37
+#define CLOUDS_MS_W37 0.0
 #endif
 #endif
