@@ -74,8 +74,8 @@ constexpr const char* kTermMeaning[] = {
     "D (1 - mu) / 2",
     "F mu_0 D S(tau_b), F the sample's density over its un-eroded envelope's: light leaks between billows",
     "F c D S(tau_b)",
-    "E F mu_0 D S(tau_b), E = k tau_e / (1 + k tau_e), tau_e the optical depth to the cloud's side: the diffuse "
-    "light falls toward the side where it escapes",
+    "E F mu_0 D S(tau_b), E = k tau_e / (1 + k tau_e), tau_e the optical depth to the cloud's side: "
+    "the diffuse light falls toward the side where it escapes",
     "E F c D S(tau_b)",
     "E c D",
     "E mu_0 (1 + 2k tau_B) / (1 + k (tau_A + tau_B))",
