@@ -95,10 +95,13 @@ void add_bake_pass(RenderGraph& g, CloudsGpu& gpu, RenderContext& rc, const Shad
   BillboardsGpu& bg = gpu.billboards;
   CloudsGpu* gp = &gpu;
   const int views = billboards.view_azimuths * billboards.view_elevations;
-  bg.volume = std::make_unique<Texture>(TextureDesc{.width = box.resolution,
-                                                    .height = box.resolution,
-                                                    .depth = box.slices * billboards.archetypes,
-                                                    .format = TextureFormat::r32f});
+  auto volume = [&](TextureFormat format) {
+    return std::make_unique<Texture>(TextureDesc{.width = box.resolution,
+                                                 .height = box.resolution,
+                                                 .depth = box.slices * billboards.archetypes,
+                                                 .format = format});
+  };
+  bg.volume = volume(TextureFormat::r32f);
   bg.atlas = std::make_unique<Texture>(TextureDesc{.width = billboards.atlas_resolution,
                                                    .height = billboards.atlas_resolution,
                                                    .depth = 2 * views * billboards.archetypes,
@@ -106,10 +109,7 @@ void add_bake_pass(RenderGraph& g, CloudsGpu& gpu, RenderContext& rc, const Shad
                                                    .format = TextureFormat::rgba16f});
   // The fill beside them, a byte a voxel and a texel (a quarter of the volumes', a sixteenth of the
   // atlas's memory, bounded with them: validate()).
-  bg.fill_volume = std::make_unique<Texture>(TextureDesc{.width = box.resolution,
-                                                         .height = box.resolution,
-                                                         .depth = box.slices * billboards.archetypes,
-                                                         .format = TextureFormat::r8});
+  bg.fill_volume = volume(TextureFormat::r8);
   bg.fill_atlas = std::make_unique<Texture>(TextureDesc{.width = billboards.atlas_resolution,
                                                         .height = billboards.atlas_resolution,
                                                         // an array even of one view and archetype

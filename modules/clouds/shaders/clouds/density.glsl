@@ -195,7 +195,8 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
   vec4 s4 = clouds_shape_sample;
 #if CLOUDS_STREAKS
   // A streaked layer reads the shape and detail noise in its own frame.
-  bool streaked = clouds_layer_streaks > 0 || (clouds_layer_streaks < 0 && (L.streak > 1.0 || L.hook_m != 0.0));
+  bool streaked =
+      clouds_layer_streaks > 0 || (clouds_layer_streaks < 0 && (L.streak > 1.0 || L.hook_m != 0.0));
   vec3 xs = vec3(0.0);
   if (streaked) {
     xs = clouds_streaked(L, x, t);
@@ -353,7 +354,8 @@ float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
   float sum = 0.0, envelope;
 #if CLOUDS_LAYERS > 0
 #if !CLOUDS_TURBULENCE
-  if (detail && (CLOUDS_DETAIL_MASK & ~CLOUDS_STREAK_MASK) != 0) clouds_detail_sample = clouds_detail_fetch(x);
+  if (detail && (CLOUDS_DETAIL_MASK & ~CLOUDS_STREAK_MASK) != 0)
+    clouds_detail_sample = clouds_detail_fetch(x);
 #endif
   vec4 w[CLOUDS_LOCAL_LAYERS];
   CLOUDS_FOR_COMPILED_LAYERS(w, clouds_weather_fetch)
