@@ -59,6 +59,31 @@ TEST(CloudsGpu, ShadowsOnlyFromLayersThatCastThem) {
   EXPECT_FALSE(r.ran("clouds.shadow_map"));
 }
 
+// Layers that cast no shadow leave the shadow map as it is: its columns span the casting layers'
+// altitudes alone. Spanning a haze at the ground and cirrus at 8 km too, a column under a sun 10
+// degrees up was 46 km long instead of 8, and its stretches stepped over whole cumulus.
+TEST(CloudsGpu, LayersThatCastNoShadowLeaveTheShadowMapAsItIs) {
+  const json cumulus = {{"genus", "cumulus"}, {"base_altitude_m", 1000}, {"thickness_m", 1200}, {"coverage", 0.4}};
+  auto shadow_map = [](const json& layers) {
+    json doc = noon({{"layers", layers}});
+    test::entity_with(doc, "atmosphere.Sun")["components"]["atmosphere.Sun"]["elevation_deg"] = 10;
+    test::Rendered r = render(doc);
+    EXPECT_TRUE(r.ran("clouds.shadow_map"));
+    return read_texture_float(*r.world->resource<CloudsGpu>().shadow_map);
+  };
+  const ImageF alone = shadow_map(json::array({cumulus}));
+  const ImageF beside = shadow_map(json::array(
+      {cumulus,
+       {{"genus", "cirrus"}, {"base_altitude_m", 7500}, {"thickness_m", 500}, {"casts_shadow", false}},
+       {{"genus", "stratus"}, {"base_altitude_m", 0}, {"thickness_m", 300}, {"casts_shadow", false}}}));
+  ASSERT_EQ(alone.rgba.size(), beside.rgba.size());
+  double total = 0.0, difference = 0.0;
+  for (size_t i = 2; i < alone.rgba.size(); i += 4)  // the columns' optical depths
+    total += alone.rgba[i], difference += std::abs(beside.rgba[i] - alone.rgba[i]);
+  EXPECT_GT(total, 0.0);
+  EXPECT_LT(difference, 1e-4 * total);
+}
+
 TEST(CloudsGpu, NoiseIsMadeOnceDeterministicFromTheSeedAndTileable) {
   const welkin::testing::CacheFolder no_cache("");  // generated each time, not read back
   test::Rendered a = render(noon());
