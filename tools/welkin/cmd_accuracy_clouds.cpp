@@ -358,11 +358,11 @@ int write_cloud_images(const CloudAccuracyOptions& o, const std::map<std::string
       write_comparison_panels(png, panels, std::max(1, 384 / width), 0.25);
       std::printf("%s at %s, %dx%d: real time above, path tracer (%d paths a pixel) in the middle, difference below "
                   "(full red or blue at 25%% of the mean): relative RMSE %.1f%% over %d cloud pixels (the reference's "
-                  "own noise %.1f%%; net of it %.1f%%), mean %.1f%% of the reference's; over 4x4 blocks %.1f%% (noise "
-                  "%.1f%%); wrote %s\n",
+                  "own noise %.1f%%; net of it %.1f%%), mean %.1f%% of the reference's (%.1f against %.1f cd/m2); over 4x4 "
+                  "blocks %.1f%% (noise %.1f%%); wrote %s\n",
                   stem.c_str(), label.c_str(), width, height, o.paths_per_pixel, 100 * rmse, cloud_pixels, 100 * noise_rmse,
-                  100 * bias, 100 * gpu_mean / std::max(mean, 1e-30), 100 * block_rmse, 100 * block_noise_rmse,
-                  png.c_str());
+                  100 * bias, 100 * gpu_mean / std::max(mean, 1e-30), gpu_mean, mean, 100 * block_rmse,
+                  100 * block_noise_rmse, png.c_str());
     }
   }
   return kOk;

@@ -111,6 +111,17 @@ PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& ct
       out.any_shadow = true;
     }
   }
+  // A layer that casts no shadow above every one that does (cirrus over cumulus) still dims the sun
+  // that reaches them: the shadow map integrates it apart (its fourth channel). One between or under
+  // the casters (a haze at the ground) is not in the map at all.
+  bool first_deck = true;
+  for (size_t i = 0; i < out.layers.size() && out.any_shadow; ++i) {
+    const glm::vec2 r = out.ranges[i];
+    if (out.layers[i].casts_shadow > 0.5f || r.x < out.highest_shadow_m) continue;
+    out.lowest_deck_m = first_deck ? r.x : std::min(out.lowest_deck_m, r.x);
+    out.highest_deck_m = first_deck ? r.y : std::max(out.highest_deck_m, r.y);
+    first_deck = false;
+  }
   return out;
 }
 

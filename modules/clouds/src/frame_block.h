@@ -62,6 +62,8 @@ struct PackedLayers {
   float lowest_m = 0.0f, highest_m = 0.0f;
   float lowest_shadow_m = 0.0f, highest_shadow_m = 0.0f;
   bool any_shadow = false;
+  // The layers that cast no shadow and lie wholly above every layer that does (decks_over_casters).
+  float lowest_deck_m = 1.0f, highest_deck_m = 0.0f;
 };
 PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& context,
                          const glm::dvec3& camera_m);

@@ -81,6 +81,7 @@ void place_shadow_cascades(CloudsGpu& gpu, const VolumetricClouds& clouds, const
     gpu.shadow.cascades[k].valid = 1;
   }
   gpu.shadow_altitudes_m = {layers.lowest_shadow_m, layers.highest_shadow_m};
+  gpu.shadow.deck_base_m = layers.lowest_deck_m, gpu.shadow.deck_top_m = layers.highest_deck_m;
   gpu.shadow.light = l;
   gpu.shadow.column_vertical = std::abs(l.z);
   gpu.shadow.up = block.up;
@@ -120,6 +121,7 @@ void shadow_system(SystemContext& sc) {
         b.side_effect();  // read by every material through the light environment
       },
       [gp, &rc, s, remade, size, altitudes = gpu.shadow_altitudes_m,
+       decks = glm::vec2(gpu.shadow.deck_base_m, gpu.shadow.deck_top_m),
        defines = field_defines(gpu)](PassContext&) {
         bind_field(*gp);
         bind_image_for_write(0, *gp->shadow_map);
@@ -135,6 +137,7 @@ void shadow_system(SystemContext& sc) {
           p.set("u_start_m", c.start_m);
           p.set("u_steps", kShadowSteps);
           p.set("u_altitudes_m", altitudes);
+          p.set("u_deck_m", decks);
           glProgramUniform2i(p.id(), p.location("u_region"), k * size, size);
           const int g = group_count(size, 8);
           dispatch_compute(p, g, g);

@@ -23,7 +23,7 @@ using namespace welkin::gpu_block_types;
 using ShadowBlock = gpu_blocks::CloudsShadowGpu;
 inline constexpr int kMaxShadowCascades = 4;
 static_assert(sizeof(ShadowBlock::cascades) / sizeof(ShadowBlock::cascades[0]) == kMaxShadowCascades);
-static_assert(sizeof(ShadowBlock) == 224, "ShadowBlock: the std140 CloudsShadow block's size");
+static_assert(sizeof(ShadowBlock) == 240, "ShadowBlock: the std140 CloudsShadow block's size");
 
 // What the shadow map was made from; a frame whose key is not stale reuses it.
 struct ShadowKey {

@@ -8,6 +8,9 @@
 #include "clouds/placement.glsl"
 #include "clouds/billboards.glsl"
 #include "welkin/lighting.glsl"
+#include "clouds/phase.glsl"
+#include "clouds/light_model.glsl"
+#include "clouds/light_march.glsl"
 
 layout(local_size_x = 64) in;
 layout(std430, binding = 1) buffer Billboards { Billboard bb_billboards[]; };
@@ -68,6 +71,9 @@ void main() {
       b.light = u_light == 1 ? welkin_moon_irradiance(c) : welkin_sun_irradiance(c);
       b.distance_m = rho;
       b.sky = welkin_sky_irradiance(up);
+      float depth;  // the decks over the casters dim the sun here as over the march's clouds
+      float deck = u_light == 1 ? 0.0 : clouds_shadow_texel(c, depth).w * clouds_deck_share(c);
+      clouds_deck_light(deck, b.light, b.sky);
       b.archetype = uint(archetype);
       b.ap_inscattering = welkin_aerial_perspective(c, b.ap_transmittance);
       b.turn_rad = 6.2831853 * u.w;

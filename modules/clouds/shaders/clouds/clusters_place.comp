@@ -159,18 +159,20 @@ void main() {
     float extinction_per_density = cl.scattering + cl.absorption;
     vec3 half_up = 0.5 * puff.radii.z * u_axis_up;
     clouds_system_g = clouds_weather_system_at(c);
-    float clear;  // the draw reads the light's depth alone
-    float below = clouds_light_optical_depth(c - half_up, u_light_dir, extinction_per_density, clear);
-    float above = clouds_light_optical_depth(c + half_up, u_light_dir, extinction_per_density, clear);
+    float clear, deck;  // the draw reads the light's depth and the decks' light alone
+    float below = clouds_light_optical_depth(c - half_up, u_light_dir, extinction_per_density, clear, deck);
+    float above = clouds_light_optical_depth(c + half_up, u_light_dir, extinction_per_density, clear, deck);
     // Only this stage's fields are written: the other invocations read the centres and radii.
     cp_puffs[id].light_depth = 0.5 * (below + above);
     // per unit of the column's normalised height
     cp_puffs[id].light_depth_gradient = vec3(0.0, 0.0, above - below);
     cp_puffs[id].system_signal = clouds_system_g;
     vec3 up = normalize(cl.up * cl.camera_radius_m + c);
-    cp_puffs[id].light = u_light == 1 ? welkin_moon_irradiance(c) : welkin_sun_irradiance(c);
+    vec3 light = u_light == 1 ? welkin_moon_irradiance(c) : welkin_sun_irradiance(c);
+    vec3 sky = welkin_sky_irradiance(up);
+    clouds_deck_light(deck, light, sky);
+    cp_puffs[id].light = light, cp_puffs[id].sky = sky;
     cp_puffs[id].distance_m = length(c);
-    cp_puffs[id].sky = welkin_sky_irradiance(up);
     vec3 t;
     cp_puffs[id].ap_inscattering = welkin_aerial_perspective(c, t);
     cp_puffs[id].ap_transmittance = t;

@@ -26,9 +26,33 @@ CloudsSampleGeometry clouds_sample_geometry() {
 #ifndef CLOUDS_LIGHT_DETAIL
 #define CLOUDS_LIGHT_DETAIL 1
 #endif
+// The decks over the casters (cirrus over cumulus: layers that cast no shadow on materials, wholly above
+// those that do): the share of their optical depth along the shadow map's column (its fourth
+// channel) that lies above x, where a light march ended (inside a deck, its own steps took the rest).
+float clouds_deck_share(vec3 x) {
+  return clamp((cs.deck_top_m - clouds_altitude(x)) / max(cs.deck_top_m - cs.deck_base_m, 1.0), 0.0, 1.0);
+}
+
+// The light under the decks, their optical depth toward the sun tau: the direct beam they let through,
+// the phase function's forward peak kept in it (delta-Eddington), and a conservative slab's diffuse
+// light (Eddington's transmission of a slab lit at mu_0, less that beam), which comes down spread like
+// an overcast's and is added to the sky's irradiance, itself let through as a slab lets diffuse light.
+// Beer's law alone kept a twentieth of the light under a deck of slant depth 3; the path tracer keeps
+// a third and more (docs/clouds-light.md).
+void clouds_deck_light(float tau, inout vec3 e_light, inout vec3 e_sky) {
+  if (tau <= 0.0) return;
+  float mu_0 = cs.column_vertical, tau_vertical = tau * mu_0;
+  float direct = exp(-(1.0 - clouds_forward_fraction()) * tau);
+  float total = (0.5 + 0.75 * mu_0 + (0.5 - 0.75 * mu_0) * direct) / (1.0 + clouds_two_stream_k() * tau_vertical);
+  e_sky = e_sky * clouds_slab_diffuse(tau_vertical) + e_light * (mu_0 * max(total - direct, 0.0));
+  e_light *= direct;
+}
+
 // `clear`: the fraction of the steps' way where the field is empty (the light model weighs light let
-// in through gaps and soft edges against light diffused through the column by it).
-float clouds_light_optical_depth(vec3 x, vec3 l, float extinction_per_density, out float clear) {
+// in through gaps and soft edges against light diffused through the column by it); `deck`: the decks'
+// optical depth beyond the steps, from the same texel of the shadow map (clouds_deck_light).
+float clouds_light_optical_depth(vec3 x, vec3 l, float extinction_per_density, out float clear,
+                                 out float deck) {
   float tau = 0.0, s = 0.0, step_m = cl.light_step_m, clear_m = 0.0;
   int n = int(cl.light_steps);
   if (n > 0) {
@@ -44,7 +68,13 @@ float clouds_light_optical_depth(vec3 x, vec3 l, float extinction_per_density, o
   }
   clear = clear_m / max(s, 1e-6);
   tau *= extinction_per_density;
-  if (cl.moon_marched < 0.5) tau += clouds_shadow_optical_depth(x + l * s);
+  deck = 0.0;
+  if (cl.moon_marched < 0.5) {
+    float depth;
+    vec4 texel = clouds_shadow_texel(x + l * s, depth);
+    tau += clouds_shadow_optical_depth(texel, depth);
+    deck = texel.w * clouds_deck_share(x + l * s);
+  }
   return tau;
 }
 
@@ -67,8 +97,9 @@ float clouds_side_optical_depth(vec3 x, vec3 l, vec3 up, float sigma_t, float ex
 vec3 clouds_marched_source(vec3 x, vec3 l, float mu, float phase_single, float sigma_t,
                            float extinction_per_density, CloudsSampleGeometry g, vec3 up, vec3 e_light,
                            vec3 e_sky) {
-  float clear;
-  float tau = clouds_light_optical_depth(x, l, extinction_per_density, clear);
+  float clear, deck;
+  float tau = clouds_light_optical_depth(x, l, extinction_per_density, clear, deck);
+  clouds_deck_light(deck, e_light, e_sky);
   if (!clouds_diffusion_model)
     return clouds_sample_source(mu, phase_single, tau, sigma_t, g.depth_below_m, g.depth_above_m, l, up,
                                 e_light, e_sky);

@@ -106,6 +106,19 @@ float clouds_two_stream_k() {
                      : mix(cl.g_backward, cl.g_forward, cl.forward_weight);
   return 0.75 * (1.0 - g);
 }
+// The share of the scattered light that stays in the phase function's forward peak (delta-Eddington:
+// g^2 of each Henyey-Greenstein lobe; the droplets' fit by its mean cosine): light a thin deck
+// scatters by a few degrees still arrives as from the sun.
+float clouds_forward_fraction() {
+#ifdef CLOUDS_PHASE_MODEL
+  const bool droplets = CLOUDS_PHASE_MODEL == 1;
+#else
+  bool droplets = cl.phase_model > 0.5;
+#endif
+  float g = 1.0 - clouds_two_stream_k() / 0.75;
+  return droplets ? g * g
+                  : mix(cl.g_backward * cl.g_backward, cl.g_forward * cl.g_forward, cl.forward_weight);
+}
 float clouds_slab_diffuse(float tau) {
   return 1.0 / (1.0 + clouds_two_stream_k() * tau);
 }

@@ -8,10 +8,10 @@ layout(std140, binding = WELKIN_BLOCK_CLOUDS_SHADOW) uniform CloudsShadow { Clou
 const int CLOUDS_SHADOW_CASCADES = 4;  // cs.cascades.length()
 layout(binding = WELKIN_UNIT_CLOUDS_SHADOW_MAP) uniform sampler2D cs_map;  // the cascades side by side
 
-// Optical depth of the clouds between p and the sun, from the nearest cascade that holds p (away
-// from its edge, except in the last): zero above the column's front, then the mean extinction times
-// the depth into it, up to the column's total.
-float clouds_shadow_optical_depth(vec3 p) {
+// The shadow map's texel over p, from the nearest cascade that holds p (away from its edge, except in
+// the last): front, mean extinction, total and the decks' optical depth; zero outside every cascade.
+// `depth`: p's distance along the light from the cascade's start plane.
+vec4 clouds_shadow_texel(vec3 p, out float depth) {
   int n = cs.cascade_count;
   // The cascade is chosen first and read once (a software rasteriser would read every cascade a loop
   // passes, taken or not), by selects rather than branches. Materials ask for it once per point
@@ -32,10 +32,20 @@ float clouds_shadow_optical_depth(vec3 p) {
   // Kept half a texel inside the cascade's square: its neighbour in the texture is another cascade.
   float half_texel = 0.5 / float(textureSize(cs_map, 0).y);
   uv = clamp(uv, vec2(half_texel), vec2(1.0 - half_texel));
-  // front, mean extinction, total
-  vec3 m = texture(cs_map, vec2((float(k) + uv.x) / float(max(n, 1)), uv.y)).xyz;
-  float depth = cs.cascades[k].start_m - dot(p - cs.cascades[k].origin, cs.light);
-  return found ? min(m.z, m.y * max(depth - m.x, 0.0)) : 0.0;
+  vec4 m = texture(cs_map, vec2((float(k) + uv.x) / float(max(n, 1)), uv.y));
+  depth = cs.cascades[k].start_m - dot(p - cs.cascades[k].origin, cs.light);
+  return found ? m : vec4(0.0);
+}
+
+// Optical depth of the clouds between p and the sun: zero above the column's front, then the mean
+// extinction times the depth into it, up to the column's total.
+float clouds_shadow_optical_depth(vec4 texel, float depth) {
+  return min(texel.z, texel.y * max(depth - texel.x, 0.0));
+}
+float clouds_shadow_optical_depth(vec3 p) {
+  float depth;
+  vec4 texel = clouds_shadow_texel(p, depth);
+  return clouds_shadow_optical_depth(texel, depth);
 }
 
 float clouds_light_visibility(vec3 p, vec3 n, int light) {

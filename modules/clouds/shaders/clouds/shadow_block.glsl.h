@@ -22,4 +22,11 @@ struct CloudsShadowGpu {
   float column_vertical;            // |sun.z|: the vertical fraction of a slanted column
   vec3 up;                          // up at the camera
   int cascade_count;                // 0: no shadows
+  // The decks over the casters (layers that cast no shadow, all of them above every layer that
+  // does: cirrus over cumulus): their optical depth toward the sun is the map's fourth channel, and
+  // it dims the light of the clouds below this altitude (clouds_deck_light).
+  float deck_base_m;                // the decks' lowest base
+  float deck_top_m;                 // and highest top (base above top: none)
+  float deck_unused_a;              // (padding)
+  float deck_unused_b;              // (padding)
 };

@@ -1,7 +1,8 @@
 // The beer shadow map, one cascade per dispatch: for each texel, a column from above the cloud shell
 // toward the ground along the sun's direction, through the layers that cast shadows. Stores the
 // distance from the column's start to its first cloud, the mean extinction over the cloudy part and
-// the total optical depth. The cascades lie side by side in one texture.
+// the total optical depth; and, apart, the optical depth of the decks over them (layers that cast no
+// shadow, above every one that does). The cascades lie side by side in one texture.
 #include "clouds/density.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = 0) uniform writeonly image2D u_map;
@@ -17,6 +18,30 @@ uniform int u_steps;
 // degrees up 46 km long instead of 8: stretches of 1.2 km stepped over whole cumulus, and the haze
 // under them was lit as if they were not there (a tenth of the path tracer's shadow).
 uniform vec2 u_altitudes_m;
+// The decks' lowest base and highest top (base above top: none). Thin and smooth (cirrus,
+// cirrostratus), they get a fixed number of samples across their slant; their optical depth goes to
+// the fourth channel, for the clouds under them (clouds_deck_light), not into the columns above.
+uniform vec2 u_deck_m;
+const int kDeckSteps = 16;
+
+// The column's stretch between two altitudes: from where it enters the top sphere to where it meets
+// the base sphere (or leaves the top's); empty (x > y) where it misses.
+vec2 clouds_column_between(vec3 start, vec3 dir, vec2 altitudes_m) {
+  vec2 outer = clouds_sphere_from(start, dir, altitudes_m.y), inner = clouds_sphere_from(start, dir, altitudes_m.x);
+  vec2 seg = outer;
+  if (outer.x <= outer.y && inner.x <= inner.y && inner.x > seg.x) seg.y = min(seg.y, inner.x);
+  return seg;
+}
+
+float clouds_deck_depth(vec3 start, vec3 dir) {
+  vec2 seg = u_deck_m.x < u_deck_m.y ? clouds_column_between(start, dir, u_deck_m) : vec2(1.0, -1.0);
+  if (seg.x > seg.y) return 0.0;
+  clouds_system_g = clouds_weather_system_at(start + dir * (0.5 * (seg.x + seg.y)));
+  float step_m = (seg.y - seg.x) / float(kDeckSteps), tau = 0.0;
+  for (int i = 0; i < kDeckSteps; ++i)
+    tau += clouds_density(start + dir * (seg.x + (float(i) + 0.5) * step_m), false, false) * step_m;
+  return tau * (cl.scattering + cl.absorption);
+}
 
 void main() {
   clouds_load();
@@ -27,8 +52,7 @@ void main() {
   vec3 start =
       u_centre + ((uv.x - 0.5) * u_axis_u + (uv.y - 0.5) * u_axis_v) * u_extent_m + u_light * u_start_m;
   vec3 dir = -u_light;
-  vec2 outer = clouds_sphere_from(start, dir, u_altitudes_m.y),
-       inner = clouds_sphere_from(start, dir, u_altitudes_m.x);
+  vec2 column = clouds_column_between(start, dir, u_altitudes_m);
   // No cloud: the front at the column's end and no optical depth, so that filtering between a cloudy
   // texel and a clear one blends their optical depths instead of jumping at the texel's edge.
   // The column is the whole line through the texel along the light, its distances measured from
@@ -37,9 +61,8 @@ void main() {
   // or under the shell: a column cut at its start missed the cloud above it, and a deck was lit
   // beyond a straight seam across the map.
   vec4 result = vec4(0.0);
-  if (outer.x <= outer.y) {
-    vec2 seg = outer;
-    if (inner.x <= inner.y && inner.x > seg.x) seg.y = min(seg.y, inner.x);
+  if (column.x <= column.y) {
+    vec2 seg = column;
     result.x = seg.y;
     // The column is marched in u_steps stretches. Toward a low sun it crosses tens of kilometres of
     // shell (a kilometre a stretch at sunset), and one sample a stretch saw a cumulus with one or two
@@ -79,7 +102,8 @@ void main() {
         }
       }
     }
-    if (cloudy) result = vec4(front, tau / max(back - front, 1e-3), tau, 0.0);
+    if (cloudy) result.xyz = vec3(front, tau / max(back - front, 1e-3), tau);
   }
+  result.w = clouds_deck_depth(start, dir);
   imageStore(u_map, id + ivec2(u_region.x, 0), result);
 }
