@@ -64,7 +64,10 @@ void describe(TypeBuilder<CloudLayer>& t) {
       .unit("m/s")
       .range(-200, 200)
       .tooltip("Drift of the layer's weather (east, north)");
-  t.field("casts_shadow", &CloudLayer::casts_shadow).tooltip("Included in the shadow map on materials");
+  t.field("casts_shadow", &CloudLayer::casts_shadow)
+      .tooltip(
+          "Included in the shadow map on materials (off, above every layer that casts: a deck that still "
+          "dims the clouds under it)");
   t.field("follows_coverage_map", &CloudLayer::follows_coverage_map)
       .tooltip("The painted coverage map adds to this layer's coverage");
   t.field("visible", &CloudLayer::visible).tooltip("Drawn (and casting its shadow)");
@@ -160,12 +163,16 @@ void describe(TypeBuilder<VolumetricClouds>& t) {
       .range(0, 1)
       .tooltip(
           "Weight of the planet-scale weather systems in every layer's weather (0: the local weather alone)");
-  t.field("weather_system_period_m", &VolumetricClouds::weather_system_period_m).unit("m").range(1e4, 1e8)
+  t.field("weather_system_period_m", &VolumetricClouds::weather_system_period_m)
+      .unit("m")
+      .range(1e4, 1e8)
       .tooltip("The weather systems' signal repeats over this");
   t.field("wind_mps", &VolumetricClouds::wind_mps).unit("m/s").range(-200, 200);
   t.field("turbulence", &VolumetricClouds::turbulence)
       .tooltip("quality custom: curl noise stirs the cloud bases");
-  t.field("turbulence_displacement_m", &VolumetricClouds::turbulence_displacement_m).unit("m").range(0, 10000)
+  t.field("turbulence_displacement_m", &VolumetricClouds::turbulence_displacement_m)
+      .unit("m")
+      .range(0, 10000)
       .tooltip("How far the curl field moves the detail noise at a layer's base (none above its lowest 30%)");
   t.field("coverage_map", &VolumetricClouds::coverage_map)
       .tooltip(
@@ -210,7 +217,8 @@ void describe(TypeBuilder<CloudClusters>& t) {
   t.field("samples", &CloudClusters::samples)
       .range(1, 16)
       .tooltip("Steps of each pixel's march through a puff");
-  t.field("compositing", &CloudClusters::compositing).values({{"sorted", 0}, {"unsorted", 1}})
+  t.field("compositing", &CloudClusters::compositing)
+      .values({{"sorted", 0}, {"unsorted", 1}})
       .tooltip("Back to front (sorted on the GPU), or in placement order (shows what sorting fixes)");
   t.field("proxy", &CloudClusters::proxy)
       .values({{"quad", 0}, {"mesh", 1}})
@@ -330,7 +338,8 @@ void validate(const CloudBillboards& b) {
                               std::to_string(kMaxBillboardAtlasBytes >> 20) + " MiB",
                   .found = std::to_string(r) + " (" + std::to_string((r * r * layers * 8) >> 20) + " MiB)"});
   if (!(b.far_m > b.near_m))
-    throw Error(ErrorInfo{.path = "/far_m", .expected = "more than near_m (" + std::to_string(b.near_m) + ")",
+    throw Error(ErrorInfo{.path = "/far_m",
+                          .expected = "more than near_m (" + std::to_string(b.near_m) + ")",
                           .found = std::to_string(b.far_m)});
   check_cell_grid(b.far_m, b.cell_m);
 }
@@ -360,14 +369,19 @@ void validate(const CloudLod& c) {
 
 ResolvedQuality resolve_quality(const VolumetricClouds& c) {
   switch (c.quality) {
-    case Quality::low: return {64, 120.0f, 2000.0f, 2, 150.0f, false, 0.25f, 0.012f, 4, false};
-    case Quality::medium: return {128, 70.0f, 1200.0f, 3, 100.0f, true, 0.4f, 0.008f, 4, false};
-    case Quality::high: return {256, 40.0f, 800.0f, 3, 80.0f, true, 0.5f, 0.005f, 2, true};
-    case Quality::ultra: return {768, 20.0f, 500.0f, 6, 50.0f, true, 1.0f, 0.002f, 2, true};
-    case Quality::custom: break;
+    case Quality::low:
+      return {64, 120.0f, 2000.0f, 2, 150.0f, false, 0.25f, 0.012f, 4, false};
+    case Quality::medium:
+      return {128, 70.0f, 1200.0f, 3, 100.0f, true, 0.4f, 0.008f, 4, false};
+    case Quality::high:
+      return {256, 40.0f, 800.0f, 3, 80.0f, true, 0.5f, 0.005f, 2, true};
+    case Quality::ultra:
+      return {768, 20.0f, 500.0f, 6, 50.0f, true, 1.0f, 0.002f, 2, true};
+    case Quality::custom:
+      break;
   }
-  return {c.max_steps,        c.min_step_m,  c.max_step_m,     c.light_steps, c.light_step_m, c.shape_detail,
-          c.resolution_scale, c.step_growth, c.temporal_block, c.turbulence};
+  return {c.max_steps,    c.min_step_m,       c.max_step_m,  c.light_steps,    c.light_step_m,
+          c.shape_detail, c.resolution_scale, c.step_growth, c.temporal_block, c.turbulence};
 }
 
 void validate(const VolumetricClouds& c) {

@@ -43,7 +43,8 @@ void clouds_deck_light(float tau, inout vec3 e_light, inout vec3 e_sky) {
   if (tau <= 0.0) return;
   float mu_0 = cs.column_vertical, tau_vertical = tau * mu_0;
   float direct = exp(-(1.0 - clouds_forward_fraction()) * tau);
-  float total = (0.5 + 0.75 * mu_0 + (0.5 - 0.75 * mu_0) * direct) / (1.0 + clouds_two_stream_k() * tau_vertical);
+  float total =
+      (0.5 + 0.75 * mu_0 + (0.5 - 0.75 * mu_0) * direct) / (1.0 + clouds_two_stream_k() * tau_vertical);
   e_sky = e_sky * clouds_slab_diffuse(tau_vertical) + e_light * (mu_0 * max(total - direct, 0.0));
   e_light *= direct;
 }

@@ -27,7 +27,8 @@ const int kDeckSteps = 16;
 // The column's stretch between two altitudes: from where it enters the top sphere to where it meets
 // the base sphere (or leaves the top's); empty (x > y) where it misses.
 vec2 clouds_column_between(vec3 start, vec3 dir, vec2 altitudes_m) {
-  vec2 outer = clouds_sphere_from(start, dir, altitudes_m.y), inner = clouds_sphere_from(start, dir, altitudes_m.x);
+  vec2 outer = clouds_sphere_from(start, dir, altitudes_m.y);
+  vec2 inner = clouds_sphere_from(start, dir, altitudes_m.x);
   vec2 seg = outer;
   if (outer.x <= outer.y && inner.x <= inner.y && inner.x > seg.x) seg.y = min(seg.y, inner.x);
   return seg;
