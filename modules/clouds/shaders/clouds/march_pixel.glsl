@@ -84,9 +84,15 @@ struct Accumulated {
   float clear_m;  // up to here the ray met no cloud (its last empty sample before the first cloud)
 };
 
+// CLOUDS_BANDS (density_field.cpp's band_defines): the altitude bands, CLOUDS_BAND_LAYERS_i the layers
+// band i's samples and their light steps can reach (0: one march with every layer for all of them).
+#ifndef CLOUDS_BANDS
+#define CLOUDS_BANDS 0
+#endif
+
 // The march through one stretch of the ray from `start` on (the light and the air are interpolated
-// between the stretch's ends whatever the start).
-void march_segment(vec3 dir, vec2 segment, float start, float jitter, inout Accumulated acc) {
+// between the stretch's ends whatever the start), with the compiled layers in `layers` (density.glsl).
+void march_segment(int layers, vec3 dir, vec2 segment, float start, float jitter, inout Accumulated acc) {
   bool detail = true;  // for the layers that use it (density.glsl)
   vec3 l = cl.moon_marched > 0.5 ? welkin_moon_direction() : welkin_sun_direction();
   float mu = dot(dir, l);
@@ -145,7 +151,7 @@ void march_segment(vec3 dir, vec2 segment, float start, float jitter, inout Accu
       }
       bool empty;
       clouds_view_sample = true;
-      density = clouds_density(x, detail, false, empty);
+      density = clouds_density(layers, x, detail, false, empty);
       clouds_view_sample = false;
       if (density > 0.0 && stride_from >= 0.0) {
         // The stride's end lies at a phase of the stride's grid that is the same for every pixel at
@@ -170,8 +176,8 @@ void march_segment(vec3 dir, vec2 segment, float start, float jitter, inout Accu
       float along = clamp((t - segment.x) * inverse_length, 0.0, 1.0);
       vec3 up = normalize(mix(up0, up1, along));
       vec3 e_light = mix(e_light0, e_light1, along), e_sky = mix(e_sky0, e_sky1, along);
-      vec3 source = clouds_marched_source(x, l, mu, phase_single, sigma_t, extinction_per_density, geometry,
-                                          up, e_light, e_sky);
+      vec3 source = clouds_marched_source(layers, x, l, mu, phase_single, sigma_t, extinction_per_density,
+                                          geometry, up, e_light, e_sky);
       // Energy-conserving step (Hillaire 2015): integrate the source over the step's own attenuation.
       float step_transmittance = exp(-sigma_t * step_m);
       vec3 step_light = source * (1.0 - step_transmittance);
@@ -226,6 +232,7 @@ void clouds_march_pixel(ivec2 pixel, out vec4 color, out vec3 distances) {
   // front of and behind the band's inner sphere), in order along the ray: the gaps between bands
   // (kilometres between a cumulus and a cirrus layer) are never stepped through.
   vec2 segments[2 * CLOUDS_MAX_BANDS];
+  int segment_band[2 * CLOUDS_MAX_BANDS];
   int count = 0;
   float first = 3.4e38;
   // Indexed by a loop counter: copied out of the block first, so that a compiler that cannot keep a
@@ -240,8 +247,8 @@ void clouds_march_pixel(ivec2 pixel, out vec4 color, out vec3 distances) {
       b = vec2(max(inner.y, 0.0), outer.y);
       a.y = min(a.y, inner.x);
     }
-    if (a.x < a.y) segments[count++] = a, first = min(first, a.x);
-    if (b.x < b.y) segments[count++] = b, first = min(first, b.x);
+    if (a.x < a.y) segment_band[count] = i, segments[count++] = a, first = min(first, a.x);
+    if (b.x < b.y) segment_band[count] = i, segments[count++] = b, first = min(first, b.x);
   }
   // The march reaches max distance beyond where the ray first enters a band (from orbit, that is a
   // thousand kilometres away).
@@ -250,6 +257,8 @@ void clouds_march_pixel(ivec2 pixel, out vec4 color, out vec3 distances) {
     for (int j = i; j > 0 && segments[j].x < segments[j - 1].x; --j) {
       vec2 swap = segments[j];
       segments[j] = segments[j - 1], segments[j - 1] = swap;
+      int swap_band = segment_band[j];
+      segment_band[j] = segment_band[j - 1], segment_band[j - 1] = swap_band;
     }
   float start = 0.0;
 #if CLOUDS_SKIP
@@ -259,7 +268,25 @@ void clouds_march_pixel(ivec2 pixel, out vec4 color, out vec3 distances) {
   acc.clear_m = min(max(start, first), 1e9);
   for (int i = 0; i < count; ++i) {
     vec2 segment = vec2(segments[i].x, min(segments[i].y, t_max));
-    if (segment.x < segment.y && start < segment.y) march_segment(dir, segment, start, jitter, acc);
+    if (segment.x < segment.y && start < segment.y) {
+      // Each band with only the layers its samples and their light steps can reach (the others add
+      // nothing there): a software rasteriser runs every compiled layer's code at every sample.
+#if CLOUDS_BANDS > 0
+      int band = segment_band[i];
+      if (band == 0) march_segment(CLOUDS_BAND_LAYERS_0, dir, segment, start, jitter, acc);
+#if CLOUDS_BANDS > 1
+      if (band == 1) march_segment(CLOUDS_BAND_LAYERS_1, dir, segment, start, jitter, acc);
+#endif
+#if CLOUDS_BANDS > 2
+      if (band == 2) march_segment(CLOUDS_BAND_LAYERS_2, dir, segment, start, jitter, acc);
+#endif
+#if CLOUDS_BANDS > 3
+      if (band == 3) march_segment(CLOUDS_BAND_LAYERS_3, dir, segment, start, jitter, acc);
+#endif
+#else
+      march_segment(CLOUDS_ALL_LAYERS, dir, segment, start, jitter, acc);
+#endif
+    }
   }
 #if CLOUDS_AP_MODE == 1
   if (acc.depth_weight > 0.0) {
