@@ -90,9 +90,33 @@ struct Accumulated {
 #define CLOUDS_BANDS 0
 #endif
 
-// The march through one stretch of the ray from `start` on (the light and the air are interpolated
-// between the stretch's ends whatever the start), with the compiled layers in `layers` (density.glsl).
-void march_segment(int layers, vec3 dir, vec2 segment, float start, float jitter, inout Accumulated acc) {
+// The light reaching the clouds and the air in front of them change over kilometres, not metres:
+// they are looked up at both ends of a stretch of the ray and interpolated along it. (A software
+// rasteriser runs a lookup inside the loop for a whole group of pixels whenever any one of them needs
+// it; and before the bands' marches, which it runs each for the whole group, once.)
+struct SegmentEnds {
+  vec3 up0, up1, e_light0, e_light1, e_sky0, e_sky1;
+  vec3 ap_s0, ap_s1, ap_t0, ap_t1;  // CLOUDS_AP_MODE 0
+  float system0, system1;
+};
+SegmentEnds segment_ends(vec3 dir, vec2 segment) {
+  SegmentEnds e;
+  vec3 x0 = dir * segment.x, x1 = dir * segment.y;
+  e.up0 = normalize(cl.up * cl.camera_radius_m + x0), e.up1 = normalize(cl.up * cl.camera_radius_m + x1);
+  e.e_light0 = cl.moon_marched > 0.5 ? welkin_moon_irradiance(x0) : welkin_sun_irradiance(x0);
+  e.e_light1 = cl.moon_marched > 0.5 ? welkin_moon_irradiance(x1) : welkin_sun_irradiance(x1);
+  e.e_sky0 = welkin_sky_irradiance(e.up0), e.e_sky1 = welkin_sky_irradiance(e.up1);
+#if CLOUDS_AP_MODE == 0
+  e.ap_s0 = welkin_aerial_perspective(x0, e.ap_t0), e.ap_s1 = welkin_aerial_perspective(x1, e.ap_t1);
+#endif
+  e.system0 = clouds_weather_system_at(x0), e.system1 = clouds_weather_system_at(x1);
+  return e;
+}
+
+// The march through one stretch of the ray from `start` on (the light and the air interpolated
+// between the stretch's ends `e` whatever the start), with the compiled layers in `layers` (density.glsl).
+void march_segment(int layers, vec3 dir, vec2 segment, SegmentEnds e, float start, float jitter,
+                   inout Accumulated acc) {
   bool detail = true;  // for the layers that use it (density.glsl)
   vec3 l = cl.moon_marched > 0.5 ? welkin_moon_direction() : welkin_sun_direction();
   float mu = dot(dir, l);
@@ -105,20 +129,7 @@ void march_segment(int layers, vec3 dir, vec2 segment, float start, float jitter
   // An empty stride that lands in cloud is taken back: the march returns to its last empty sample
   // and steps up to where the stride landed (`refine_until`) in steps that do not stride.
   float stride_from = -1.0, refine_until = -1.0;
-  // The light reaching the clouds and the air in front of them change over kilometres, not metres:
-  // they are looked up at both ends of the segment and interpolated along it. (A software rasteriser
-  // runs a lookup inside the loop for a whole group of pixels whenever any one of them needs it.)
-  vec3 x0 = dir * segment.x, x1 = dir * segment.y;
-  vec3 up0 = normalize(cl.up * cl.camera_radius_m + x0), up1 = normalize(cl.up * cl.camera_radius_m + x1);
-  vec3 e_light0 = cl.moon_marched > 0.5 ? welkin_moon_irradiance(x0) : welkin_sun_irradiance(x0);
-  vec3 e_light1 = cl.moon_marched > 0.5 ? welkin_moon_irradiance(x1) : welkin_sun_irradiance(x1);
-  vec3 e_sky0 = welkin_sky_irradiance(up0), e_sky1 = welkin_sky_irradiance(up1);
-#if CLOUDS_AP_MODE == 0
-  vec3 ap_t0, ap_t1;
-  vec3 ap_s0 = welkin_aerial_perspective(x0, ap_t0), ap_s1 = welkin_aerial_perspective(x1, ap_t1);
-#endif
   float inverse_length = 1.0 / max(segment.y - segment.x, 1e-3);
-  float system0 = clouds_weather_system_at(x0), system1 = clouds_weather_system_at(x1);
   float phase_single = clouds_phase(mu, 1.0);
   // At least eight samples through each stretch: a layer crossed far away and steeply (seen from
   // orbit) would otherwise get one or two, and the jitter would decide whether the cloud is there.
@@ -140,7 +151,7 @@ void march_segment(int layers, vec3 dir, vec2 segment, float start, float jitter
       ++acc.steps;
       clouds_footprint_m = (t + 0.5 * step_m) * cl.pixel_angle_rad;
       clouds_system_g =
-          mix(system0, system1, clamp((t + 0.5 * step_m - segment.x) * inverse_length, 0.0, 1.0));
+          mix(e.system0, e.system1, clamp((t + 0.5 * step_m - segment.x) * inverse_length, 0.0, 1.0));
       // Whole blocks of empty weather are skipped without reading the noise.
       float skip = clouds_empty_skip(x, dir);
       if (skip > 0.0) {
@@ -174,8 +185,8 @@ void march_segment(int layers, vec3 dir, vec2 segment, float start, float jitter
       CloudsSampleGeometry geometry = clouds_sample_geometry();
       float sigma_t = density * extinction_per_density;
       float along = clamp((t - segment.x) * inverse_length, 0.0, 1.0);
-      vec3 up = normalize(mix(up0, up1, along));
-      vec3 e_light = mix(e_light0, e_light1, along), e_sky = mix(e_sky0, e_sky1, along);
+      vec3 up = normalize(mix(e.up0, e.up1, along));
+      vec3 e_light = mix(e.e_light0, e.e_light1, along), e_sky = mix(e.e_sky0, e.e_sky1, along);
       vec3 source = clouds_marched_source(layers, x, l, mu, phase_single, sigma_t, extinction_per_density,
                                           geometry, up, e_light, e_sky);
       // Energy-conserving step (Hillaire 2015): integrate the source over the step's own attenuation.
@@ -183,7 +194,7 @@ void march_segment(int layers, vec3 dir, vec2 segment, float start, float jitter
       vec3 step_light = source * (1.0 - step_transmittance);
       float opacity = acc.transmittance * (1.0 - step_transmittance);
 #if CLOUDS_AP_MODE == 0
-      vec3 ap_s = mix(ap_s0, ap_s1, along), ap_t = mix(ap_t0, ap_t1, along);
+      vec3 ap_s = mix(e.ap_s0, e.ap_s1, along), ap_t = mix(e.ap_t0, e.ap_t1, along);
       acc.color += acc.transmittance * ap_t * step_light + ap_s * opacity;
 #else
       acc.color += acc.transmittance * step_light;
@@ -271,20 +282,21 @@ void clouds_march_pixel(ivec2 pixel, out vec4 color, out vec3 distances) {
     if (segment.x < segment.y && start < segment.y) {
       // Each band with only the layers its samples and their light steps can reach (the others add
       // nothing there): a software rasteriser runs every compiled layer's code at every sample.
+      SegmentEnds ends = segment_ends(dir, segment);
 #if CLOUDS_BANDS > 0
       int band = segment_band[i];
-      if (band == 0) march_segment(CLOUDS_BAND_LAYERS_0, dir, segment, start, jitter, acc);
+      if (band == 0) march_segment(CLOUDS_BAND_LAYERS_0, dir, segment, ends, start, jitter, acc);
 #if CLOUDS_BANDS > 1
-      if (band == 1) march_segment(CLOUDS_BAND_LAYERS_1, dir, segment, start, jitter, acc);
+      if (band == 1) march_segment(CLOUDS_BAND_LAYERS_1, dir, segment, ends, start, jitter, acc);
 #endif
 #if CLOUDS_BANDS > 2
-      if (band == 2) march_segment(CLOUDS_BAND_LAYERS_2, dir, segment, start, jitter, acc);
+      if (band == 2) march_segment(CLOUDS_BAND_LAYERS_2, dir, segment, ends, start, jitter, acc);
 #endif
 #if CLOUDS_BANDS > 3
-      if (band == 3) march_segment(CLOUDS_BAND_LAYERS_3, dir, segment, start, jitter, acc);
+      if (band == 3) march_segment(CLOUDS_BAND_LAYERS_3, dir, segment, ends, start, jitter, acc);
 #endif
 #else
-      march_segment(CLOUDS_ALL_LAYERS, dir, segment, start, jitter, acc);
+      march_segment(CLOUDS_ALL_LAYERS, dir, segment, ends, start, jitter, acc);
 #endif
     }
   }
