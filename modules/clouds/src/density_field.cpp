@@ -90,14 +90,15 @@ ShaderDefines band_defines(const CloudsGpu& gpu) {
   // probes, level, one first step away), up and down: along the marched light, whose angle to a
   // sample's vertical differs from its angle at the camera by at most the angle the planet's centre
   // sees between them: the farthest sample lies beyond where the ray enters the highest band (the
-  // horizon's distance from both) by the march's maximum distance. The moon's direction is not known
-  // here: both ways.
+  // horizon's distance from both) by the march's maximum distance, and a degree more (the shaders'
+  // light and this frame's sun come from one source; a margin all the same). The moon's direction is
+  // not known here: both ways.
   const double reach = double(b.light_step_m) * std::exp2(double(b.light_steps));
   const double R = b.planet_radius_m, top = std::max(double(b.band_high[bands - 1]), 0.0);
   const double camera = std::max(double(b.camera_altitude_m), 0.0);
   const double farthest = std::sqrt(top * (2.0 * R + top)) + std::sqrt(camera * (2.0 * R + camera)) +
                           double(b.max_distance_m);
-  const double spread = 2.0 * std::asin(std::min(farthest / (2.0 * R), 1.0));
+  const double spread = 2.0 * std::asin(std::min(farthest / (2.0 * R), 1.0)) + std::numbers::pi / 180.0;
   double up = reach, down = reach;
   if (b.moon_marched < 0.5f) {
     const glm::dvec3 l = glm::normalize(glm::dvec3(gpu.context.sun_direction));
