@@ -89,7 +89,10 @@ PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& ct
     const double wind = glm::length(glm::dvec2(L.wind_mps));
     const glm::dvec3 axis = wind > 0.0 ? glm::dvec3(glm::dvec2(L.wind_mps) / wind, 0.0) : glm::dvec3(0.0);
     const glm::dvec3 noise_p = p - glm::dvec3(clouds.wind_mps, 0.0) * ctx.time_s;
-    b.streak_axis = glm::vec3(axis), b.streak = std::max(g.streak, 1.0f);
+    // Without wind there is no direction to streak along: such a layer packs streak 1 and no hook, so
+    // that the field compiles no streak code for it (density_field.cpp) and it shares its weather
+    // sample with the layers of its place (the stretch along no axis is the identity anyway).
+    b.streak_axis = glm::vec3(axis), b.streak = wind > 0.0 ? std::max(g.streak, 1.0f) : 1.0f;
     b.hook_m = float(g.hook_s * wind);
     b.streak_shape_origin = tile_origin(streaked(noise_p, axis, b.streak), clouds.shape_period_m);
     b.streak_detail_origin = tile_origin(streaked(noise_p, axis, b.streak), clouds.detail_period_m);

@@ -144,6 +144,7 @@ void clouds_system(SystemContext& sc) {
   // The field's layers and what each uses are compiled in, turbulence only where it displaces anything.
   ShaderDefines defines = field_defines(gpu);
   defines.merge(light_model_defines(gpu));
+  defines.merge(band_defines(gpu));
   defines["CLOUDS_AP_MODE"] = ap_mode;
   // The mesh clusters drawn just before: the march ends where they turn opaque.
   // (published on the graph by the billboards or the clusters when they drew this frame).

@@ -310,6 +310,7 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
 #define CLOUDS_ANVIL_MASK 15
 #endif
 #define CLOUDS_HAS(mask, i) ((((mask) >> (i)) & 1) != 0)
+#define CLOUDS_ALL_LAYERS 15
 
 // Layer i's value of `fn` at x into arr[i], or layer s's already there when the two read the same
 // weather (s < i); the condition is a compile-time constant, so the unneeded side is not compiled.
@@ -321,8 +322,30 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
   if (CLOUDS_LAYERS > 2) { CLOUDS_SHARED(arr, fn, 2, CLOUDS_WEATHER_SOURCE_2) } \
   if (CLOUDS_LAYERS > 3) { CLOUDS_SHARED(arr, fn, 3, CLOUDS_WEATHER_SOURCE_3) }
 
+// The same for the compiled layers in `layers` (bit i: layer i; a compile-time constant where the
+// caller passes one, as the march does per altitude band): a weather sample that none of them reads
+// is not fetched, and the others' code is not compiled in.
+#define CLOUDS_SOURCE_OF(i)          \
+  ((i) == 0   ? 0                    \
+   : (i) == 1 ? CLOUDS_WEATHER_SOURCE_1 \
+   : (i) == 2 ? CLOUDS_WEATHER_SOURCE_2 \
+              : CLOUDS_WEATHER_SOURCE_3)
+#define CLOUDS_READS_WEATHER(j, s) (CLOUDS_HAS(layers, j) && CLOUDS_SOURCE_OF(j) == (s))
+#define CLOUDS_READS(s)                                      \
+  (CLOUDS_READS_WEATHER(0, s) || CLOUDS_READS_WEATHER(1, s) || \
+   CLOUDS_READS_WEATHER(2, s) || CLOUDS_READS_WEATHER(3, s))
+#define CLOUDS_MASKED_SHARED(arr, fn, i)                                         \
+  arr[i] = CLOUDS_SOURCE_OF(i) != (i) ? arr[CLOUDS_SOURCE_OF(i) == (i) ? 0 : CLOUDS_SOURCE_OF(i)] \
+           : CLOUDS_READS(i)          ? fn(cl_local_layers[i], x)                                  \
+                                      : vec4(0.0);
+#define CLOUDS_FOR_MASKED_LAYERS(arr, fn)                       \
+  CLOUDS_MASKED_SHARED(arr, fn, 0)                              \
+  if (CLOUDS_LAYERS > 1) { CLOUDS_MASKED_SHARED(arr, fn, 1) }   \
+  if (CLOUDS_LAYERS > 2) { CLOUDS_MASKED_SHARED(arr, fn, 2) }   \
+  if (CLOUDS_LAYERS > 3) { CLOUDS_MASKED_SHARED(arr, fn, 3) }
+
 #define CLOUDS_ADD_LAYER(i)                                                                           \
-  if (!shadow_only || CLOUDS_HAS(CLOUDS_SHADOW_MASK, i)) {                                            \
+  if (CLOUDS_HAS(layers, i) && (!shadow_only || CLOUDS_HAS(CLOUDS_SHADOW_MASK, i))) {                 \
     clouds_layer_streaks = CLOUDS_HAS(CLOUDS_STREAK_MASK, i) ? 1 : 0;                                 \
     clouds_layer_anvil = CLOUDS_HAS(CLOUDS_ANVIL_MASK, i) ? 1 : 0;                                    \
     sum += clouds_layer_density(cl_local_layers[i], w[i], CLOUDS_HAS(CLOUDS_MAP_MASK, i),             \
@@ -331,9 +354,10 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
     empty = empty && envelope <= 0.0;                                                                 \
   }
 
-// Total extinction of the layers at x (shadow_only: only layers that cast shadows); `empty` when no
-// layer's weather allows cloud there. `detail`: the detail noise erodes the layers that use it.
-float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
+// Total extinction of the layers at x (shadow_only: only layers that cast shadows; `layers`: only those
+// of them, as above); `empty` when no layer's weather allows cloud there. `detail`: the detail noise
+// erodes the layers that use it.
+float clouds_density(int layers, vec3 x, bool detail, bool shadow_only, out bool empty) {
   empty = true;
   clouds_detail_sample = -1.0, clouds_painted_sample = 2.0;
   clouds_detail_displacement = 0.0;
@@ -344,7 +368,7 @@ float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
   if (h < cl.lowest_m || h > cl.highest_m) return 0.0;
   // The shape noise is the same for every layer that does not streak (those read their own): read once.
 #if CLOUDS_LAYERS > 0
-  const bool shared_shape = (((1 << CLOUDS_LAYERS) - 1) & ~CLOUDS_STREAK_MASK) != 0;
+  const bool shared_shape = (((1 << CLOUDS_LAYERS) - 1) & ~CLOUDS_STREAK_MASK & layers) != 0;
 #else
   const bool shared_shape = true;
 #endif
@@ -354,11 +378,11 @@ float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
   float sum = 0.0, envelope;
 #if CLOUDS_LAYERS > 0
 #if !CLOUDS_TURBULENCE
-  if (detail && (CLOUDS_DETAIL_MASK & ~CLOUDS_STREAK_MASK) != 0)
+  if (detail && (CLOUDS_DETAIL_MASK & ~CLOUDS_STREAK_MASK & layers) != 0)
     clouds_detail_sample = clouds_detail_fetch(x);
 #endif
   vec4 w[CLOUDS_LOCAL_LAYERS];
-  CLOUDS_FOR_COMPILED_LAYERS(w, clouds_weather_fetch)
+  CLOUDS_FOR_MASKED_LAYERS(w, clouds_weather_fetch)
   CLOUDS_ADD_LAYER(0)
   if (CLOUDS_LAYERS > 1) { CLOUDS_ADD_LAYER(1) }
   if (CLOUDS_LAYERS > 2) { CLOUDS_ADD_LAYER(2) }
@@ -381,9 +405,16 @@ float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
   clouds_fill = clouds_envelope_sigma > 0.0 ? min(clouds_fill / clouds_envelope_sigma, 1.0) : 1.0;
   return sum;
 }
+float clouds_density(vec3 x, bool detail, bool shadow_only, out bool empty) {
+  return clouds_density(CLOUDS_ALL_LAYERS, x, detail, shadow_only, empty);
+}
+float clouds_density(int layers, vec3 x, bool detail, bool shadow_only) {
+  bool empty;
+  return clouds_density(layers, x, detail, shadow_only, empty);
+}
 float clouds_density(vec3 x, bool detail, bool shadow_only) {
   bool empty;
-  return clouds_density(x, detail, shadow_only, empty);
+  return clouds_density(CLOUDS_ALL_LAYERS, x, detail, shadow_only, empty);
 }
 
 // The occupancy of a layer's weather around x: the largest signal in the 16^3 block x lies in.

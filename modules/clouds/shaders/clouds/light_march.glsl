@@ -51,18 +51,19 @@ void clouds_deck_light(float tau, inout vec3 e_light, inout vec3 e_sky) {
 
 // `clear`: the fraction of the steps' way where the field is empty (the light model weighs light let
 // in through gaps and soft edges against light diffused through the column by it); `deck`: the decks'
-// optical depth beyond the steps, from the same texel of the shadow map (clouds_deck_light).
-float clouds_light_optical_depth(vec3 x, vec3 l, float extinction_per_density, out float clear,
+// optical depth beyond the steps, from the same texel of the shadow map (clouds_deck_light). `layers`:
+// the compiled layers the steps read (density.glsl; those the march's band can reach).
+float clouds_light_optical_depth(int layers, vec3 x, vec3 l, float extinction_per_density, out float clear,
                                  out float deck) {
   float tau = 0.0, s = 0.0, step_m = cl.light_step_m, clear_m = 0.0;
   int n = int(cl.light_steps);
   if (n > 0) {
-    float d = clouds_density(x + l * (0.5 * step_m), int(CLOUDS_LIGHT_DETAIL) > 0, false);
+    float d = clouds_density(layers, x + l * (0.5 * step_m), int(CLOUDS_LIGHT_DETAIL) > 0, false);
     tau = d * step_m, clear_m = d > 0.0 ? 0.0 : step_m;
     s = step_m, step_m *= 2.0;
   }
   for (int k = 1; k < n; ++k) {
-    float d = clouds_density(x + l * (s + 0.5 * step_m), k < int(CLOUDS_LIGHT_DETAIL), false);
+    float d = clouds_density(layers, x + l * (s + 0.5 * step_m), k < int(CLOUDS_LIGHT_DETAIL), false);
     tau += d * step_m, clear_m += d > 0.0 ? 0.0 : step_m;
     s += step_m;
     step_m *= 2.0;
@@ -78,28 +79,33 @@ float clouds_light_optical_depth(vec3 x, vec3 l, float extinction_per_density, o
   }
   return tau;
 }
+float clouds_light_optical_depth(vec3 x, vec3 l, float extinction_per_density, out float clear,
+                                 out float deck) {
+  return clouds_light_optical_depth(CLOUDS_ALL_LAYERS, x, l, extinction_per_density, clear, deck);
+}
 
 // The optical depth from x to the cloud's side (CloudsLightInputs.escape): two samples of the shape
 // noise alone (no detail: the light diffused in the cloud goes round its small gaps) one first light
 // step away, level, toward the light's azimuth and away from it, where a cumulus's lit and shadowed
 // sides face. A probe in clear air puts the side half way to it; one in cloud, beyond it.
-float clouds_side_optical_depth(vec3 x, vec3 l, vec3 up, float sigma_t, float extinction_per_density) {
+float clouds_side_optical_depth(int layers, vec3 x, vec3 l, vec3 up, float sigma_t,
+                                float extinction_per_density) {
   vec3 level = l - up * dot(l, up);
   level = dot(level, level) > 1e-6 ? normalize(level) : normalize(cross(up, vec3(1.0, 0.0, 0.0)));
   float r = cl.light_step_m, side = 1e4;
   for (int i = 0; i < 2; ++i) {
-    float d = clouds_density(x + level * (i == 0 ? r : -r), false, false) * extinction_per_density;
+    float d = clouds_density(layers, x + level * (i == 0 ? r : -r), false, false) * extinction_per_density;
     side = min(side, d > 0.0 ? r * (sigma_t + d) : 0.25 * r * sigma_t);
   }
   return side;
 }
 
 // The light the sample at x scatters toward the camera, per unit extinction (clouds_sample_source).
-vec3 clouds_marched_source(vec3 x, vec3 l, float mu, float phase_single, float sigma_t,
+vec3 clouds_marched_source(int layers, vec3 x, vec3 l, float mu, float phase_single, float sigma_t,
                            float extinction_per_density, CloudsSampleGeometry g, vec3 up, vec3 e_light,
                            vec3 e_sky) {
   float clear, deck;
-  float tau = clouds_light_optical_depth(x, l, extinction_per_density, clear, deck);
+  float tau = clouds_light_optical_depth(layers, x, l, extinction_per_density, clear, deck);
   clouds_deck_light(deck, e_light, e_sky);
   if (!clouds_diffusion_model)
     return clouds_sample_source(mu, phase_single, tau, sigma_t, g.depth_below_m, g.depth_above_m, l, up,
@@ -109,6 +115,6 @@ vec3 clouds_marched_source(vec3 x, vec3 l, float mu, float phase_single, float s
   // Two density samples more per cloud sample: only where the weights read the side's depth (the
   // sum of the constants folds at compile time).
   if (CLOUDS_MS_W32 + CLOUDS_MS_W33 + CLOUDS_MS_W34 + CLOUDS_MS_W35 + CLOUDS_MS_W36 + CLOUDS_MS_W37 > 0.0)
-    s.escape = clouds_side_optical_depth(x, l, up, sigma_t, extinction_per_density);
+    s.escape = clouds_side_optical_depth(layers, x, l, up, sigma_t, extinction_per_density);
   return clouds_light_source(mu, phase_single, s, l, up, e_light, e_sky);
 }

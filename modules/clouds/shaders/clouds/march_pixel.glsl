@@ -84,9 +84,39 @@ struct Accumulated {
   float clear_m;  // up to here the ray met no cloud (its last empty sample before the first cloud)
 };
 
-// The march through one stretch of the ray from `start` on (the light and the air are interpolated
-// between the stretch's ends whatever the start).
-void march_segment(vec3 dir, vec2 segment, float start, float jitter, inout Accumulated acc) {
+// CLOUDS_BANDS (density_field.cpp's band_defines): the altitude bands, CLOUDS_BAND_LAYERS_i the layers
+// band i's samples and their light steps can reach (0: one march with every layer for all of them).
+#ifndef CLOUDS_BANDS
+#define CLOUDS_BANDS 0
+#endif
+
+// The light reaching the clouds and the air in front of them change over kilometres, not metres:
+// they are looked up at both ends of a stretch of the ray and interpolated along it. (A software
+// rasteriser runs a lookup inside the loop for a whole group of pixels whenever any one of them needs
+// it; and before the bands' marches, which it runs each for the whole group, once.)
+struct SegmentEnds {
+  vec3 up0, up1, e_light0, e_light1, e_sky0, e_sky1;
+  vec3 ap_s0, ap_s1, ap_t0, ap_t1;  // CLOUDS_AP_MODE 0
+  float system0, system1;
+};
+SegmentEnds segment_ends(vec3 dir, vec2 segment) {
+  SegmentEnds e;
+  vec3 x0 = dir * segment.x, x1 = dir * segment.y;
+  e.up0 = normalize(cl.up * cl.camera_radius_m + x0), e.up1 = normalize(cl.up * cl.camera_radius_m + x1);
+  e.e_light0 = cl.moon_marched > 0.5 ? welkin_moon_irradiance(x0) : welkin_sun_irradiance(x0);
+  e.e_light1 = cl.moon_marched > 0.5 ? welkin_moon_irradiance(x1) : welkin_sun_irradiance(x1);
+  e.e_sky0 = welkin_sky_irradiance(e.up0), e.e_sky1 = welkin_sky_irradiance(e.up1);
+#if CLOUDS_AP_MODE == 0
+  e.ap_s0 = welkin_aerial_perspective(x0, e.ap_t0), e.ap_s1 = welkin_aerial_perspective(x1, e.ap_t1);
+#endif
+  e.system0 = clouds_weather_system_at(x0), e.system1 = clouds_weather_system_at(x1);
+  return e;
+}
+
+// The march through one stretch of the ray from `start` on (the light and the air interpolated
+// between the stretch's ends `e` whatever the start), with the compiled layers in `layers` (density.glsl).
+void march_segment(int layers, vec3 dir, vec2 segment, SegmentEnds e, float start, float jitter,
+                   inout Accumulated acc) {
   bool detail = true;  // for the layers that use it (density.glsl)
   vec3 l = cl.moon_marched > 0.5 ? welkin_moon_direction() : welkin_sun_direction();
   float mu = dot(dir, l);
@@ -99,20 +129,7 @@ void march_segment(vec3 dir, vec2 segment, float start, float jitter, inout Accu
   // An empty stride that lands in cloud is taken back: the march returns to its last empty sample
   // and steps up to where the stride landed (`refine_until`) in steps that do not stride.
   float stride_from = -1.0, refine_until = -1.0;
-  // The light reaching the clouds and the air in front of them change over kilometres, not metres:
-  // they are looked up at both ends of the segment and interpolated along it. (A software rasteriser
-  // runs a lookup inside the loop for a whole group of pixels whenever any one of them needs it.)
-  vec3 x0 = dir * segment.x, x1 = dir * segment.y;
-  vec3 up0 = normalize(cl.up * cl.camera_radius_m + x0), up1 = normalize(cl.up * cl.camera_radius_m + x1);
-  vec3 e_light0 = cl.moon_marched > 0.5 ? welkin_moon_irradiance(x0) : welkin_sun_irradiance(x0);
-  vec3 e_light1 = cl.moon_marched > 0.5 ? welkin_moon_irradiance(x1) : welkin_sun_irradiance(x1);
-  vec3 e_sky0 = welkin_sky_irradiance(up0), e_sky1 = welkin_sky_irradiance(up1);
-#if CLOUDS_AP_MODE == 0
-  vec3 ap_t0, ap_t1;
-  vec3 ap_s0 = welkin_aerial_perspective(x0, ap_t0), ap_s1 = welkin_aerial_perspective(x1, ap_t1);
-#endif
   float inverse_length = 1.0 / max(segment.y - segment.x, 1e-3);
-  float system0 = clouds_weather_system_at(x0), system1 = clouds_weather_system_at(x1);
   float phase_single = clouds_phase(mu, 1.0);
   // At least eight samples through each stretch: a layer crossed far away and steeply (seen from
   // orbit) would otherwise get one or two, and the jitter would decide whether the cloud is there.
@@ -134,7 +151,7 @@ void march_segment(vec3 dir, vec2 segment, float start, float jitter, inout Accu
       ++acc.steps;
       clouds_footprint_m = (t + 0.5 * step_m) * cl.pixel_angle_rad;
       clouds_system_g =
-          mix(system0, system1, clamp((t + 0.5 * step_m - segment.x) * inverse_length, 0.0, 1.0));
+          mix(e.system0, e.system1, clamp((t + 0.5 * step_m - segment.x) * inverse_length, 0.0, 1.0));
       // Whole blocks of empty weather are skipped without reading the noise.
       float skip = clouds_empty_skip(x, dir);
       if (skip > 0.0) {
@@ -145,7 +162,7 @@ void march_segment(vec3 dir, vec2 segment, float start, float jitter, inout Accu
       }
       bool empty;
       clouds_view_sample = true;
-      density = clouds_density(x, detail, false, empty);
+      density = clouds_density(layers, x, detail, false, empty);
       clouds_view_sample = false;
       if (density > 0.0 && stride_from >= 0.0) {
         // The stride's end lies at a phase of the stride's grid that is the same for every pixel at
@@ -168,16 +185,16 @@ void march_segment(vec3 dir, vec2 segment, float start, float jitter, inout Accu
       CloudsSampleGeometry geometry = clouds_sample_geometry();
       float sigma_t = density * extinction_per_density;
       float along = clamp((t - segment.x) * inverse_length, 0.0, 1.0);
-      vec3 up = normalize(mix(up0, up1, along));
-      vec3 e_light = mix(e_light0, e_light1, along), e_sky = mix(e_sky0, e_sky1, along);
-      vec3 source = clouds_marched_source(x, l, mu, phase_single, sigma_t, extinction_per_density, geometry,
-                                          up, e_light, e_sky);
+      vec3 up = normalize(mix(e.up0, e.up1, along));
+      vec3 e_light = mix(e.e_light0, e.e_light1, along), e_sky = mix(e.e_sky0, e.e_sky1, along);
+      vec3 source = clouds_marched_source(layers, x, l, mu, phase_single, sigma_t, extinction_per_density,
+                                          geometry, up, e_light, e_sky);
       // Energy-conserving step (Hillaire 2015): integrate the source over the step's own attenuation.
       float step_transmittance = exp(-sigma_t * step_m);
       vec3 step_light = source * (1.0 - step_transmittance);
       float opacity = acc.transmittance * (1.0 - step_transmittance);
 #if CLOUDS_AP_MODE == 0
-      vec3 ap_s = mix(ap_s0, ap_s1, along), ap_t = mix(ap_t0, ap_t1, along);
+      vec3 ap_s = mix(e.ap_s0, e.ap_s1, along), ap_t = mix(e.ap_t0, e.ap_t1, along);
       acc.color += acc.transmittance * ap_t * step_light + ap_s * opacity;
 #else
       acc.color += acc.transmittance * step_light;
@@ -226,6 +243,7 @@ void clouds_march_pixel(ivec2 pixel, out vec4 color, out vec3 distances) {
   // front of and behind the band's inner sphere), in order along the ray: the gaps between bands
   // (kilometres between a cumulus and a cirrus layer) are never stepped through.
   vec2 segments[2 * CLOUDS_MAX_BANDS];
+  int segment_band[2 * CLOUDS_MAX_BANDS];
   int count = 0;
   float first = 3.4e38;
   // Indexed by a loop counter: copied out of the block first, so that a compiler that cannot keep a
@@ -240,8 +258,8 @@ void clouds_march_pixel(ivec2 pixel, out vec4 color, out vec3 distances) {
       b = vec2(max(inner.y, 0.0), outer.y);
       a.y = min(a.y, inner.x);
     }
-    if (a.x < a.y) segments[count++] = a, first = min(first, a.x);
-    if (b.x < b.y) segments[count++] = b, first = min(first, b.x);
+    if (a.x < a.y) segment_band[count] = i, segments[count++] = a, first = min(first, a.x);
+    if (b.x < b.y) segment_band[count] = i, segments[count++] = b, first = min(first, b.x);
   }
   // The march reaches max distance beyond where the ray first enters a band (from orbit, that is a
   // thousand kilometres away).
@@ -250,6 +268,8 @@ void clouds_march_pixel(ivec2 pixel, out vec4 color, out vec3 distances) {
     for (int j = i; j > 0 && segments[j].x < segments[j - 1].x; --j) {
       vec2 swap = segments[j];
       segments[j] = segments[j - 1], segments[j - 1] = swap;
+      int swap_band = segment_band[j];
+      segment_band[j] = segment_band[j - 1], segment_band[j - 1] = swap_band;
     }
   float start = 0.0;
 #if CLOUDS_SKIP
@@ -259,7 +279,26 @@ void clouds_march_pixel(ivec2 pixel, out vec4 color, out vec3 distances) {
   acc.clear_m = min(max(start, first), 1e9);
   for (int i = 0; i < count; ++i) {
     vec2 segment = vec2(segments[i].x, min(segments[i].y, t_max));
-    if (segment.x < segment.y && start < segment.y) march_segment(dir, segment, start, jitter, acc);
+    if (segment.x < segment.y && start < segment.y) {
+      // Each band with only the layers its samples and their light steps can reach (the others add
+      // nothing there): a software rasteriser runs every compiled layer's code at every sample.
+      SegmentEnds ends = segment_ends(dir, segment);
+#if CLOUDS_BANDS > 0
+      int band = segment_band[i];
+      if (band == 0) march_segment(CLOUDS_BAND_LAYERS_0, dir, segment, ends, start, jitter, acc);
+#if CLOUDS_BANDS > 1
+      if (band == 1) march_segment(CLOUDS_BAND_LAYERS_1, dir, segment, ends, start, jitter, acc);
+#endif
+#if CLOUDS_BANDS > 2
+      if (band == 2) march_segment(CLOUDS_BAND_LAYERS_2, dir, segment, ends, start, jitter, acc);
+#endif
+#if CLOUDS_BANDS > 3
+      if (band == 3) march_segment(CLOUDS_BAND_LAYERS_3, dir, segment, ends, start, jitter, acc);
+#endif
+#else
+      march_segment(CLOUDS_ALL_LAYERS, dir, segment, ends, start, jitter, acc);
+#endif
+    }
   }
 #if CLOUDS_AP_MODE == 1
   if (acc.depth_weight > 0.0) {

@@ -75,6 +75,10 @@ TEST(CloudsGenera, CirrusStreaksAlongItsWind) {
   const Layer still = layer("cirrus", 8500.0, 800.0, 0.35, {0.0, 0.0});
   EXPECT_EQ(glm::length(still.block.streak_axis), 0.0f);
   EXPECT_EQ(still.block.hook_m, 0.0f);
+  // ... and it packs no stretch, so that its field compiles no streak code (an own shape and weather
+  // fetch per sample: 12% of the peer scene's frame at `high`, whose cirrus has no wind).
+  EXPECT_EQ(still.block.streak, 1.0f);
+  EXPECT_EQ(field_defines(still.rendered.world->resource<CloudsGpu>()).at("CLOUDS_STREAKS"), "0");
   const double s_along = correlation(*still.field, h, 2000.0 * along);
   const double s_across = correlation(*still.field, h, 2000.0 * across);
   EXPECT_NEAR(s_along, s_across, 0.15);
