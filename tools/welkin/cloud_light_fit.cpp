@@ -40,7 +40,8 @@ constexpr const char* kTerms[] = {
     "CLOUDS_MS_W18", "CLOUDS_MS_W19", "CLOUDS_MS_W20", "CLOUDS_MS_W21", "CLOUDS_MS_W22", "CLOUDS_MS_W23",
     "CLOUDS_MS_W24", "CLOUDS_MS_W25", "CLOUDS_MS_W26", "CLOUDS_MS_W27", "CLOUDS_MS_W28", "CLOUDS_MS_W29",
     "CLOUDS_MS_W30", "CLOUDS_MS_W31", "CLOUDS_MS_W32", "CLOUDS_MS_W33", "CLOUDS_MS_W34", "CLOUDS_MS_W35",
-    "CLOUDS_MS_W36", "CLOUDS_MS_W37"};
+    "CLOUDS_MS_W36", "CLOUDS_MS_W37", "CLOUDS_MS_W38", "CLOUDS_MS_W39", "CLOUDS_MS_W40", "CLOUDS_MS_W41",
+    "CLOUDS_MS_W42", "CLOUDS_MS_W43", "CLOUDS_MS_W44"};
 constexpr const char* kTermMeaning[] = {
     "D = T_d(tau) - T(tau): the diffuse light beyond the direct beam, toward the light",
     "D S(tau_b): ... gathered from the cloud below",
@@ -80,7 +81,15 @@ constexpr const char* kTermMeaning[] = {
     "E c D",
     "E mu_0 (1 + 2k tau_B) / (1 + k (tau_A + tau_B))",
     "E T_d(tau) (1 - mu) / 2",
-    "E mu_0 exp(-tau / 16)"};
+    "E mu_0 exp(-tau / 16)",
+    "max(n.l, 0) D, n the outward normal of the un-eroded envelope (the cloud's body) at the sample: "
+    "a face lit by the light",
+    "max(-n.l, 0) D: a face in the cloud's own shadow",
+    "max(n.l, 0) T_d(tau) S(tau_b)",
+    "(1 + n.l) / 2 T_d(tau)",
+    "(1 + n.l) / 2 (1 + n.(-v)) / 2 D, v the view ray: the lit face turned toward the camera",
+    "F max(n.l, 0) D S(tau_b)",
+    "(1 + n.(-v)) / 2 D: the face turned toward the camera"};
 static_assert(std::size(kTermMeaning) == std::size(kTerms));
 constexpr size_t kTermCount = std::size(kTerms);
 

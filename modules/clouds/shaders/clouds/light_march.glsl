@@ -100,6 +100,21 @@ float clouds_side_optical_depth(int layers, vec3 x, vec3 l, vec3 up, float sigma
   return side;
 }
 
+// The outward normal of the un-eroded envelope at x (-grad / |grad| of clouds_envelope_density, central
+// differences one first light step across, six weather fetches a layer): which face of the cloud's body
+// the sample lies under, a side lit by the light or one in the cloud's own shadow, whatever the noise
+// carved there. Where the envelope is flat, the local vertical (a deck's top).
+vec3 clouds_envelope_normal(vec3 x, vec3 up) {
+  vec3 e = normalize(cross(up, abs(up.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0)));
+  vec3 n = cross(up, e);
+  float r = cl.light_step_m;
+  vec3 grad = e * (clouds_envelope_density(x + e * r) - clouds_envelope_density(x - e * r)) +
+              n * (clouds_envelope_density(x + n * r) - clouds_envelope_density(x - n * r)) +
+              up * (clouds_envelope_density(x + up * r) - clouds_envelope_density(x - up * r));
+  float len = length(grad);
+  return len > 1e-12 ? -grad / len : up;
+}
+
 // The light the sample at x scatters toward the camera, per unit extinction (clouds_sample_source).
 vec3 clouds_marched_source(int layers, vec3 x, vec3 l, float mu, float phase_single, float sigma_t,
                            float extinction_per_density, CloudsSampleGeometry g, vec3 up, vec3 e_light,
@@ -116,5 +131,12 @@ vec3 clouds_marched_source(int layers, vec3 x, vec3 l, float mu, float phase_sin
   // sum of the constants folds at compile time).
   if (CLOUDS_MS_W32 + CLOUDS_MS_W33 + CLOUDS_MS_W34 + CLOUDS_MS_W35 + CLOUDS_MS_W36 + CLOUDS_MS_W37 > 0.0)
     s.escape = clouds_side_optical_depth(layers, x, l, up, sigma_t, extinction_per_density);
+  // Six weather fetches a layer more: only where the weights read the envelope's normal. x is
+  // camera-relative, so the view ray runs along it.
+  if (CLOUDS_MS_W38 + CLOUDS_MS_W39 + CLOUDS_MS_W40 + CLOUDS_MS_W41 + CLOUDS_MS_W42 + CLOUDS_MS_W43 +
+          CLOUDS_MS_W44 > 0.0) {
+    vec3 n = clouds_envelope_normal(x, up);
+    s.facing_light = dot(n, l), s.facing_view = -dot(n, normalize(x));
+  }
   return clouds_light_source(mu, phase_single, s, l, up, e_light, e_sky);
 }

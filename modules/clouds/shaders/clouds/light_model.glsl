@@ -31,6 +31,8 @@ struct CloudsLightInputs {
   float clear;                       // the fraction of the light march's way that was clear (0: unknown)
   float fill;                        // the sample's density over its un-eroded envelope's (1: unknown)
   float escape;                      // the optical depth to the cloud's side nearest known (1e4: unknown)
+  float facing_light, facing_view;   // n.l and n.(-v), n the un-eroded envelope's outward normal (< -1:
+                                     // unknown, read as a deck's top: mu_0 and 0)
 };
 
 // Schneider's beer-powder darkening of thin edges (cl.powder = 0: off).
@@ -86,6 +88,13 @@ float clouds_powder(float sigma_t) {
 //         light falls toward a free surface, where it escapes (diffusion theory's boundary: the
 //         fluence near the side grows with the depth behind it); a shadowed side is lit by the
 //         diffuse light alone and is the darker for it
+//  38  max(n.l, 0) D          n the outward normal of the un-eroded envelope at the sample (the
+//  39  max(-n.l, 0) D           cloud's body, clouds_envelope_normal): a face lit by the light or one
+//  40  max(n.l, 0) T_d S(tau_b)  in the cloud's own shadow, which the depth toward the light alone
+//  41  (1 + n.l) / 2 T_d         cannot tell apart; v the view ray, (1 + n.(-v)) / 2 the face turned
+//  42  (1 + n.l) / 2 (1 + n.(-v)) / 2 D   toward the camera (diffused light leaves a face toward its
+//  43  F max(n.l, 0) D S(tau_b)           normal); 43 is 30-31 with the face's own cosine
+//  44  (1 + n.(-v)) / 2 D
 // All fade where the cloud around the sample is thin (its outskirts, wisps: little light has been
 // scattered toward it by neighbours, the physical side of Schneider's "powder"), by
 // 1 - exp(-n sigma_t l_1), l_1 the first light step.
@@ -157,6 +166,13 @@ float clouds_multiple_scattering(float mu, CloudsLightInputs s, vec3 l, vec3 up)
   sum += escape * (s.fill * beyond * reflection * (CLOUDS_MS_W32 * mu_0 + CLOUDS_MS_W33 * entered) +
                    CLOUDS_MS_W34 * entered * beyond + CLOUDS_MS_W35 * mu_0 * slab_body +
                    CLOUDS_MS_W36 * 0.5 * (1.0 - mu) * s.diffuse + CLOUDS_MS_W37 * mu_0 * s.octave16);
+  float n_l = s.facing_light < -1.5 ? mu_0 : s.facing_light;
+  float n_v = s.facing_view < -1.5 ? 0.0 : s.facing_view;
+  float lit = max(n_l, 0.0), lit_half = 0.5 * (1.0 + n_l), toward_view = 0.5 * (1.0 + n_v);
+  sum += beyond * (CLOUDS_MS_W38 * lit + CLOUDS_MS_W39 * max(-n_l, 0.0) +
+                   CLOUDS_MS_W42 * lit_half * toward_view + CLOUDS_MS_W44 * toward_view) +
+         s.diffuse * (CLOUDS_MS_W40 * lit * reflection + CLOUDS_MS_W41 * lit_half) +
+         CLOUDS_MS_W43 * s.fill * lit * beyond * reflection;
   return sum * (1.0 - exp(-CLOUDS_MS_POWDER * s.sigma_t * cl.light_step_m));
 }
 
@@ -192,7 +208,7 @@ vec3 clouds_light_source(float mu, float phase_single, CloudsLightInputs s, vec3
 CloudsLightInputs clouds_light_inputs(float tau, float sigma_t, float depth_below_m, float depth_above_m) {
   return CloudsLightInputs(clouds_direct_transmittance(tau), clouds_slab_diffuse(tau), sigma_t, depth_below_m,
                            depth_above_m, exp(-0.25 * tau), exp(-0.0625 * tau), sigma_t * depth_below_m,
-                           sigma_t * depth_above_m, tau, 0.0, 1.0, 1e4);
+                           sigma_t * depth_above_m, tau, 0.0, 1.0, 1e4, -2.0, -2.0);
 }
 
 vec3 clouds_sample_source(float mu, float phase_single, float tau, float sigma_t, float depth_below_m,

@@ -192,6 +192,35 @@
 #ifndef CLOUDS_MS_W37
 #define CLOUDS_MS_W37 0.0
 #endif
+// CLOUDS_MS_W38: max(n.l, 0) D, n the outward normal of the un-eroded envelope (the cloud's body) at the
+// sample: a face lit by the light
+#ifndef CLOUDS_MS_W38
+#define CLOUDS_MS_W38 0.0
+#endif
+// CLOUDS_MS_W39: max(-n.l, 0) D: a face in the cloud's own shadow
+#ifndef CLOUDS_MS_W39
+#define CLOUDS_MS_W39 0.0
+#endif
+// CLOUDS_MS_W40: max(n.l, 0) T_d(tau) S(tau_b)
+#ifndef CLOUDS_MS_W40
+#define CLOUDS_MS_W40 0.0
+#endif
+// CLOUDS_MS_W41: (1 + n.l) / 2 T_d(tau)
+#ifndef CLOUDS_MS_W41
+#define CLOUDS_MS_W41 0.0
+#endif
+// CLOUDS_MS_W42: (1 + n.l) / 2 (1 + n.(-v)) / 2 D, v the view ray: the lit face turned toward the camera
+#ifndef CLOUDS_MS_W42
+#define CLOUDS_MS_W42 0.0
+#endif
+// CLOUDS_MS_W43: F max(n.l, 0) D S(tau_b)
+#ifndef CLOUDS_MS_W43
+#define CLOUDS_MS_W43 0.0
+#endif
+// CLOUDS_MS_W44: (1 + n.(-v)) / 2 D: the face turned toward the camera
+#ifndef CLOUDS_MS_W44
+#define CLOUDS_MS_W44 0.0
+#endif
 #else  // without the detail noise (low): a smoother field than the path tracer's
 // CLOUDS_MS_W0: D = T_d(tau) - T(tau): the diffuse light beyond the direct beam, toward the light
 #ifndef CLOUDS_MS_W0
@@ -347,5 +376,34 @@
 // CLOUDS_MS_W37: E mu_0 exp(-tau / 16)
 #ifndef CLOUDS_MS_W37
 #define CLOUDS_MS_W37 0.0
+#endif
+// CLOUDS_MS_W38: max(n.l, 0) D, n the outward normal of the un-eroded envelope (the cloud's body) at the
+// sample: a face lit by the light
+#ifndef CLOUDS_MS_W38
+#define CLOUDS_MS_W38 0.0
+#endif
+// CLOUDS_MS_W39: max(-n.l, 0) D: a face in the cloud's own shadow
+#ifndef CLOUDS_MS_W39
+#define CLOUDS_MS_W39 0.0
+#endif
+// CLOUDS_MS_W40: max(n.l, 0) T_d(tau) S(tau_b)
+#ifndef CLOUDS_MS_W40
+#define CLOUDS_MS_W40 0.0
+#endif
+// CLOUDS_MS_W41: (1 + n.l) / 2 T_d(tau)
+#ifndef CLOUDS_MS_W41
+#define CLOUDS_MS_W41 0.0
+#endif
+// CLOUDS_MS_W42: (1 + n.l) / 2 (1 + n.(-v)) / 2 D, v the view ray: the lit face turned toward the camera
+#ifndef CLOUDS_MS_W42
+#define CLOUDS_MS_W42 0.0
+#endif
+// CLOUDS_MS_W43: F max(n.l, 0) D S(tau_b)
+#ifndef CLOUDS_MS_W43
+#define CLOUDS_MS_W43 0.0
+#endif
+// CLOUDS_MS_W44: (1 + n.(-v)) / 2 D: the face turned toward the camera
+#ifndef CLOUDS_MS_W44
+#define CLOUDS_MS_W44 0.0
 #endif
 #endif
