@@ -356,6 +356,13 @@ int write_cloud_images(const CloudAccuracyOptions& o, const std::map<std::string
       const std::string png = (fs::path(o.out) / ("clouds-image-" + stem + "-" + q +
                                                (image == &shipped ? "" : "-every-pixel") + ".png")).string();
       write_comparison_panels(png, panels, std::max(1, 384 / width), 0.25);
+      // The panels' radiances, pixel by pixel (rows from the top), for analysis beyond the picture.
+      std::ostringstream pixels;
+      pixels << "x,y,march,reference,reference_ci95,reference_transmittance\n";
+      for (size_t i = 0; i < gpu.size(); ++i)
+        pixels << i % width << "," << i / width << "," << gpu[i] << "," << reference[i].radiance() << ","
+               << reference[i].scattered.ci95 << "," << reference[i].transmittance.mean << "\n";
+      write_file_atomically(png.substr(0, png.size() - 4) + ".csv", pixels.str());
       std::printf("%s at %s, %dx%d: real time above, path tracer (%d paths a pixel) in the middle, difference below "
                   "(full red or blue at 25%% of the mean): relative RMSE %.1f%% over %d cloud pixels (the reference's "
                   "own noise %.1f%%; net of it %.1f%%), mean %.1f%% of the reference's (%.1f against %.1f cd/m2); over 4x4 "
