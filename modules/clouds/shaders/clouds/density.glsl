@@ -177,16 +177,10 @@ float clouds_layer_envelope(CloudLayerGpu L, vec4 w4, bool follows_map, vec3 x, 
   return e;
 }
 
-// A layer's vertical density profile at height t in it.
-float clouds_layer_profile(CloudLayerGpu L, float t) {
-  return clamp(
-      L.profile_exp_term * exp(L.profile_exponent * t) + L.profile_linear_term * t + L.profile_constant_term,
-      0.0, 1.0);
-}
-
-// The layers' extinction at x before any noise erodes it (the weather's envelope times the profile, not
-// risen by the edge, which would flatten it inside): the cloud's body, whose surface the light model
-// reads a normal from (clouds_envelope_normal). Every layer, read from the buffer with run-time checks.
+// The layers' extinction at x as the weather shapes it, before the profile and any noise: the cloud's
+// body, whose surface the light model reads a normal from (clouds_envelope_normal; with the profile,
+// which rises with height, the normal turned down inside every body). Every layer, read from the
+// buffer with run-time checks.
 float clouds_envelope_density(vec3 x) {
   float h = clouds_altitude(x), sum = 0.0;
   if (h < cl.lowest_m || h > cl.highest_m) return 0.0;
@@ -194,8 +188,8 @@ float clouds_envelope_density(vec3 x) {
   for (int i = 0; i < cl_layer_count; ++i) {
     CloudLayerGpu L = i < CLOUDS_LOCAL_LAYERS ? cl_local_layers[i] : cl_layers[i];
     float t, d0;
-    float e = clouds_layer_envelope(L, clouds_weather_fetch(L, x), L.follows_map > 0.5, x, h, t, d0);
-    if (e > 0.0) sum += e * clouds_layer_profile(L, t) * L.density_per_m;
+    vec4 w4 = clouds_weather_fetch(L, x);
+    sum += clouds_layer_envelope(L, w4, L.follows_map > 0.5, x, h, t, d0) * L.density_per_m;
   }
   return sum;
 }
@@ -278,7 +272,9 @@ float clouds_layer_density(CloudLayerGpu L, vec4 w4, bool follows_map, bool deta
   }
   // The density rises over the first 1 / edge of the eroded field inside its edge (crisp heaps, soft
   // veils), and follows the layer's vertical profile.
-  float profile = clouds_layer_profile(L, t);
+  float profile = clamp(
+      L.profile_exp_term * exp(L.profile_exponent * t) + L.profile_linear_term * t + L.profile_constant_term,
+      0.0, 1.0);
   d = min(d * L.edge, 1.0) * profile;
   clouds_envelope_sigma += min(envelope * L.edge, 1.0) * profile * L.density_per_m;
   clouds_fill += d * L.density_per_m;
