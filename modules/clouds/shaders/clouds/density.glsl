@@ -177,23 +177,6 @@ float clouds_layer_envelope(CloudLayerGpu L, vec4 w4, bool follows_map, vec3 x, 
   return e;
 }
 
-// The layers' extinction at x as the weather shapes it, before the profile and any noise: the cloud's
-// body, whose surface the light model reads a normal from (clouds_envelope_normal; with the profile,
-// which rises with height, the normal turned down inside every body). Every layer, read from the
-// buffer with run-time checks.
-float clouds_envelope_density(vec3 x) {
-  float h = clouds_altitude(x), sum = 0.0;
-  if (h < cl.lowest_m || h > cl.highest_m) return 0.0;
-  clouds_painted_sample = 2.0;
-  for (int i = 0; i < cl_layer_count; ++i) {
-    CloudLayerGpu L = i < CLOUDS_LOCAL_LAYERS ? cl_local_layers[i] : cl_layers[i];
-    float t, d0;
-    vec4 w4 = clouds_weather_fetch(L, x);
-    sum += clouds_layer_envelope(L, w4, L.follows_map > 0.5, x, h, t, d0) * L.density_per_m;
-  }
-  return sum;
-}
-
 // The detail noise at xd (what the layers erode with).
 float clouds_detail_fetch(vec3 xd) {
   return textureLod(cl_detail_noise, cl.detail_origin + xd * cl.detail_per_m,
