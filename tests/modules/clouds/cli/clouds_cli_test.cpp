@@ -3,6 +3,8 @@
 // CSVs, plot and ghosting figures.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -86,6 +88,23 @@ TEST(CloudsCli, ImageWritesThePanelsAndTheError) {
   EXPECT_TRUE(fs::exists(out / "clouds-image-stratocumulus-low-sun-low.png"));
   EXPECT_NE(r.out.find("relative RMSE"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find(" over 0 cloud pixels"), std::string::npos) << r.out;  // the deck covers part of the view
+  // Each panel's radiances pixel by pixel: a row a pixel, the rows from the top, every value finite.
+  std::ifstream csv(out / "clouds-image-stratocumulus-low-sun-low.csv");
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "x,y,march,reference,reference_ci95,reference_transmittance");
+  int rows = 0, clouds = 0;
+  for (; std::getline(csv, line); ++rows) {
+    double v[6];
+    const int read =
+        std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5]);
+    ASSERT_EQ(read, 6) << line;
+    EXPECT_EQ(int(v[0]) + 12 * int(v[1]), rows) << line;
+    for (double x : v) EXPECT_TRUE(std::isfinite(x) && x >= 0.0) << line;
+    clouds += v[5] < 0.999 ? 1 : 0;
+  }
+  EXPECT_EQ(rows, 12 * 8);
+  EXPECT_GT(clouds, 0);  // the deck covers part of the view in the path tracer's panel too
 }
 
 // The figures `welkin accuracy clusters|billboards --json` prints at the switch distance (the
