@@ -102,12 +102,15 @@ float clouds_powder(float sigma_t) {
 // lobes' weighted g; the droplet fit's lobes likewise): the default lobes (g = 0.7 and -0.2, half
 // each) have g = 0.25, k = 0.56, a cloud three to four times as diffusive as the g = 0.8 of
 // CLOUDS_MS_DIFFUSION (which the ground's shading through the clouds keeps).
-float clouds_two_stream_k() {
+bool clouds_droplet_phase() {
 #ifdef CLOUDS_PHASE_MODEL
-  const bool droplets = CLOUDS_PHASE_MODEL == 1;
+  return CLOUDS_PHASE_MODEL == 1;
 #else
-  bool droplets = cl.phase_model > 0.5;
+  return cl.phase_model > 0.5;
 #endif
+}
+float clouds_two_stream_k() {
+  bool droplets = clouds_droplet_phase();
   float d = cl.droplet_diameter_um;
   float w_d = exp(-0.599085 / (d - 0.641583) - 0.665888);
   float g = droplets ? (1.0 - w_d) * exp(-0.0990567 / (d - 1.67154)) +
@@ -119,13 +122,8 @@ float clouds_two_stream_k() {
 // g^2 of each Henyey-Greenstein lobe; the droplets' fit by its mean cosine): light a thin deck
 // scatters by a few degrees still arrives as from the sun.
 float clouds_forward_fraction() {
-#ifdef CLOUDS_PHASE_MODEL
-  const bool droplets = CLOUDS_PHASE_MODEL == 1;
-#else
-  bool droplets = cl.phase_model > 0.5;
-#endif
   float g = 1.0 - clouds_two_stream_k() / 0.75;
-  return droplets ? g * g
+  return clouds_droplet_phase() ? g * g
                   : mix(cl.g_backward * cl.g_backward, cl.g_forward * cl.g_forward, cl.forward_weight);
 }
 float clouds_slab_diffuse(float tau) {
