@@ -18,6 +18,8 @@ struct MeasuredCase {
   double sun_azimuth_deg = 200.0, sun_elevation_deg = 40.0;
   Camera camera;
 };
+// The scene file's case ("": the built-in cumulus layer).
+MeasuredCase case_from_scene(const std::string& file);
 
 // A set of rays through one scene, their path-traced references and the probe that marches them.
 struct RaySet {

@@ -635,8 +635,10 @@ void add_accuracy_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--silhouettes", o->silhouettes,
                 "clouds: only the temporal upscaling's silhouettes in --ghosting-scene, still, turning 1 degree a frame "
                 "and flying (frames at half --size)");
-  cmd->add_option("--paths-per-pixel", o->paths_per_pixel, "clouds --image: paths per pixel of the path-traced image")
-      ->check(CLI::Range(1, 65536))
+  cmd->add_option("--paths-per-pixel", o->paths_per_pixel,
+                  "clouds --image: paths per pixel of the path-traced image (0: none; the shipped frame against the "
+                  "march at every pixel)")
+      ->check(CLI::Range(0, 65536))
       ->capture_default_str();
   cmd->add_option("-n,--frames", o->frames, "Frames per GPU time (median)")
       ->check(CLI::Range(1, 1000))

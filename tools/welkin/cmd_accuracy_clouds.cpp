@@ -26,6 +26,7 @@
 #include "welkin/gfx/debug_content.h"
 #include "comparison_panels.h"
 #include "cloud_light_fit.h"
+#include "cloud_image.h"
 
 namespace welkin::cli {
 
@@ -52,6 +53,8 @@ clouds::VolumetricClouds measured_clouds() {
   return c;
 }
 
+}  // namespace
+
 MeasuredCase case_from_scene(const std::string& file) {
   if (file.empty()) return {measured_clouds()};
   auto world = make_world();
@@ -75,6 +78,8 @@ MeasuredCase case_from_scene(const std::string& file) {
   if (const Entity camera = reg.first<Camera>(); !camera.is_null()) m.camera = *reg.get<Camera>(camera);
   return m;
 }
+
+namespace {
 
 // --rays FILE: {"rays": [{"position_m": [east, north, up], "heading_deg": h, "pitch_deg": p}, ...]}, at most
 // kMaxRays rays, every value a finite number, pitch within [-90, 90] degrees.
@@ -275,105 +280,6 @@ ApComparison compare_aerial_perspective(const ApCase& scene, const std::string& 
 }
 
 }  // namespace
-
-// Quality custom with the preset's march and light, at every pixel of the frame and without the
-// temporal upscaling.
-void march_every_pixel(clouds::VolumetricClouds& c) {
-  const clouds::ResolvedQuality q = clouds::resolve_quality(c);
-  c.quality = Quality::custom;
-  c.max_steps = q.max_steps, c.min_step_m = q.min_step_m, c.max_step_m = q.max_step_m;
-  c.light_steps = q.light_steps, c.light_step_m = q.light_step_m, c.shape_detail = q.shape_detail;
-  c.step_growth = q.step_growth, c.turbulence = q.turbulence;
-  c.resolution_scale = 1.0f, c.temporal_upscaling = false;
-}
-
-// --image SCENE: the scene's view under the probe's light (the sun alone: no sky, no air, no ground),
-// marched at each quality beside the path tracer's image of the same rays through the same field and
-// their difference; prints the image-wide relative RMSE over the pixels that see clouds.
-int write_cloud_images(const CloudAccuracyOptions& o, const std::map<std::string, Quality>& names, int width, int height) {
-  if (int64_t(width) * height > 640 * 360)
-    throw Error(ErrorInfo{.path = "--size", .expected = "at most 640x360 pixels for --image (each is path traced)", .found = o.size});
-  const MeasuredCase measured = case_from_scene(o.image);
-  fs::create_directories(o.out);
-  std::unique_ptr<GlContext> gl = create_headless_context();
-  clouds::CloudProbe probe(measured.clouds, measured.sun_azimuth_deg, measured.sun_elevation_deg);
-  probe.set_reference_cache(o.cache.empty() ? DiskCache::from_environment() : DiskCache(o.cache));
-  clouds::reference::PathTraceSettings settings;
-  settings.samples = uint64_t(o.paths_per_pixel);
-  std::fprintf(stderr, "path tracing %dx%d pixels, %d paths each\n", width, height, o.paths_per_pixel);
-  const auto reference = probe.reference_image(measured.camera, width, height, settings);
-  const std::string stem = fs::path(o.image).stem().string();
-  for (const std::string& q : o.qualities) {
-    probe.clouds().quality = names.at(q);
-    const std::vector<double> shipped = probe.gpu_image(measured.camera, width, height);
-    // The same march at every pixel (the preset's steps and light, no upscaling): the light's and the
-    // shape's error without the upscaler's, which at these sizes marches a few dozen pixels across.
-    const clouds::VolumetricClouds preset = probe.clouds();
-    march_every_pixel(probe.clouds());
-    const std::vector<double> every_pixel = probe.gpu_image(measured.camera, width, height);
-    probe.clouds() = preset;
-    for (const auto& [label, image] :
-         {std::pair{q, &shipped}, std::pair{q + " marched at every pixel", &every_pixel}}) {
-      const std::vector<double>& gpu = *image;
-      ComparisonPanels panels{.width = width, .height = height};
-      double sum = 0.0, mean = 0.0, noise = 0.0, gpu_mean = 0.0;
-      int cloud_pixels = 0;
-      for (size_t i = 0; i < gpu.size(); ++i) {
-        const double r = reference[i].radiance();
-        panels.approximation.push_back(glm::dvec3(gpu[i])), panels.reference.push_back(glm::dvec3(r));
-        panels.relative.push_back(0.0);
-        if (reference[i].transmittance.mean > 0.999 && gpu[i] <= 0.0) continue;  // no cloud on this pixel
-        sum += (gpu[i] - r) * (gpu[i] - r), mean += r, gpu_mean += gpu[i], ++cloud_pixels;
-        noise += std::pow(reference[i].scattered.ci95 / 1.96, 2.0);
-      }
-      mean /= std::max(cloud_pixels, 1);
-      for (size_t i = 0; i < gpu.size(); ++i) panels.relative[i] = mean > 0.0 ? (gpu[i] - reference[i].radiance()) / mean : 0.0;
-      const double rmse = std::sqrt(sum / std::max(cloud_pixels, 1)) / std::max(mean, 1e-30);
-      const double noise_rmse = std::sqrt(noise / std::max(cloud_pixels, 1)) / std::max(mean, 1e-30);
-      // The squared difference's expectation is the squared bias plus the reference's variance: what is
-      // left after the variance is the real-time frame's own error, less noisy than the RMSE itself.
-      const double bias = std::sqrt(std::max(rmse * rmse - noise_rmse * noise_rmse, 0.0));
-      gpu_mean /= std::max(cloud_pixels, 1);
-      // The same over 4 x 4 blocks (both images averaged alike): the reference's noise a quarter, the
-      // error that is the march's shape and light at a coarser scale.
-      double block_sum = 0.0, block_mean = 0.0, block_noise = 0.0;
-      int blocks = 0;
-      for (int by = 0; by + 4 <= height; by += 4)
-        for (int bx = 0; bx + 4 <= width; bx += 4) {
-          double g = 0.0, r = 0.0, v = 0.0;
-          for (int y = by; y < by + 4; ++y)
-            for (int x = bx; x < bx + 4; ++x) {
-              const size_t i = size_t(y) * width + x;
-              g += gpu[i] / 16.0, r += reference[i].radiance() / 16.0;
-              v += std::pow(reference[i].scattered.ci95 / 1.96 / 16.0, 2.0);
-            }
-          if (g <= 0.0 && r <= 0.0) continue;
-          block_sum += (g - r) * (g - r), block_mean += r, block_noise += v, ++blocks;
-        }
-      block_mean = std::max(block_mean / std::max(blocks, 1), 1e-30);
-      const double block_rmse = std::sqrt(block_sum / std::max(blocks, 1)) / block_mean;
-      const double block_noise_rmse = std::sqrt(block_noise / std::max(blocks, 1)) / block_mean;
-      const std::string png = (fs::path(o.out) / ("clouds-image-" + stem + "-" + q +
-                                               (image == &shipped ? "" : "-every-pixel") + ".png")).string();
-      write_comparison_panels(png, panels, std::max(1, 384 / width), 0.25);
-      // The panels' radiances, pixel by pixel (rows from the top), for analysis beyond the picture.
-      std::ostringstream pixels;
-      pixels << "x,y,march,reference,reference_ci95,reference_transmittance\n";
-      for (size_t i = 0; i < gpu.size(); ++i)
-        pixels << i % width << "," << i / width << "," << gpu[i] << "," << reference[i].radiance() << ","
-               << reference[i].scattered.ci95 << "," << reference[i].transmittance.mean << "\n";
-      write_file_atomically(png.substr(0, png.size() - 4) + ".csv", pixels.str());
-      std::printf("%s at %s, %dx%d: real time above, path tracer (%d paths a pixel) in the middle, difference below "
-                  "(full red or blue at 25%% of the mean): relative RMSE %.1f%% over %d cloud pixels (the reference's "
-                  "own noise %.1f%%; net of it %.1f%%), mean %.1f%% of the reference's (%.1f against %.1f cd/m2); over 4x4 "
-                  "blocks %.1f%% (noise %.1f%%); wrote %s\n",
-                  stem.c_str(), label.c_str(), width, height, o.paths_per_pixel, 100 * rmse, cloud_pixels, 100 * noise_rmse,
-                  100 * bias, 100 * gpu_mean / std::max(mean, 1e-30), gpu_mean, mean, 100 * block_rmse,
-                  100 * block_noise_rmse, png.c_str());
-    }
-  }
-  return kOk;
-}
 
 // A scene's rays with their references and the probe that marches them.
 RaySet measure_set(const std::string& scene, const std::string& rays, const CloudAccuracyOptions& o,

@@ -107,6 +107,23 @@ TEST(CloudsCli, ImageWritesThePanelsAndTheError) {
   EXPECT_GT(clouds, 0);  // the deck covers part of the view in the path tracer's panel too
 }
 
+// --image with --paths-per-pixel 0: no path tracing; the shipped frame beside the march at every pixel,
+// the ratio of their means, their isolated pixels and every pixel's values in a CSV.
+TEST(CloudsCli, ImageWithoutPathsComparesTheShippedFrameWithTheFullMarch) {
+  const fs::path out = scratch_path("clouds-cli", "image-no-paths");
+  auto r = run_welkin("accuracy clouds --image modules/clouds/validation/holdout/stratocumulus-low-sun.json --size 12x8 "
+                      "--paths-per-pixel 0 --qualities low --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(fs::exists(out / "clouds-image-stratocumulus-low-sun-low-against-every-pixel.png"));
+  EXPECT_NE(r.out.find("mean of the shipped frame"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("relative RMSE"), std::string::npos) << r.out;  // nothing path traced
+  std::ifstream csv(out / "clouds-image-stratocumulus-low-sun-low-marches.csv");
+  std::string line;
+  int rows = 0;
+  for (std::getline(csv, line); std::getline(csv, line);) ++rows;
+  EXPECT_EQ(rows, 12 * 8);
+}
+
 // The figures `welkin accuracy clusters|billboards --json` prints at the switch distance (the
 // cheaper path against the raymarch of the same layer alone), from its output.
 nlohmann::json switch_figures(const std::string& path, const std::string& size) {
