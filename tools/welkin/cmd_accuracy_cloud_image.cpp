@@ -45,10 +45,14 @@ struct QualityImages {
   float resolution_scale = 1.0f;
 };
 
-QualityImages march_three_ways(clouds::CloudProbe& probe, const Camera& camera, int width, int height) {
+QualityImages march_three_ways(clouds::CloudProbe& probe, const Camera& camera, bool temporal_upscaling,
+                               int width, int height) {
   QualityImages m;
-  m.shipped = probe.gpu_image(camera, width, height);
+  // As the scene ships it: the probe turns the upscaling off for its rays, the scene may have it on.
   const clouds::VolumetricClouds preset = probe.clouds();
+  probe.clouds().temporal_upscaling = temporal_upscaling;
+  m.shipped = probe.gpu_image(camera, width, height);
+  probe.clouds() = preset;
   m.resolution_scale = clouds::resolve_quality(preset).resolution_scale;
   march_without_upscaling(probe.clouds(), m.resolution_scale);
   m.preset_resolution = probe.gpu_image(camera, width, height);
@@ -170,7 +174,8 @@ int write_cloud_images(const CloudAccuracyOptions& o, const std::map<std::string
   const std::string stem = fs::path(o.image).stem().string();
   for (const std::string& q : o.qualities) {
     probe.clouds().quality = names.at(q);
-    const QualityImages m = march_three_ways(probe, measured.camera, width, height);
+    const QualityImages m =
+        march_three_ways(probe, measured.camera, measured.clouds.temporal_upscaling, width, height);
     const std::string base = (fs::path(o.out) / ("clouds-image-" + stem + "-" + q)).string();
     write_pixels_csv(base + "-marches.csv", m, reference, width, height);
     const double least = kIsolatedFloor * mean_of(m.every_pixel);
