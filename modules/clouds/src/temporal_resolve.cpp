@@ -23,6 +23,9 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
   const glm::vec3 moved = glm::vec3(view.camera_position_m - gpu.previous_camera_m);
   const glm::mat4 previous_vp = gpu.previous_view_projection, inverse_vp = view.inverse_view_projection;
   const bool valid = gpu.history_valid;
+  // What the march reads held since the last frame (march_state): only the jitter turned, so the history
+  // is this view's own march and is not clipped (resolve_pixel.glsl).
+  const bool held = gpu.march_state != 0 && gpu.march_state_frames >= 2;
   const float inside_cloud_m = 2.0f * gpu.block.min_step_m;  // two of the shortest march steps
   const ShaderDefines resolve_defines = {{"CLOUDS_CLIP", clouds.temporal_clipping ? "1" : "0"},
                                          {"CLOUDS_WITH_CLUSTERS", merge_clusters ? "1" : "0"},
@@ -50,8 +53,8 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
         }
       },
       [&rc, current, out_color, history, offset, moved, previous_vp, inverse_vp, valid, resolve_defines,
-       inside_cloud_m, partial, n, merge_clusters, clusters, merged, compute, w, h, clear,
-       out_clear](PassContext& pc) {
+       inside_cloud_m, partial, n, merge_clusters, clusters, merged, compute, w, h, clear, out_clear,
+       held](PassContext& pc) {
         glBindTextureUnit(0, pc.texture(current.color).id());
         glBindTextureUnit(1, pc.texture(current.distance).id());
         glBindTextureUnit(2, pc.texture(history).id());
@@ -68,6 +71,7 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
         p.set("u_history_valid", valid ? 1 : 0);
         p.set("u_full_frame", partial ? 0 : 1);
         p.set("u_inside_cloud_m", inside_cloud_m);
+        p.set("u_view_held", held ? 1 : 0);
         if (compute) {
           bind_image_for_write(0, pc.texture(out_color));
           if (merge_clusters) bind_image_for_write(1, pc.texture(merged));
