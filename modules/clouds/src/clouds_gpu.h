@@ -71,6 +71,16 @@ struct CloudsGpu {
   // composite the history as it is instead of marching again.
   uint64_t march_state = 0;
   int march_state_frames = 0;
+  // The same digest without the geometry's (the view, the field, the light, the shaders), and its
+  // frames in a row: from the second on, the view is held and the resolve keeps its history unclipped
+  // where the scene's depth is the one it was marched against (history_depth). A host's geometry is
+  // never known unchanged (welkin/host/sky.h), so the geometry is judged by the depth it leaves, the
+  // same for any program that shows the same camera and geometry.
+  uint64_t view_state = 0;
+  int view_state_frames = 0;
+  // The scene's depth (reversed Z) each pixel of history_color[i] was last marched against, at the
+  // march's size.
+  std::unique_ptr<Texture> history_depth[2];
   int marches = 0;               // frames that marched (tests, stats)
   bool has_layers = false;       // some layer can hold cloud this frame
   CloudsContext context;         // this frame's

@@ -33,14 +33,13 @@ void bind_march_inputs(PassContext& pc, World& world, const CloudsGpu& gpu, cons
 
 namespace {
 
-// What the march and the resolve read, the frame's index aside (it only turns the jitter): the
-// block and layers, the field's noise and map, the shaders, the light environment's state, the
-// geometry's.
-uint64_t march_state(const CloudsGpu& gpu, uint64_t light, uint64_t geometry_state,
-                     const ShaderDefines& defines, int n, int w, int h) {
+// What the march and the resolve read, the frame's index aside (it only turns the jitter) and the
+// geometry's state aside: the block (the view) and layers, the field's noise and map, the shaders, the
+// light environment's state.
+uint64_t view_state(const CloudsGpu& gpu, uint64_t light, const ShaderDefines& defines, int n, int w, int h) {
   FrameBlock block = gpu.block;
   block.frame_index = 0.0f;
-  uint64_t state = fnv1a_64_of(block, fnv1a_64_of(light, fnv1a_64_of(geometry_state)));
+  uint64_t state = fnv1a_64_of(block, fnv1a_64_of(light));
   state = fnv1a_64(std::string_view(reinterpret_cast<const char*>(gpu.layers.data()),
                                     gpu.layers.size() * sizeof(LayerBlock)),
                    state);
@@ -179,10 +178,13 @@ void clouds_system(SystemContext& sc) {
   // not followed: with them it marches.
   const std::optional<uint64_t> light = world.resource<LightEnvironment>().state();
   if (partial && light && !clusters.valid()) {
-    const uint64_t state = march_state(gpu, *light, t.geometry_state, defines, n, w, h);
+    const uint64_t view = view_state(gpu, *light, defines, n, w, h);
+    if (view != gpu.view_state) gpu.view_state = view, gpu.view_state_frames = 0;
+    const uint64_t state = fnv1a_64_of(t.geometry_state, view);
     if (state != gpu.march_state) gpu.march_state = state, gpu.march_state_frames = 0;
   } else {
     gpu.march_state_frames = 0, gpu.march_state = 0;
+    gpu.view_state_frames = 0, gpu.view_state = 0;
   }
   if (partial && gpu.march_state != 0 && gpu.march_state_frames >= n * n) {
     // Kept: the history as the last frame's resolve left it.
@@ -193,6 +195,7 @@ void clouds_system(SystemContext& sc) {
     return;
   }
   if (gpu.march_state != 0) ++gpu.march_state_frames;
+  if (gpu.view_state != 0) ++gpu.view_state_frames;
   // Each ray starts where the last frame's rays around it met no cloud (first_hit_skip.h).
   ShaderDefines march_defines = defines;
   const glm::vec3 moved = glm::vec3(view.camera_position_m - gpu.previous_camera_m);
@@ -217,7 +220,8 @@ void clouds_system(SystemContext& sc) {
         add_silhouette_march(sc, gpu, defines, stride_offset, current, w, h, front, front_unit);
   ResourceHandle result = current.color;
   if (temporal) {
-    result = add_resolve_pass(g, rc, gpu, *clouds, current, offset, partial, n, w, h, clusters, skip.write);
+    result = add_resolve_pass(g, rc, gpu, *clouds, current, t.depth, offset, partial, n, w, h, clusters,
+                              skip.write);
   } else {
     gpu.history_valid = false;
   }

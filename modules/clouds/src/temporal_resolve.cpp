@@ -9,8 +9,9 @@
 namespace welkin::clouds {
 
 ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gpu,
-                                const VolumetricClouds& clouds, const MarchOutput& current, glm::ivec2 offset,
-                                bool partial, int n, int w, int h, ResourceHandle& clusters, bool clear) {
+                                const VolumetricClouds& clouds, const MarchOutput& current,
+                                ResourceHandle scene_depth, glm::ivec2 offset, bool partial, int n, int w,
+                                int h, ResourceHandle& clusters, bool clear) {
   const FrameView& view = rc.view;
   // The mesh clusters (and billboards) drawn before the march lie behind it. At the march's resolution
   // or below, the resolve lays them in as it writes (magnified at the march's pixels, a quarter of the
@@ -20,12 +21,21 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
   const int write = gpu.history_index, read = 1 - write;
   const ResourceHandle out_color = g.import("clouds.history_color", *gpu.history_color[write]);
   const ResourceHandle history = g.import("clouds.history_previous", *gpu.history_color[read]);
+  const TextureDesc depth_desc{
+      .width = w, .height = h, .format = TextureFormat::r32f, .linear_filter = false};
+  ensure_texture(gpu.history_depth[write], depth_desc);
+  if (!gpu.history_depth[read]) ensure_texture(gpu.history_depth[read], depth_desc);  // read when held only
+  const ResourceHandle out_depth = g.import("clouds.history_depth", *gpu.history_depth[write]);
+  const ResourceHandle history_depth = g.import("clouds.history_depth_previous", *gpu.history_depth[read]);
   const glm::vec3 moved = glm::vec3(view.camera_position_m - gpu.previous_camera_m);
   const glm::mat4 previous_vp = gpu.previous_view_projection, inverse_vp = view.inverse_view_projection;
   const bool valid = gpu.history_valid;
-  // What the march reads held since the last frame (march_state): only the jitter turned, so the history
-  // is this view's own march and is not clipped (resolve_pixel.glsl).
-  const bool held = gpu.march_state != 0 && gpu.march_state_frames >= 2;
+  // What the march reads held since the last frame, the geometry aside (view_state): only the jitter
+  // turned, so the history is this view's own march and is not clipped where the scene's depth is the
+  // one it was marched against (resolve_pixel.glsl). The geometry is judged by its depth and not by its
+  // digest, which a host's geometry changes every frame: the same camera and geometry resolve alike
+  // whoever draws them (the package test compares a host's frame with `welkin render`'s).
+  const bool held = gpu.view_state != 0 && gpu.view_state_frames >= 2;
   const float inside_cloud_m = 2.0f * gpu.block.min_step_m;  // two of the shortest march steps
   const ShaderDefines resolve_defines = {{"CLOUDS_CLIP", clouds.temporal_clipping ? "1" : "0"},
                                          {"CLOUDS_WITH_CLUSTERS", merge_clusters ? "1" : "0"},
@@ -45,7 +55,10 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
         b.read(current.distance);
         if (current.silhouettes.valid()) b.read(current.silhouettes);
         b.read(history);
+        b.read(scene_depth);
+        b.read(history_depth);
         b.write(out_color);
+        b.write(out_depth);
         if (clear) b.write(out_clear);
         if (merge_clusters) {
           b.read(clusters);
@@ -53,13 +66,15 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
         }
       },
       [&rc, current, out_color, history, offset, moved, previous_vp, inverse_vp, valid, resolve_defines,
-       inside_cloud_m, partial, n, merge_clusters, clusters, merged, compute, w, h, clear, out_clear,
-       held](PassContext& pc) {
+       inside_cloud_m, partial, n, merge_clusters, clusters, merged, compute, w, h, clear, out_clear, held,
+       scene_depth, history_depth, out_depth](PassContext& pc) {
         glBindTextureUnit(0, pc.texture(current.color).id());
         glBindTextureUnit(1, pc.texture(current.distance).id());
         glBindTextureUnit(2, pc.texture(history).id());
         if (merge_clusters) glBindTextureUnit(3, pc.texture(clusters).id());
         if (current.silhouettes.valid()) glBindTextureUnit(4, pc.texture(current.silhouettes).id());
+        glBindTextureUnit(5, pc.texture(scene_depth).id());
+        glBindTextureUnit(6, pc.texture(history_depth).id());
         const Program& p =
             compute ? rc.shaders.compute("clouds/resolve.comp", resolve_defines)
                     : rc.shaders.graphics("fullscreen.vert", "clouds/resolve.frag", resolve_defines);
@@ -76,17 +91,20 @@ ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gp
           bind_image_for_write(0, pc.texture(out_color));
           if (merge_clusters) bind_image_for_write(1, pc.texture(merged));
           if (clear) bind_image_for_write(2, pc.texture(out_clear));
+          bind_image_for_write(3, pc.texture(out_depth));
           dispatch_screen(p, PixelRect{0, 0, w, h});
           return;
         }
-        // Drawn in this order: colour, the clusters laid in, the clear distances (resolve.frag).
+        // Drawn in this order: colour, depth, the clusters laid in, the clear distances (resolve.frag).
         const Texture* color = &pc.texture(out_color);
+        const Texture* depth = &pc.texture(out_depth);
         const Texture* laid_in = merge_clusters ? &pc.texture(merged) : nullptr;
         const Texture* clear_distances = clear ? &pc.texture(out_clear) : nullptr;
-        Framebuffer fb = laid_in && clear_distances ? Framebuffer({color, laid_in, clear_distances}, nullptr)
-                         : laid_in                  ? Framebuffer({color, laid_in}, nullptr)
-                         : clear_distances          ? Framebuffer({color, clear_distances}, nullptr)
-                                                    : Framebuffer(color, nullptr);
+        Framebuffer fb = laid_in && clear_distances
+                             ? Framebuffer({color, depth, laid_in, clear_distances}, nullptr)
+                         : laid_in         ? Framebuffer({color, depth, laid_in}, nullptr)
+                         : clear_distances ? Framebuffer({color, depth, clear_distances}, nullptr)
+                                           : Framebuffer({color, depth}, nullptr);
         fb.bind();
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_BLEND);

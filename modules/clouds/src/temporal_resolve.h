@@ -18,14 +18,16 @@ struct MarchOutput {
   ResourceHandle silhouettes;
 };
 
-// The resolve into the history (gpu.history_color) at the march's size w x h, the march having
-// written pixel `offset` of each block of n x n (every pixel when not `partial`). Returns what to
-// composite; `clusters` (the mesh clusters' and billboards' colour) is laid in when it has the
-// march's size, and is then cleared. `clear`: also the distances up to which each pixel's ray met no
-// cloud, into gpu.first_hit (first_hit_skip.h).
+// The resolve into the history (gpu.history_color, and the scene's depth each pixel was marched
+// against into gpu.history_depth) at the march's size w x h, the march having written pixel `offset`
+// of each block of n x n (every pixel when not `partial`). Returns what to composite; `clusters` (the
+// mesh clusters' and billboards' colour) is laid in when it has the march's size, and is then
+// cleared. `clear`: also the distances up to which each pixel's ray met no cloud, into gpu.first_hit
+// (first_hit_skip.h). `scene_depth`: the frame's depth the march stopped at.
 ResourceHandle add_resolve_pass(RenderGraph& g, RenderContext& rc, CloudsGpu& gpu,
-                                const VolumetricClouds& clouds, const MarchOutput& current, glm::ivec2 offset,
-                                bool partial, int n, int w, int h, ResourceHandle& clusters, bool clear);
+                                const VolumetricClouds& clouds, const MarchOutput& current,
+                                ResourceHandle scene_depth, glm::ivec2 offset, bool partial, int n, int w,
+                                int h, ResourceHandle& clusters, bool clear);
 // The clouds (and the clusters or billboards behind them, where not merged already) over the frame.
 void composite_clouds(RenderGraph& g, RenderContext& rc, const FrameTargets& t, ResourceHandle result,
                       ResourceHandle clusters);

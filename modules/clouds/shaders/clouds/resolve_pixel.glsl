@@ -7,6 +7,9 @@
 // inside a cloud (the camera in it) nothing is reprojected: the history there would smear the cloud
 // around the camera. CLOUDS_SILHOUETTES: the pixels next to the last frame's silhouettes were marched
 // too this frame (silhouettes_mark.glsl), and are taken as marched.
+// Besides the colour, each pixel's history keeps the scene's depth it was marched against
+// (u_history_depth): in a held view it is reprojected only where that depth held (no geometry moved
+// in front of the clouds or away).
 // CLOUDS_WITH_CLUSTERS: the mesh clusters, drawn at this resolution or below, are also laid behind the result
 // in a second target (march + T x clusters) for the composite, which then reads one texture at the
 // frame's resolution instead of two; the history stays the march alone.
@@ -29,8 +32,11 @@ uniform int u_history_valid;
 uniform int u_full_frame;  // every pixel was marched this frame (no history yet): taken as it is
 uniform float u_inside_cloud_m;  // a first cloud sample closer than this: the camera is in the cloud
 // What the march reads (the view, the field, the light) held since the last frame: the fresh samples
-// differ from their history by the march's jitter alone, and the history is kept unclipped.
+// differ from their history by the march's jitter alone (where the scene's depth held too), and the
+// history is kept unclipped.
 uniform int u_view_held;
+layout(binding = 5) uniform sampler2D u_scene_depth;    // this frame's (reversed Z; 0 = nothing), as marched
+layout(binding = 6) uniform sampler2D u_history_depth;  // what the history's pixels were marched against
 
 // The history at uv through a Catmull-Rom filter: a moving view reads it between texels every frame,
 // and bilinear reads, repeated, blur the history (its silhouettes most) frame after frame. Nine
@@ -51,8 +57,10 @@ vec4 history_catmull_rom(vec2 uv) {
   return sum;
 }
 
-// The resolved pixel (at the march's resolution; ndc its centre).
-vec4 resolved(ivec2 pixel, vec2 ndc) {
+// The resolved pixel (at the march's resolution; ndc its centre), and the scene's depth it stands for:
+// this frame's where it is made of this frame's samples, else its history's.
+vec4 resolved(ivec2 pixel, vec2 ndc, out float marched_depth) {
+  marched_depth = textureLod(u_scene_depth, ndc * 0.5 + 0.5, 0.0).r;  // where the march reads it
   ivec2 block = pixel / u_block;
   ivec2 current_size = textureSize(u_current, 0);
   if (u_full_frame == 1) return texelFetch(u_current, pixel, 0);
@@ -82,6 +90,16 @@ vec4 resolved(ivec2 pixel, vec2 ndc) {
   // Where this pixel's clouds were last frame, seen from last frame's camera.
   vec2 uv = previous_uv(ndc, distance_m);
   if (!in_view(uv)) return upsampled;
+  // In a held view each pixel's history stands for the scene's depth it was marched against. Where
+  // that changed (geometry moved in front of the clouds or away) the history is another scene's, and
+  // the fresh samples around are taken instead, as where it was out of view: clipped to their range it
+  // could stay (a hole where a ball stood against broken clouds, with clear sky among the samples).
+  // Depth to 0.1% of the distance (reversed Z): the same drawing's.
+  if (u_view_held == 1) {
+    float then = texelFetch(u_history_depth, pixel, 0).r;
+    if (abs(marched_depth - then) > 1e-3 * max(marched_depth, then)) return upsampled;
+    marched_depth = then;
+  }
 #if CLOUDS_CLIP
   // How much the clouds changed since the history was written, seen at the four fresh samples
   // around the pixel (what a bilinear read between them weighs): each against the history where it
