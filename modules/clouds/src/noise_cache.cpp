@@ -9,9 +9,9 @@ namespace welkin::clouds {
 
 namespace {
 
-// Bump when the C++ that finishes the volumes (equalise, pack_turbulence, void_and_cluster) changes:
-// the cache's key holds the shaders' sources, not this code.
-constexpr int kNoiseCacheVersion = 7;
+// Bump when the C++ that finishes the volumes (equalise, weather_levels, pack_turbulence,
+// void_and_cluster) changes: the cache's key holds the shaders' sources, not this code.
+constexpr int kNoiseCacheVersion = 8;
 
 }  // namespace
 

@@ -12,6 +12,7 @@
 
 #include "clouds_gpu.h"
 #include "noise_cache.h"
+#include "weather_levels.h"
 #include "welkin/clouds/blue_noise.h"
 #include "welkin/core/error.h"
 #include "welkin/core/world.h"
@@ -65,23 +66,17 @@ const uint8_t* upload_mips(Texture& volume, GLenum format, int channels, const u
   return p;
 }
 
-// Equalises the first `equalised` channels of an 8-bit volume (GL_RGBA: 4 channels, GL_RED: 1) to a
-// uniform distribution, so that a layer's coverage c covers a fraction c of the sky whatever the
+// Equalises the first `channels_equalised` channels of an 8-bit volume (GL_RGBA: 4 channels, GL_RED: 1)
+// to a uniform distribution, so that a layer's coverage c covers a fraction c of the sky whatever the
 // noise's own histogram.
-std::vector<uint8_t> equalise(Texture& volume, GLenum format, int channels, int equalised) {
-  const int n = volume.desc().width * volume.desc().height * volume.desc().depth;
-  std::vector<uint8_t> data = read_volume(volume, format, size_t(n) * size_t(channels));
-  for (int c = 0; c < equalised; ++c) {
-    std::array<double, 256> histogram{};
-    for (int i = 0; i < n; ++i) histogram[data[size_t(i) * size_t(channels) + size_t(c)]] += 1.0;
-    std::array<uint8_t, 256> map{};
-    double below = 0.0;
-    for (int v = 0; v < 256; ++v) {
-      map[size_t(v)] = uint8_t(std::lround(255.0 * (below + 0.5 * histogram[size_t(v)]) / n));
-      below += histogram[size_t(v)];
-    }
-    for (int i = 0; i < n; ++i)
-      data[size_t(i) * size_t(channels) + size_t(c)] = map[data[size_t(i) * size_t(channels) + size_t(c)]];
+std::vector<uint8_t> equalise(Texture& volume, GLenum format, int channels, int channels_equalised) {
+  const size_t n = size_t(volume.desc().width) * size_t(volume.desc().height) * size_t(volume.desc().depth);
+  std::vector<uint8_t> data = read_volume(volume, format, n * size_t(channels));
+  std::vector<uint32_t> keys(n);
+  for (size_t c = 0; c < size_t(channels_equalised); ++c) {
+    for (size_t i = 0; i < n; ++i) keys[i] = data[i * size_t(channels) + c];
+    const std::vector<uint8_t> v = equalised(keys);
+    for (size_t i = 0; i < n; ++i) data[i * size_t(channels) + c] = v[i];
   }
   upload_volume(volume, format, data);
   return data;
@@ -137,29 +132,6 @@ NoiseFacts systems_facts(const std::vector<uint8_t>& v, int size) {
   return facts;
 }
 
-// The coarse occupancy the march skips empty space with: for each block of 4^3 weather texels, the
-// largest coverage signal of each channel over the block and the texels a linear filter reads beside
-// it. The march leaves a block whose maximum allows no cloud at the block's far side.
-std::vector<uint8_t> weather_maximum(const std::vector<uint8_t>& weather, int size) {
-  const int b = kWeatherOccupancySize, per = size / b;
-  auto at = [&](int x, int y, int z, int c) {
-    auto w = [size](int v) { return ((v % size) + size) % size; };
-    return weather[((size_t(w(z)) * size + size_t(w(y))) * size + size_t(w(x))) * 4 + size_t(c)];
-  };
-  std::vector<uint8_t> out(size_t(b) * b * b * 4, 0);
-  for (int z = 0; z < b; ++z)
-    for (int y = 0; y < b; ++y)
-      for (int x = 0; x < b; ++x)
-        for (int c = 0; c < 3; ++c) {
-          uint8_t m = 0;
-          for (int k = -1; k <= per; ++k)
-            for (int j = -1; j <= per; ++j)
-              for (int i = -1; i <= per; ++i) m = std::max(m, at(x * per + i, y * per + j, z * per + k, c));
-          out[((size_t(z) * b + y) * b + x) * 4 + size_t(c)] = m;
-        }
-  return out;
-}
-
 // Generates the volumes on the GPU and finishes them (equalised, the curl packed into the shape).
 NoiseBytes generate_noise(RenderContext& rc, CloudsGpu& gpu, int seed) {
   // The curl field at the shape's size, packed into its gba below.
@@ -182,7 +154,7 @@ NoiseBytes generate_noise(RenderContext& rc, CloudsGpu& gpu, int seed) {
   }
   glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
   NoiseBytes n;
-  n.weather = equalise(*gpu.weather, GL_RGBA, 4, 3);
+  n.weather = equalise(*gpu.weather, GL_RGBA, 4, kWeatherEqualisedChannels);
   // The shape noise too (its Perlin-Worley values crowd between 0.69 and 0.86): spread evenly, its
   // erosion reaches every depth of a cloud and draws the edges, where the weather's slow ramp did.
   equalise(*gpu.shape, GL_RGBA, 4, 1);
@@ -245,7 +217,11 @@ void ensure_noise(World& world, int seed) {
   } else {
     noise = generate_noise(rc, gpu, seed);
     for (auto [t, format, channels] : volumes) {
-      glGenerateTextureMipmap(t->id());
+      // The weather's levels are equalised (weather_levels.h), the others' averages.
+      if (t == gpu.weather.get())
+        upload_mips(*t, format, channels, weather_levels(noise->weather, kWeatherNoiseSize).data());
+      else
+        glGenerateTextureMipmap(t->id());
       if (cache.enabled()) read_mips(*t, format, channels, noise->mips);
     }
     if (cache.enabled()) store_noise(cache, key, *noise);
@@ -253,13 +229,17 @@ void ensure_noise(World& world, int seed) {
   gpu.noise_facts = systems_facts(noise->systems, kSystemsNoiseSize);
   ensure_texture(gpu.weather_maximum, {.width = kWeatherOccupancySize,
                                        .height = kWeatherOccupancySize,
-                                       .depth = kWeatherOccupancySize,
+                                       .depth = kWeatherOccupancySize * kWeatherLevels,
                                        .format = TextureFormat::rgba8,
                                        .linear_filter = false,
                                        .clamp = false});
+  std::vector<uint8_t> weather_mips;
+  read_mips(*gpu.weather, GL_RGBA, 4, weather_mips);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glTextureSubImage3D(gpu.weather_maximum->id(), 0, 0, 0, 0, kWeatherOccupancySize, kWeatherOccupancySize,
-                      kWeatherOccupancySize, GL_RGBA, GL_UNSIGNED_BYTE,
-                      weather_maximum(noise->weather, kWeatherNoiseSize).data());
+                      kWeatherOccupancySize * kWeatherLevels, GL_RGBA, GL_UNSIGNED_BYTE,
+                      weather_occupancy(noise->weather, weather_mips, kWeatherNoiseSize).data());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   // Between levels the nearer one is read, not a blend of two: a 3D trilinear read costs 16 texels
   // (twice a bilinear one), and on software rasterisers the march's texture reads are most of its cost.
   for (auto [t, format, channels] : volumes)
