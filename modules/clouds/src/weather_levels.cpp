@@ -45,9 +45,9 @@ std::vector<uint8_t> weather_levels(const std::vector<uint8_t>& level0, int size
       for (int y = 0; y < s; ++y)
         for (int x = 0; x < s; ++x)
           for (int k = 0; k < 8; ++k) {
-            const size_t from = (size_t(2 * z + (k >> 2)) * size_t(finer) + size_t(2 * y + ((k >> 1) & 1))) *
-                                    size_t(finer) +
-                                size_t(2 * x + (k & 1));
+            const size_t from =
+                (size_t(2 * z + (k >> 2)) * size_t(finer) + size_t(2 * y + ((k >> 1) & 1))) * size_t(finer) +
+                size_t(2 * x + (k & 1));
             for (size_t c = 0; c < 4; ++c) next[((size_t(z) * s + y) * s + x) * 4 + c] += sums[from * 4 + c];
           }
     sums = std::move(next);
@@ -60,7 +60,8 @@ std::vector<uint8_t> weather_levels(const std::vector<uint8_t>& level0, int size
         const std::vector<uint8_t> v = equalised(keys);
         for (size_t i = 0; i < n; ++i) level[i * 4 + c] = v[i];
       } else {
-        for (size_t i = 0; i < n; ++i) level[i * 4 + c] = uint8_t(std::lround(double(keys[i]) / texels_in_one));
+        for (size_t i = 0; i < n; ++i)
+          level[i * 4 + c] = uint8_t(std::lround(double(keys[i]) / texels_in_one));
       }
     }
     out.insert(out.end(), level.begin(), level.end());

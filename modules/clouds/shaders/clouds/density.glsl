@@ -32,7 +32,7 @@ void clouds_load() {
 layout(binding = 0) uniform sampler3D cl_shape_noise;     // r shape; gba the curl field as 0.5 + 0.5 c
 layout(binding = 1) uniform sampler3D cl_detail_noise;
 layout(binding = 2) uniform sampler3D cl_weather_noise;
-layout(binding = 5) uniform sampler3D cl_weather_maximum;  // 16^3 blocks a level: the largest signal near each
+layout(binding = 5) uniform sampler3D cl_weather_maximum;  // 16^3 blocks a level: the largest signal in each
 layout(binding = 6) uniform sampler2D cl_coverage_map;     // painted coverage (128: none), north row first
 layout(binding = 7) uniform sampler3D cl_weather_systems;  // the weather systems' signal (uniform on [0, 1])
 
@@ -421,13 +421,15 @@ float clouds_density(vec3 x, bool detail, bool shadow_only) {
 // the weather's levels that a fetch in the block may read (each level is equalised, and a coarser
 // texel may exceed every finer one: weather_levels.h). A skip goes at most the largest block further
 // along the view ray, where a pixel's footprint has grown by its angle times that; a read of the
-// nearer level takes the level of footprint / texel rounded (half down).
+// nearer level takes the level of footprint / texel rounded (half down; a 64th over for a GL's
+// fixed-point level of detail).
 const int CLOUDS_WEATHER_LEVELS = 7;  // weather_levels.h: kWeatherLevels
 vec4 clouds_weather_block(CloudLayerGpu L, vec3 x) {
   vec3 cells = fract(L.weather_origin + clouds_stretched(L, x) * L.weather_per_m) * 16.0;
   float texels = (clouds_footprint_m + cl.largest_block_m * cl.pixel_angle_rad) * L.weather_per_m * 64.0;
   int level = min(int(log2(max(texels, 1.0)) + 0.5 + 1.0 / 64.0), CLOUDS_WEATHER_LEVELS - 1);
-  return texelFetch(cl_weather_maximum, clamp(ivec3(cells), ivec3(0), ivec3(15)) + ivec3(0, 0, 16 * level), 0);
+  ivec3 block = clamp(ivec3(cells), ivec3(0), ivec3(15));
+  return texelFetch(cl_weather_maximum, block + ivec3(0, 0, 16 * level), 0);
 }
 
 // How far the march may go from x along dir without passing any cloud: to the far side of the

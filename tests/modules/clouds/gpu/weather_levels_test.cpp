@@ -1,6 +1,8 @@
 // The weather's mip levels (src/weather_levels.h): each level's coverage channels equalised as level
 // 0 is, so that a coverage c covers c of the texels at every level the march reads far away, and the
 // empty-space skip's occupancy holding every value a linear read at those levels can give in its block.
+#include "weather_levels.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -9,7 +11,6 @@
 #include <vector>
 
 #include "clouds_test_support.h"
-#include "weather_levels.h"
 
 namespace welkin::clouds {
 namespace {
@@ -62,7 +63,8 @@ TEST(CloudsWeatherLevels, EveryLevelIsEqualisedSoCoverageIsTheCoveredFraction) {
       }
       for (double q : {0.1, 0.3, 0.5, 0.7, 0.9}) {
         // A coverage 1 - q covers the texels at or over q: their share is 1 - q.
-        EXPECT_NEAR(fraction_below(stored, q), q, 0.02) << "level " << level << " channel " << c << " quantile " << q;
+        EXPECT_NEAR(fraction_below(stored, q), q, 0.02)
+            << "level " << level << " channel " << c << " quantile " << q;
       }
       // What plain averages would hold: crowded toward the middle (a coverage of 0.3, over 0.7,
       // covering a far smaller share).
@@ -108,7 +110,8 @@ TEST(CloudsWeatherLevels, TheOccupancyHoldsEveryReadAtTheLevelsUpToItsOwn) {
                     occupancy.data());
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   auto entry = [&](int level, glm::ivec3 block, int c) {
-    return occupancy[((size_t(level * b + block.z) * b + size_t(block.y)) * b + size_t(block.x)) * 4 + size_t(c)];
+    return occupancy[((size_t(level * b + block.z) * b + size_t(block.y)) * b + size_t(block.x)) * 4 +
+                     size_t(c)];
   };
   uint32_t state = 12345u;
   auto random = [&state] { return double((state = state * 1664525u + 1013904223u) >> 8) / double(1u << 24); };
