@@ -420,14 +420,14 @@ float clouds_density(vec3 x, bool detail, bool shadow_only) {
 // The occupancy of a layer's weather around x: the largest signal in the 16^3 block x lies in, over
 // the weather's levels that a fetch in the block may read (each level is equalised, and a coarser
 // texel may exceed every finer one: weather_levels.h). A skip goes at most the largest block further
-// along the view ray, where a pixel's footprint has grown by its angle times that; a read of the
-// nearer level takes the level of footprint / texel rounded (half down; a 64th over for a GL's
-// fixed-point level of detail).
+// along the view ray, where a pixel's footprint has grown by its angle times that; the weather's
+// trilinear read there blends the levels either side of log2(footprint / texel): up to its ceiling (a
+// 64th over for a GL's fixed-point level of detail).
 const int CLOUDS_WEATHER_LEVELS = 7;  // weather_levels.h: kWeatherLevels
 vec4 clouds_weather_block(CloudLayerGpu L, vec3 x) {
   vec3 cells = fract(L.weather_origin + clouds_stretched(L, x) * L.weather_per_m) * 16.0;
   float texels = (clouds_footprint_m + cl.largest_block_m * cl.pixel_angle_rad) * L.weather_per_m * 64.0;
-  int level = min(int(log2(max(texels, 1.0)) + 0.5 + 1.0 / 64.0), CLOUDS_WEATHER_LEVELS - 1);
+  int level = clamp(int(ceil(log2(max(texels, 1e-6)) + 1.0 / 64.0)), 0, CLOUDS_WEATHER_LEVELS - 1);
   ivec3 block = clamp(ivec3(cells), ivec3(0), ivec3(15));
   return texelFetch(cl_weather_maximum, block + ivec3(0, 0, 16 * level), 0);
 }
