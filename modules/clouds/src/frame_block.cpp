@@ -115,7 +115,7 @@ PackedLayers pack_layers(const VolumetricClouds& clouds, const CloudsContext& ct
     }
   }
   // A layer that casts no shadow above every one that does (cirrus over cumulus) still dims the sun
-  // that reaches them: the shadow map integrates it apart (its fourth channel). One between or under
+  // that reaches them: the shadow map integrates it apart (CloudsShadowColumn.far.w). One between or under
   // the casters (a haze at the ground) is not in the map at all.
   bool first_deck = true;
   for (size_t i = 0; i < out.layers.size() && out.any_shadow; ++i) {

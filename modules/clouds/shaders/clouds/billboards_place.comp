@@ -72,7 +72,7 @@ void main() {
       b.distance_m = rho;
       b.sky = welkin_sky_irradiance(up);
       float depth;  // the decks over the casters dim the sun here as over the march's clouds
-      float deck = u_light == 1 ? 0.0 : clouds_shadow_texel(c, depth).w * clouds_deck_share(c);
+      float deck = u_light == 1 ? 0.0 : clouds_shadow_column(c, depth).far.w * clouds_deck_share(c);
       clouds_deck_light(deck, b.light, b.sky);
       b.archetype = uint(archetype);
       b.ap_inscattering = welkin_aerial_perspective(c, b.ap_transmittance);

@@ -73,9 +73,9 @@ float clouds_light_optical_depth(int layers, vec3 x, vec3 l, float extinction_pe
   deck = 0.0;
   if (cl.moon_marched < 0.5) {
     float depth;
-    vec4 texel = clouds_shadow_texel(x + l * s, depth);
-    tau += clouds_shadow_optical_depth(texel, depth);
-    deck = texel.w * clouds_deck_share(x + l * s);
+    CloudsShadowColumn column = clouds_shadow_column(x + l * s, depth);
+    tau += clouds_column_optical_depth(column, depth);
+    deck = column.far.w * clouds_deck_share(x + l * s);
   }
   return tau;
 }

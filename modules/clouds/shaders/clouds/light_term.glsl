@@ -1,17 +1,17 @@
 #pragma once
 // The clouds' light term (src/light_term.cpp registers it): the sun's light through the cloud layers
-// that cast shadows, from a beer shadow map (front depth, mean extinction and the maximum optical
-// depth of each texel's column toward the sun; Schneider/takram), in cascades, and the sky occluded
-// under them.
+// that cast shadows, from a shadow map (where the optical depth along each texel's column toward the
+// sun crosses a few values: clouds/shadow_column.glsl), in cascades, and the sky occluded under them.
 #include "clouds/shadow_block.glsl.h"
+#include "clouds/shadow_column.glsl"
 layout(std140, binding = WELKIN_BLOCK_CLOUDS_SHADOW) uniform CloudsShadow { CloudsShadowGpu cs; };
 const int CLOUDS_SHADOW_CASCADES = 4;  // cs.cascades.length()
 layout(binding = WELKIN_UNIT_CLOUDS_SHADOW_MAP) uniform sampler2D cs_map;  // the cascades side by side
 
-// The shadow map's texel over p, from the nearest cascade that holds p (away from its edge, except in
-// the last): front, mean extinction, total and the decks' optical depth; zero outside every cascade.
-// `depth`: p's distance along the light from the cascade's start plane.
-vec4 clouds_shadow_texel(vec3 p, out float depth) {
+// The shadow map's column over p, from the nearest cascade that holds p (away from its edge, except
+// in the last); none (no optical depth) outside every cascade. `depth`: p's distance along the light
+// from the cascade's start plane.
+CloudsShadowColumn clouds_shadow_column(vec3 p, out float depth) {
   int n = cs.cascade_count;
   // The cascade is chosen first and read once (a software rasteriser would read every cascade a loop
   // passes, taken or not), by selects rather than branches. Materials ask for it once per point
@@ -29,23 +29,22 @@ vec4 clouds_shadow_texel(vec3 p, out float depth) {
   }
   const bool found = chosen >= 0;
   const int k = max(chosen, 0);
-  // Kept half a texel inside the cascade's square: its neighbour in the texture is another cascade.
-  float half_texel = 0.5 / float(textureSize(cs_map, 0).y);
+  // Kept half a texel inside the cascade's square: its neighbours in the texture are another cascade
+  // and the other half of the column.
+  float half_texel = 1.0 / float(textureSize(cs_map, 0).y);
   uv = clamp(uv, vec2(half_texel), vec2(1.0 - half_texel));
-  vec4 m = texture(cs_map, vec2((float(k) + uv.x) / float(max(n, 1)), uv.y));
+  float u = (float(k) + uv.x) / float(max(n, 1));
+  CloudsShadowColumn c =
+      CloudsShadowColumn(texture(cs_map, vec2(u, 0.5 * uv.y)), texture(cs_map, vec2(u, 0.5 + 0.5 * uv.y)));
   depth = cs.cascades[k].start_m - dot(p - cs.cascades[k].origin, cs.light);
-  return found ? m : vec4(0.0);
+  return found ? c : CloudsShadowColumn(vec4(0.0), vec4(0.0));
 }
 
-// Optical depth of the clouds between p and the sun: zero above the column's front, then the mean
-// extinction times the depth into it, up to the column's total.
-float clouds_shadow_optical_depth(vec4 texel, float depth) {
-  return min(texel.z, texel.y * max(depth - texel.x, 0.0));
-}
+// Optical depth of the clouds between p and the sun.
 float clouds_shadow_optical_depth(vec3 p) {
   float depth;
-  vec4 texel = clouds_shadow_texel(p, depth);
-  return clouds_shadow_optical_depth(texel, depth);
+  CloudsShadowColumn c = clouds_shadow_column(p, depth);
+  return clouds_column_optical_depth(c, depth);
 }
 
 float clouds_light_visibility(vec3 p, vec3 n, int light) {

@@ -23,7 +23,7 @@ struct CloudsShadowGpu {
   vec3 up;                          // up at the camera
   int cascade_count;                // 0: no shadows
   // The decks over the casters (layers that cast no shadow, all of them above every layer that
-  // does: cirrus over cumulus): their optical depth toward the sun is the map's fourth channel, and
+  // does: cirrus over cumulus): their optical depth toward the sun is in the map (CloudsShadowColumn), and
   // it dims the light of the clouds below this altitude (clouds_deck_light).
   float deck_base_m;                // the decks' lowest base
   float deck_top_m;                 // and highest top (base above top: none)

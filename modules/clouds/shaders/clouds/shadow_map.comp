@@ -1,9 +1,11 @@
-// The beer shadow map, one cascade per dispatch: for each texel, a column from above the cloud shell
-// toward the ground along the sun's direction, through the layers that cast shadows. Stores the
-// distance from the column's start to its first cloud, the mean extinction over the cloudy part and
-// the total optical depth; and, apart, the optical depth of the decks over them (layers that cast no
-// shadow, above every one that does). The cascades lie side by side in one texture.
+// The shadow map, one cascade per dispatch: for each texel, a column from above the cloud shell toward
+// the ground along the sun's direction, through the layers that cast shadows. Stores where its optical
+// depth crosses a few values (clouds/shadow_column.glsl), and, apart, the optical depth of the decks
+// over them (layers that cast no shadow, above every one that does). The cascades lie side by side in
+// one texture; each texel's two halves (CloudsShadowColumn's near and far) lie in its top and bottom
+// halves.
 #include "clouds/density.glsl"
+#include "clouds/shadow_column.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = 0) uniform writeonly image2D u_map;
 uniform ivec2 u_region;      // this cascade's first column in the texture, and its side in texels
@@ -20,7 +22,8 @@ uniform int u_steps;
 uniform vec2 u_altitudes_m;
 // The decks' lowest base and highest top (base above top: none). Thin and smooth (cirrus,
 // cirrostratus), they get a fixed number of samples across their slant; their optical depth goes to
-// the fourth channel, for the clouds under them (clouds_deck_light), not into the columns above.
+// the far half's fourth channel, for the clouds under them (clouds_deck_light), not into the columns
+// above.
 uniform vec2 u_deck_m;
 const int kDeckSteps = 16;
 
@@ -61,10 +64,10 @@ void main() {
   // its far edges lie 25 km above and below the centre's start), so a texel's start may lie inside
   // or under the shell: a column cut at its start missed the cloud above it, and a deck was lit
   // beyond a straight seam across the map.
-  vec4 result = vec4(0.0);
+  CloudsShadowColumn result = CloudsShadowColumn(vec4(0.0), vec4(0.0));
   if (column.x <= column.y) {
     vec2 seg = column;
-    result.x = seg.y;
+    result = CloudsShadowColumn(vec4(seg.y), vec4(seg.y, seg.y, 0.0, 0.0));
     // The column is marched in u_steps stretches. Toward a low sun it crosses tens of kilometres of
     // shell (a kilometre a stretch at sunset), and one sample a stretch saw a cumulus with one or two
     // samples: the column's optical depth and front jumped from one texel row to the next as the
@@ -77,6 +80,7 @@ void main() {
     float step_m = (seg.y - seg.x) / float(u_steps);
     int subs = clamp(int(ceil(step_m / kSubStepM)), 1, 4);
     float tau = 0.0, front = 0.0, back = 0.0;
+    float knot[4] = float[4](seg.y, seg.y, seg.y, seg.y);
     bool cloudy = false;
     // columns are a few km long
     clouds_system_g = clouds_weather_system_at(start + dir * (0.5 * (seg.x + seg.y)));
@@ -99,12 +103,21 @@ void main() {
         if (d > 0.0) {
           if (!cloudy) front = t - 0.5 * sub, cloudy = true;
           back = t + 0.5 * sub;
+          // Where within this sub-step the optical depth crosses each knot (the density is taken as
+          // even across it).
+          for (int q = 0; q < 4; ++q)
+            if (tau < kCloudsShadowKnots[q] && tau + d * sub >= kCloudsShadowKnots[q])
+              knot[q] = t - 0.5 * sub + (kCloudsShadowKnots[q] - tau) / d;
           tau += d * sub;
         }
       }
     }
-    if (cloudy) result.xyz = vec3(front, tau / max(back - front, 1e-3), tau);
+    if (cloudy) {
+      for (int q = 0; q < 4; ++q) knot[q] = min(knot[q], back);
+      result = CloudsShadowColumn(vec4(front, knot[0], knot[1], knot[2]), vec4(knot[3], back, tau, 0.0));
+    }
   }
-  result.w = clouds_deck_depth(start, dir);
-  imageStore(u_map, id + ivec2(u_region.x, 0), result);
+  result.far.w = clouds_deck_depth(start, dir);
+  imageStore(u_map, id + ivec2(u_region.x, 0), result.near);
+  imageStore(u_map, id + ivec2(u_region.x, size.y), result.far);
 }

