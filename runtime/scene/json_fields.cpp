@@ -94,6 +94,10 @@ void read_field(const FieldDesc& f, void* p, const json& j, const std::string& p
       if (j.size() > f.max_count)
         fail(path, "at most " + std::to_string(f.max_count) + " elements",
              std::to_string(j.size()) + " elements");
+      // The array is the document's: each element starts from its type's defaults, not from the
+      // element the defaults held at its index (a scene's second cloud layer took the default
+      // altostratus's wind, shape and shadow wherever it left them unsaid).
+      f.array.resize(p, 0);
       f.array.resize(p, j.size());
       for (size_t i = 0; i < j.size(); ++i) {
         std::string ep = path + "/" + std::to_string(i);

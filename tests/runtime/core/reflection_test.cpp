@@ -112,6 +112,26 @@ TEST(Reflection, ReadingValidatesAndNamesThePath) {
   EXPECT_TRUE(s.layers.empty());
 }
 
+// An array read from a document is the document's: an element starts from its type's defaults, not
+// from the element the defaults held at its index (Sky's second default layer is {0.9, 8 km}).
+TEST(Reflection, ArrayElementsStartFromTheirTypesDefaults) {
+  Sky s;
+  welkin::object_from_json(type_desc<Sky>(), &s, json::parse(R"({"layers": [{"coverage": 0.2}, {"coverage": 0.3}]})"));
+  ASSERT_EQ(s.layers.size(), 2u);
+  EXPECT_EQ(s.layers[0].coverage, 0.2f);
+  EXPECT_EQ(s.layers[0].altitude_km, 1.5);
+  EXPECT_EQ(s.layers[1].coverage, 0.3f);
+  EXPECT_EQ(s.layers[1].altitude_km, 1.5) << "not the default second layer's 8 km";
+  // A document that names every field reads back the same whatever the defaults held.
+  Sky a;
+  a.layers = {Layer{0.9f, 8.0}};
+  Sky b;
+  b.layers.clear();
+  welkin::object_from_json(type_desc<Sky>(), &b, welkin::object_to_json(type_desc<Sky>(), &a));
+  ASSERT_EQ(b.layers.size(), 1u);
+  EXPECT_EQ(b.layers[0].altitude_km, 8.0);
+}
+
 TEST(FieldPath, ResolvesNestedArraysAndVectorComponents) {
   Sky s;
   const auto& d = type_desc<Sky>();
