@@ -150,13 +150,15 @@ nlohmann::json switch_figures(const std::string& path, const std::string& size) 
 // not carry: they read 1, the march less between billows) +30.0% and 31.2%; with the fill baked into
 // the atlas +15.1% and 19.4%; with the archetypes windowed from 0.8 of their half width (was 0.55) and
 // thinned only below the weakest archetype +8.7% and 15.6%. The clusters on the billowed field with
-// terms 30-31: -1.7% and 30.6%. The aim, 2% and 12%, is not met yet.
+// terms 30-31: -1.7% and 30.6% (-0.6% and 31.1% on 2026-11-28); each step's sample placed by the
+// layer's envelope at four points (docs/clouds-far.md, "The envelope's candidates"): +2.5% and 20.9%.
+// The aim, 2% and 12%, is not met yet.
 TEST(CloudsCli, CheaperPathsAgreeWithTheMarchAtTheSwitch) {
   const nlohmann::json clusters = switch_figures("clusters", "160x90");
   ASSERT_TRUE(clusters.contains("pixel_luminance_difference")) << clusters.dump();
   EXPECT_GT(clusters["band_pixels"].get<int>(), 500);
   EXPECT_LE(std::abs(clusters["mean_luminance_difference"].get<double>()), 0.04) << clusters.dump();
-  EXPECT_LE(clusters["pixel_luminance_difference"].get<double>(), 0.33) << clusters.dump();
+  EXPECT_LE(clusters["pixel_luminance_difference"].get<double>(), 0.23) << clusters.dump();
   const nlohmann::json billboards = switch_figures("billboards", "160x90");
   ASSERT_TRUE(billboards.contains("pixel_luminance_difference")) << billboards.dump();
   EXPECT_GT(billboards["band_pixels"].get<int>(), 100);
