@@ -225,13 +225,16 @@ void billboards_system(SystemContext& sc) {
   const int height = std::max(1, int(std::ceil(view.height * billboards.resolution_scale)));
   const bool volume = billboards.render == BillboardRender::volume;
   const FarCloudTargets targets = far_cloud_targets(g, width, height);
+  // The sun's light through the clouds' shadow map where the layer casts shadows into it.
+  const bool shadow_map = !moon && layer.casts_shadow && gpu.shadow.cascade_count > 0;
   g.add_pass(
       "clouds.billboards_draw",
       [&](PassBuilder& b) {
         b.read(t.depth);
         write_far_cloud_targets(b, targets);
       },
-      [gp, &rc, t, targets, count, grid, light_dir, billboards, box, volume](PassContext& pc) {
+      [gp, &rc, &world, t, targets, count, grid, light_dir, billboards, box, volume,
+       shadow_map](PassContext& pc) {
         BillboardsGpu& bb = gp->billboards;
         const Framebuffer fb = begin_far_cloud_draw(pc, targets);
         if (!bb.vao) glCreateVertexArrays(1, &bb.vao);
@@ -245,6 +248,8 @@ void billboards_system(SystemContext& sc) {
         ShaderDefines d = light_model_defines(*gp);
         d["BILLBOARDS_RENDER_VOLUME"] = volume ? "1" : "0";
         if (volume) d["BILLBOARDS_VOLUME"] = "4", d["BILLBOARDS_FILL_VOLUME"] = "9";
+        d["BILLBOARDS_SHADOW_MAP"] = shadow_map ? "1" : "0";
+        if (shadow_map) world.resource<LightEnvironment>().bind();
         const Program& p = rc.shaders.graphics("clouds/billboard.vert", "clouds/billboard.frag", d);
         p.use();
         set_atlas_uniforms(p, billboards, box);

@@ -149,7 +149,8 @@ void main() {
     transmittance *= step_transmittance;
     // Opaque beyond one half (the march stops there).
     if (before >= 0.5 && transmittance < 0.5)
-      front = t - 0.5 * step_m + step_m * clamp(log(before / 0.5) / max(sigma * scale * step_m, 1e-12), 0.0, 1.0);
+      front = t - 0.5 * step_m +
+              step_m * clamp(log(before / 0.5) / max(sigma * scale * step_m, 1e-12), 0.0, 1.0);
   }
   float opacity = 1.0 - transmittance;
   if (opacity < 1e-5) discard;

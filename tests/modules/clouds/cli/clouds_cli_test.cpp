@@ -126,9 +126,13 @@ TEST(CloudsCli, ImageWithoutPathsComparesTheShippedFrameWithTheFullMarch) {
 
 // The figures `welkin accuracy clusters|billboards --json` prints at the switch distance (the
 // cheaper path against the raymarch of the same layer alone), from its output.
-nlohmann::json switch_figures(const std::string& path, const std::string& size) {
-  const fs::path out = scratch_path("clouds-cli", "switch-" + path);
-  auto r = run_welkin("accuracy " + path + " --quick --json --frames 1 --size " + size + " --out " + out.string(), false);
+nlohmann::json switch_figures(const std::string& path, const std::string& size,
+                              const std::string& scene = "") {
+  const fs::path out = scratch_path(
+      "clouds-cli", "switch-" + path + (scene.empty() ? "" : "-" + fs::path(scene).stem().string()));
+  auto r = run_welkin("accuracy " + path + (scene.empty() ? "" : " --scene " + scene) +
+                          " --quick --json --frames 1 --size " + size + " --out " + out.string(),
+                      false);
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_TRUE(fs::exists(out / ("switch-" + path + ".png")));
   const size_t begin = r.out.find("\n{"), end = r.out.rfind("\n}");
@@ -152,7 +156,9 @@ nlohmann::json switch_figures(const std::string& path, const std::string& size) 
 // thinned only below the weakest archetype +8.7% and 15.6%. The clusters on the billowed field with
 // terms 30-31: -1.7% and 30.6% (-0.6% and 31.1% on 2026-11-28); each step's sample placed by the
 // layer's envelope at four points (docs/clouds-far.md, "The envelope's candidates"): +2.5% and 20.9%.
-// The aim, 2% and 12%, is not met yet.
+// The billboards lit through the shadow map too (the average of their archetype's optical depth and
+// the field's; docs/clouds-far.md, "The billboards' light from the shadow map"): +5.9% and 15.8%.
+// The bounds leave about two points. The aim, 2% and 12%, is not met yet.
 TEST(CloudsCli, CheaperPathsAgreeWithTheMarchAtTheSwitch) {
   const nlohmann::json clusters = switch_figures("clusters", "160x90");
   ASSERT_TRUE(clusters.contains("pixel_luminance_difference")) << clusters.dump();
@@ -162,8 +168,26 @@ TEST(CloudsCli, CheaperPathsAgreeWithTheMarchAtTheSwitch) {
   const nlohmann::json billboards = switch_figures("billboards", "160x90");
   ASSERT_TRUE(billboards.contains("pixel_luminance_difference")) << billboards.dump();
   EXPECT_GT(billboards["band_pixels"].get<int>(), 100);
-  EXPECT_LE(std::abs(billboards["mean_luminance_difference"].get<double>()), 0.11) << billboards.dump();
+  EXPECT_LE(std::abs(billboards["mean_luminance_difference"].get<double>()), 0.08) << billboards.dump();
   EXPECT_LE(billboards["pixel_luminance_difference"].get<double>(), 0.18) << billboards.dump();
+}
+
+// The billboards under a sun 25 degrees up behind the camera, where the shade of the field's other
+// clouds counts most: lit by their archetype alone they were 28.2% brighter than the march at 160x90
+// (per pixel 30.7%); through the shadow map as well (billboard.frag) -11.5% and 17.8%. The bounds leave
+// about two points.
+TEST(CloudsCli, BillboardsUnderALowSunAreShadedByTheFieldsOtherClouds) {
+  nlohmann::json doc = nlohmann::json::parse(std::ifstream("assets/scenes/clouds-billboards.json"));
+  for (auto& e : doc["entities"])
+    if (e["components"].contains("atmosphere.Sun"))
+      e["components"]["atmosphere.Sun"] = {{"azimuth_deg", 330}, {"elevation_deg", 25}};
+  const fs::path scene = scratch_path("clouds-cli", "billboards-low-sun.json");
+  std::ofstream(scene) << doc.dump();
+  const nlohmann::json figures = switch_figures("billboards", "160x90", scene.string());
+  ASSERT_TRUE(figures.contains("pixel_luminance_difference")) << figures.dump();
+  EXPECT_GT(figures["band_pixels"].get<int>(), 100);
+  EXPECT_LE(std::abs(figures["mean_luminance_difference"].get<double>()), 0.14) << figures.dump();
+  EXPECT_LE(figures["pixel_luminance_difference"].get<double>(), 0.20) << figures.dump();
 }
 
 }  // namespace
