@@ -51,10 +51,15 @@ float ray_end(vec3 dir) {
 // field are missing (at a sun 25 degrees up the billboards were 28% brighter than the march), and the
 // field's own depth at x (the clouds' shadow map) is that of a cloud that is not the archetype: alone,
 // it made them 17% darker there and 11% brighter at noon. The two are averaged (docs/clouds-far.md,
-// "The billboards' light from the shadow map").
+// "The billboards' light from the shadow map"). Beyond the map (its largest cascade, which reads no
+// depth outside: clouds/light_term.glsl) the archetype's alone, faded in over its outer 5%.
 float billboard_light_depth(float own, vec3 x) {
 #if BILLBOARDS_SHADOW_MAP
-  return 0.5 * (own + clouds_shadow_optical_depth(x));
+  int k = max(cs.cascade_count - 1, 0);
+  vec3 q = x - cs.cascades[k].origin;
+  vec2 c = vec2(0.5 + dot(q, cs.cascades[k].axis_u), 0.5 + dot(q, cs.cascades[k].axis_v));
+  float inside = clamp(min(min(c.x, 1.0 - c.x), min(c.y, 1.0 - c.y)) / 0.05, 0.0, 1.0);
+  return mix(own, 0.5 * (own + clouds_shadow_optical_depth(x)), inside);
 #else
   return own;
 #endif
