@@ -41,7 +41,8 @@ constexpr const char* kTerms[] = {
     "CLOUDS_MS_W24", "CLOUDS_MS_W25", "CLOUDS_MS_W26", "CLOUDS_MS_W27", "CLOUDS_MS_W28", "CLOUDS_MS_W29",
     "CLOUDS_MS_W30", "CLOUDS_MS_W31", "CLOUDS_MS_W32", "CLOUDS_MS_W33", "CLOUDS_MS_W34", "CLOUDS_MS_W35",
     "CLOUDS_MS_W36", "CLOUDS_MS_W37", "CLOUDS_MS_W38", "CLOUDS_MS_W39", "CLOUDS_MS_W40", "CLOUDS_MS_W41",
-    "CLOUDS_MS_W42", "CLOUDS_MS_W43", "CLOUDS_MS_W44"};
+    "CLOUDS_MS_W42", "CLOUDS_MS_W43", "CLOUDS_MS_W44", "CLOUDS_MS_W45", "CLOUDS_MS_W46", "CLOUDS_MS_W47",
+    "CLOUDS_MS_W48", "CLOUDS_MS_W49", "CLOUDS_MS_W50", "CLOUDS_MS_W51"};
 constexpr const char* kTermMeaning[] = {
     "D = T_d(tau) - T(tau): the diffuse light beyond the direct beam, toward the light",
     "D S(tau_b): ... gathered from the cloud below",
@@ -89,7 +90,15 @@ constexpr const char* kTermMeaning[] = {
     "(1 + n.l) / 2 T_d(tau)",
     "(1 + n.l) / 2 (1 + n.(-v)) / 2 D, v the view ray: the lit face turned toward the camera",
     "F max(n.l, 0) D S(tau_b)",
-    "(1 + n.(-v)) / 2 D: the face turned toward the camera"};
+    "(1 + n.(-v)) / 2 D: the face turned toward the camera",
+    "A = max(N - M, 0), N the direct beam's mean transmittance over the columns 300 m across the light from "
+    "the sample's, M its own column's: sunlight let into the cloud around the sample that its own column does not get",
+    "A S(tau_b)",
+    "A (1 - mu) / 2: seen from the light's side",
+    "A with the columns 1.2 km away",
+    "A S(tau_b), the columns 1.2 km away",
+    "A (1 - mu) / 2, the columns 1.2 km away",
+    "A T_d(tau), the columns 1.2 km away: their light diffused through the sample's own column"};
 static_assert(std::size(kTermMeaning) == std::size(kTerms));
 constexpr size_t kTermCount = std::size(kTerms);
 
@@ -245,6 +254,7 @@ int fit_light_model(const CloudAccuracyOptions& o, std::vector<RaySet>& sets, co
   const auto started = std::chrono::steady_clock::now();
   const std::vector<size_t> candidates = candidate_terms(o);
   LinearProblem problem[2];  // [0]: qualities without the detail noise, [1]: with it
+  std::map<std::pair<size_t, std::string>, std::vector<Row>> marched;  // every set's rows, by set and quality
   std::ostringstream csv;  // the problem itself, ray by ray: what the march gives with each term alone (weight 1)
   csv << "set,kept_back,quality,view,altitude_m,heading_deg,pitch_deg,reference,single";
   for (size_t k : candidates) csv << "," << kTerms[k];
@@ -259,10 +269,13 @@ int fit_light_model(const CloudAccuracyOptions& o, std::vector<RaySet>& sets, co
     for (const std::string& q : o.qualities) {
       probe.clouds().quality = names.at(q);
       const std::vector<double> single = march(probe, set.views, only(-1, 1.0));
+      // What no weight scales (the air's light in front of the clouds, the sky's and the ground's):
+      // in every term's march once, taken out before the term is scaled back.
+      const std::vector<double> unweighted = march(probe, set.views, only(-1, 0.0));
       std::vector<std::vector<double>> terms(kTermCount, std::vector<double>(set.views.size(), 0.0));
       for (size_t k : candidates) {
         terms[k] = march(probe, set.views, only(int(k), 0.0));
-        for (double& x : terms[k]) x /= kTermScale;
+        for (size_t i = 0; i < terms[k].size(); ++i) terms[k][i] = (terms[k][i] - unweighted[i]) / kTermScale;
         std::fprintf(stderr, "\rset %zu/%zu, %s: term %zu marched", s + 1, sets.size(), q.c_str(), k);
       }
       for (size_t i = 0; i < set.views.size(); ++i) {
@@ -273,6 +286,7 @@ int fit_light_model(const CloudAccuracyOptions& o, std::vector<RaySet>& sets, co
         for (size_t k = 0; k < kTermCount; ++k) r.terms.push_back(terms[k][i]);
         for (size_t k : candidates) csv << "," << terms[k][i];
         csv << "\n";
+        marched[{s, q}].push_back(r);
         if (!set.kept_back) problem[reads_detail(names.at(q)) ? 1 : 0].rows.push_back(std::move(r));
       }
     }
@@ -285,8 +299,12 @@ int fit_light_model(const CloudAccuracyOptions& o, std::vector<RaySet>& sets, co
   if (problem[1].rows.empty()) w[1] = w[0];
 
   // The weights compiled in, each set and quality marched again: the figures are the march's, not the sum's.
+  // The sum's own prediction beside it: where the two part, a term's column held light that is not its
+  // own and the weights were solved for another march.
   std::ostringstream figures;
-  for (RaySet& set : sets) {
+  double sum_off = 0.0;  // the largest difference between the sum and the march, over a set's mean reference
+  for (size_t si = 0; si < sets.size(); ++si) {
+    RaySet& set = sets[si];
     figures << comment((set.kept_back ? "kept back: " : "") + set.name + ", " + std::to_string(set.views.size()) + " rays:", "  ")
             << "//    ";
     std::vector<double> reference;
@@ -295,7 +313,14 @@ int fit_light_model(const CloudAccuracyOptions& o, std::vector<RaySet>& sets, co
       set.probe->clouds().quality = names.at(q);
       Coefficients fitted = constants();
       for (size_t k = 0; k < kTermCount; ++k) fitted[kTerms[k]] = w[reads_detail(names.at(q)) ? 1 : 0][k];
-      const Error2 e = error_of(march(*set.probe, set.views, fitted), reference, mean_radiance(set.refs));
+      const std::vector<double> gpu = march(*set.probe, set.views, fitted);
+      const Error2 e = error_of(gpu, reference, mean_radiance(set.refs));
+      const std::vector<Row>& rows = marched.at({si, q});
+      for (size_t i = 0; i < gpu.size(); ++i) {
+        double sum = rows[i].single;
+        for (size_t k = 0; k < kTermCount; ++k) sum += fitted[kTerms[k]] * rows[i].terms[k];
+        sum_off = std::max(sum_off, std::abs(sum - gpu[i]) * rows[i].scale);
+      }
       figures << " " << q << " " << std::lround(1000 * e.rmse) / 10.0 << "% (worst " << std::lround(1000 * e.worst) / 10.0 << "%)";
     }
     figures << "\n";
@@ -316,6 +341,7 @@ int fit_light_model(const CloudAccuracyOptions& o, std::vector<RaySet>& sets, co
   glsl << "#endif\n";
   const std::string file = (fs::path(o.out) / "light_model_fit.glsl").string();
   write_file_atomically(file, glsl.str());
+  std::printf("the fitted sum against the march of its weights: %.2f%% of a set's mean at most\n", 100.0 * sum_off);
   std::printf("fit over %zu rays", rays);
   for (int g = 1; g >= 0; --g) {
     std::printf("\n%s weights:", g ? "with the detail noise" : "without");

@@ -155,5 +155,10 @@ vec3 clouds_marched_source(int layers, vec3 x, vec3 l, float mu, float phase_sin
     vec3 n = clouds_envelope_normal(x, up);
     s.facing_light = dot(n, l), s.facing_view = -dot(n, normalize(x));
   }
+  // Ten shadow map fetches more a radius: only where the weights read the columns around the sample's.
+  if (CLOUDS_MS_W45 + CLOUDS_MS_W46 + CLOUDS_MS_W47 > 0.0 && cl.moon_marched < 0.5)
+    s.around_near = clouds_shadow_around(x, 300.0);
+  if (CLOUDS_MS_W48 + CLOUDS_MS_W49 + CLOUDS_MS_W50 + CLOUDS_MS_W51 > 0.0 && cl.moon_marched < 0.5)
+    s.around_far = clouds_shadow_around(x, 1200.0);
   return clouds_light_source(mu, phase_single, s, l, up, e_light, e_sky);
 }

@@ -33,6 +33,9 @@ struct CloudsLightInputs {
   float escape;                      // the optical depth to the cloud's side nearest known (1e4: unknown)
   float facing_light, facing_view;   // n.l and n.(-v), n the un-eroded envelope's outward normal (< -1:
                                      // unknown, read as a deck's top: mu_0 and 0)
+  float around_near, around_far;     // the direct beam's mean transmittance at the sample's depth over
+                                     // columns 300 m and 1.2 km from its own, beyond its own column's
+                                     // (clouds_shadow_around; 0: unknown)
 };
 
 // Schneider's beer-powder darkening of thin edges (cl.powder = 0: off).
@@ -95,6 +98,15 @@ float clouds_powder(float sigma_t) {
 //  42  (1 + n.l) / 2 (1 + n.(-v)) / 2 D   toward the camera (diffused light leaves a face toward its
 //  43  F max(n.l, 0) D S(tau_b)           normal); 43 is 30-31 with the face's own cosine
 //  44  (1 + n.(-v)) / 2 D
+//  45  A = max(N - M, 0), N the direct beam's mean transmittance over the columns 300 m across the
+//      light from the sample's, M its own column's (the shadow map at the sample's depth): sunlight
+//      let into the cloud around the sample that its own column does not get; under a low sun a column
+//      through a broken field crosses several clouds while its neighbours toward the layer's top pass
+//      through gaps
+//  46  A S(tau_b)             ... gathered from the cloud below
+//  47  A (1 - mu) / 2         ... seen from the light's side
+//  48-50  terms 45-47 with the columns 1.2 km away
+//  51  A_far T_d(tau): the light of the far columns diffused through the sample's own
 // All fade where the cloud around the sample is thin (its outskirts, wisps: little light has been
 // scattered toward it by neighbours, the physical side of Schneider's "powder"), by
 // 1 - exp(-n sigma_t l_1), l_1 the first light step.
@@ -171,6 +183,11 @@ float clouds_multiple_scattering(float mu, CloudsLightInputs s, vec3 l, vec3 up)
                    CLOUDS_MS_W42 * lit_half * toward_view + CLOUDS_MS_W44 * toward_view) +
          s.diffuse * (CLOUDS_MS_W40 * lit * reflection + CLOUDS_MS_W41 * lit_half) +
          CLOUDS_MS_W43 * s.fill * lit * beyond * reflection;
+  float around_near = s.around_near, around_far = s.around_far;
+  float light_side = 0.5 * (1.0 - mu);
+  sum += around_near * (CLOUDS_MS_W45 + CLOUDS_MS_W46 * reflection + CLOUDS_MS_W47 * light_side) +
+         around_far * (CLOUDS_MS_W48 + CLOUDS_MS_W49 * reflection + CLOUDS_MS_W50 * light_side +
+                       CLOUDS_MS_W51 * s.diffuse);
   return sum * (1.0 - exp(-CLOUDS_MS_POWDER * s.sigma_t * cl.light_step_m));
 }
 
@@ -206,7 +223,7 @@ vec3 clouds_light_source(float mu, float phase_single, CloudsLightInputs s, vec3
 CloudsLightInputs clouds_light_inputs(float tau, float sigma_t, float depth_below_m, float depth_above_m) {
   return CloudsLightInputs(clouds_direct_transmittance(tau), clouds_slab_diffuse(tau), sigma_t, depth_below_m,
                            depth_above_m, exp(-0.25 * tau), exp(-0.0625 * tau), sigma_t * depth_below_m,
-                           sigma_t * depth_above_m, tau, 0.0, 1.0, 1e4, -2.0, -2.0);
+                           sigma_t * depth_above_m, tau, 0.0, 1.0, 1e4, -2.0, -2.0, 0.0, 0.0);
 }
 
 vec3 clouds_sample_source(float mu, float phase_single, float tau, float sigma_t, float depth_below_m,

@@ -221,6 +221,35 @@
 #ifndef CLOUDS_MS_W44
 #define CLOUDS_MS_W44 0.0
 #endif
+// CLOUDS_MS_W45: A = max(N - T, 0), N the direct beam's mean transmittance over the columns 300 m across the
+// light from the sample's: sunlight let into the cloud around the sample that its own column does not get
+#ifndef CLOUDS_MS_W45
+#define CLOUDS_MS_W45 0.0
+#endif
+// CLOUDS_MS_W46: A S(tau_b)
+#ifndef CLOUDS_MS_W46
+#define CLOUDS_MS_W46 0.0
+#endif
+// CLOUDS_MS_W47: A (1 - mu) / 2: seen from the light's side
+#ifndef CLOUDS_MS_W47
+#define CLOUDS_MS_W47 0.0
+#endif
+// CLOUDS_MS_W48: A with the columns 1.2 km away
+#ifndef CLOUDS_MS_W48
+#define CLOUDS_MS_W48 0.0
+#endif
+// CLOUDS_MS_W49: A S(tau_b), the columns 1.2 km away
+#ifndef CLOUDS_MS_W49
+#define CLOUDS_MS_W49 0.0
+#endif
+// CLOUDS_MS_W50: A (1 - mu) / 2, the columns 1.2 km away
+#ifndef CLOUDS_MS_W50
+#define CLOUDS_MS_W50 0.0
+#endif
+// CLOUDS_MS_W51: A T_d(tau), the columns 1.2 km away: their light diffused through the sample's own column
+#ifndef CLOUDS_MS_W51
+#define CLOUDS_MS_W51 0.0
+#endif
 #else  // without the detail noise (low): a smoother field than the path tracer's
 // CLOUDS_MS_W0: D = T_d(tau) - T(tau): the diffuse light beyond the direct beam, toward the light
 #ifndef CLOUDS_MS_W0
@@ -405,5 +434,34 @@
 // CLOUDS_MS_W44: (1 + n.(-v)) / 2 D: the face turned toward the camera
 #ifndef CLOUDS_MS_W44
 #define CLOUDS_MS_W44 0.0
+#endif
+// CLOUDS_MS_W45: A = max(N - T, 0), N the direct beam's mean transmittance over the columns 300 m across the
+// light from the sample's: sunlight let into the cloud around the sample that its own column does not get
+#ifndef CLOUDS_MS_W45
+#define CLOUDS_MS_W45 0.0
+#endif
+// CLOUDS_MS_W46: A S(tau_b)
+#ifndef CLOUDS_MS_W46
+#define CLOUDS_MS_W46 0.0
+#endif
+// CLOUDS_MS_W47: A (1 - mu) / 2: seen from the light's side
+#ifndef CLOUDS_MS_W47
+#define CLOUDS_MS_W47 0.0
+#endif
+// CLOUDS_MS_W48: A with the columns 1.2 km away
+#ifndef CLOUDS_MS_W48
+#define CLOUDS_MS_W48 0.0
+#endif
+// CLOUDS_MS_W49: A S(tau_b), the columns 1.2 km away
+#ifndef CLOUDS_MS_W49
+#define CLOUDS_MS_W49 0.0
+#endif
+// CLOUDS_MS_W50: A (1 - mu) / 2, the columns 1.2 km away
+#ifndef CLOUDS_MS_W50
+#define CLOUDS_MS_W50 0.0
+#endif
+// CLOUDS_MS_W51: A T_d(tau), the columns 1.2 km away: their light diffused through the sample's own column
+#ifndef CLOUDS_MS_W51
+#define CLOUDS_MS_W51 0.0
 #endif
 #endif

@@ -8,10 +8,15 @@ layout(std140, binding = WELKIN_BLOCK_CLOUDS_SHADOW) uniform CloudsShadow { Clou
 const int CLOUDS_SHADOW_CASCADES = 4;  // cs.cascades.length()
 layout(binding = WELKIN_UNIT_CLOUDS_SHADOW_MAP) uniform sampler2D cs_map;  // the cascades side by side
 
-// The shadow map's column over p, from the nearest cascade that holds p (away from its edge, except
-// in the last); none (no optical depth) outside every cascade. `depth`: p's distance along the light
-// from the cascade's start plane.
-CloudsShadowColumn clouds_shadow_column(vec3 p, out float depth) {
+// Where p falls in the shadow map: the nearest cascade that holds p (away from its edge, except in the
+// last; none outside every cascade), p's place in that cascade's square, and `depth`, p's distance
+// along the light from the cascade's start plane.
+struct CloudsShadowPlace {
+  int cascade;
+  vec2 uv;
+  bool found;
+};
+CloudsShadowPlace clouds_shadow_place(vec3 p, out float depth) {
   int n = cs.cascade_count;
   // The cascade is chosen first and read once (a software rasteriser would read every cascade a loop
   // passes, taken or not), by selects rather than branches. Materials ask for it once per point
@@ -27,17 +32,44 @@ CloudsShadowColumn clouds_shadow_column(vec3 p, out float depth) {
     chosen = take ? k : chosen;
     uv = take ? c : uv;
   }
-  const bool found = chosen >= 0;
   const int k = max(chosen, 0);
+  depth = cs.cascades[k].start_m - dot(p - cs.cascades[k].origin, cs.light);
+  return CloudsShadowPlace(k, uv, chosen >= 0);
+}
+
+// The column at a place in a cascade's square; none (no optical depth) where no cascade holds it.
+CloudsShadowColumn clouds_shadow_read(CloudsShadowPlace at) {
   // Kept half a texel inside the cascade's square: its neighbours in the texture are another cascade
   // and the other half of the column.
   float half_texel = 1.0 / float(textureSize(cs_map, 0).y);
-  uv = clamp(uv, vec2(half_texel), vec2(1.0 - half_texel));
-  float u = (float(k) + uv.x) / float(max(n, 1));
+  vec2 uv = clamp(at.uv, vec2(half_texel), vec2(1.0 - half_texel));
+  float u = (float(at.cascade) + uv.x) / float(max(cs.cascade_count, 1));
   CloudsShadowColumn c =
       CloudsShadowColumn(texture(cs_map, vec2(u, 0.5 * uv.y)), texture(cs_map, vec2(u, 0.5 + 0.5 * uv.y)));
-  depth = cs.cascades[k].start_m - dot(p - cs.cascades[k].origin, cs.light);
-  return found ? c : CloudsShadowColumn(vec4(0.0), vec4(0.0));
+  return at.found ? c : CloudsShadowColumn(vec4(0.0), vec4(0.0));
+}
+
+// The shadow map's column over p and p's depth along it.
+CloudsShadowColumn clouds_shadow_column(vec3 p, out float depth) {
+  return clouds_shadow_read(clouds_shadow_place(p, depth));
+}
+
+// The sunlight that reaches the cloud around p but not p: the direct beam's mean transmittance at p's
+// depth over four columns `radius_m` from p's, across the light, less p's own (CloudsLightInputs.around;
+// 0 where p's column is the lighter). Under a low sun a column through a broken field crosses several
+// clouds while its neighbours toward the layer's top or beside it pass through the gaps; the light they
+// let into the cloud diffuses to the sample. Both from the map alone, so that the layers that cast no
+// shadow (haze, cirrus: in the light march's optical depth, not in the map's) do not read as a contrast.
+float clouds_shadow_around(vec3 p, float radius_m) {
+  float depth;
+  CloudsShadowPlace at = clouds_shadow_place(p, depth);
+  float step = radius_m / cs.cascades[at.cascade].side_m, sum = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    CloudsShadowPlace q = at;
+    q.uv += vec2(i == 0 ? step : (i == 1 ? -step : 0.0), i == 2 ? step : (i == 3 ? -step : 0.0));
+    sum += exp(-clouds_column_optical_depth(clouds_shadow_read(q), depth));
+  }
+  return max(0.25 * sum - exp(-clouds_column_optical_depth(clouds_shadow_read(at), depth)), 0.0);
 }
 
 // Optical depth of the clouds between p and the sun.
