@@ -102,10 +102,11 @@ void shadow_system(SystemContext& sc) {
     return;
   }
   const int cascades = gpu.shadow.cascade_count, size = clouds->shadow_map_size;
-  // The cascades side by side in one texture, nearest first, each column's two halves one above the
-  // other (clouds/shadow_column.glsl); a new texture holds none of them yet.
+  // The cascades side by side in one texture, nearest first, each column's four quarters (the body's
+  // two halves, the direct beam's two: clouds/shadow_column.glsl) one above the other; a new texture
+  // holds none of them yet.
   if (ensure_texture(gpu.shadow_map,
-                     {.width = size * cascades, .height = 2 * size, .format = TextureFormat::rgba32f}))
+                     {.width = size * cascades, .height = 4 * size, .format = TextureFormat::rgba32f}))
     for (int k = 0; k < cascades; ++k) gpu.shadow_rebuild[k] = true;
   if (std::none_of(gpu.shadow_rebuild, gpu.shadow_rebuild + cascades, [](bool b) { return b; })) return;
   const ResourceHandle map = sc.graph->import("clouds.shadow_map", *gpu.shadow_map);

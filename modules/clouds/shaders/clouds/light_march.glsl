@@ -51,10 +51,12 @@ void clouds_deck_light(float tau, inout vec3 e_light, inout vec3 e_sky) {
 
 // `clear`: the fraction of the steps' way where the field is empty (the light model weighs light let
 // in through gaps and soft edges against light diffused through the column by it); `deck`: the decks'
-// optical depth beyond the steps, from the same texel of the shadow map (clouds_deck_light). `layers`:
-// the compiled layers the steps read (density.glsl; those the march's band can reach).
+// optical depth beyond the steps, from the same texel of the shadow map (clouds_deck_light); `beam`:
+// the direct beam's optical depth, the map's beyond the steps read through the eroded field (the
+// single scattering's; the returned depth, the diffuse light's, reads the cloud's body there).
+// `layers`: the compiled layers the steps read (density.glsl; those the march's band can reach).
 float clouds_light_optical_depth(int layers, vec3 x, vec3 l, float extinction_per_density, out float clear,
-                                 out float deck) {
+                                 out float deck, out float beam) {
   float tau = 0.0, s = 0.0, step_m = cl.light_step_m, clear_m = 0.0;
   int n = int(cl.light_steps);
   if (n > 0) {
@@ -70,18 +72,21 @@ float clouds_light_optical_depth(int layers, vec3 x, vec3 l, float extinction_pe
   }
   clear = clear_m / max(s, 1e-6);
   tau *= extinction_per_density;
-  deck = 0.0;
+  deck = 0.0, beam = tau;
   if (cl.moon_marched < 0.5) {
     float depth;
-    CloudsShadowColumn column = clouds_shadow_column(x + l * s, depth);
+    CloudsShadowPlace at = clouds_shadow_place(x + l * s, depth);
+    CloudsShadowColumn column = clouds_shadow_read(at, false);
     tau += clouds_column_optical_depth(column, depth);
+    beam += clouds_column_optical_depth(clouds_shadow_read(at, true), depth);
     deck = column.far.w * clouds_deck_share(x + l * s);
   }
   return tau;
 }
 float clouds_light_optical_depth(vec3 x, vec3 l, float extinction_per_density, out float clear,
                                  out float deck) {
-  return clouds_light_optical_depth(CLOUDS_ALL_LAYERS, x, l, extinction_per_density, clear, deck);
+  float beam;
+  return clouds_light_optical_depth(CLOUDS_ALL_LAYERS, x, l, extinction_per_density, clear, deck, beam);
 }
 
 // The optical depth from x to the cloud's side (CloudsLightInputs.escape): two samples of the shape
@@ -136,14 +141,15 @@ vec3 clouds_envelope_normal(vec3 x, vec3 up) {
 vec3 clouds_marched_source(int layers, vec3 x, vec3 l, float mu, float phase_single, float sigma_t,
                            float extinction_per_density, CloudsSampleGeometry g, vec3 up, vec3 e_light,
                            vec3 e_sky) {
-  float clear, deck;
-  float tau = clouds_light_optical_depth(layers, x, l, extinction_per_density, clear, deck);
+  float clear, deck, beam;
+  float tau = clouds_light_optical_depth(layers, x, l, extinction_per_density, clear, deck, beam);
   clouds_deck_light(deck, e_light, e_sky);
   if (!clouds_diffusion_model)
     return clouds_sample_source(mu, phase_single, tau, sigma_t, g.depth_below_m, g.depth_above_m, l, up,
                                 e_light, e_sky);
   CloudsLightInputs s = clouds_light_inputs(tau, sigma_t, g.depth_below_m, g.depth_above_m);
   s.column_below = g.column_below, s.column_above = g.column_above, s.clear = clear, s.fill = g.fill;
+  s.beam = clouds_direct_transmittance(beam);
   // Two density samples more per cloud sample: only where the weights read the side's depth (the
   // sum of the constants folds at compile time).
   if (CLOUDS_MS_W32 + CLOUDS_MS_W33 + CLOUDS_MS_W34 + CLOUDS_MS_W35 + CLOUDS_MS_W36 + CLOUDS_MS_W37 > 0.0)

@@ -20,7 +20,10 @@ const bool clouds_diffusion_model = CLOUDS_MULTIPLE_SCATTERING == 1;
 // so an average of sources over many samples is the source of their averages (the billboards' atlas
 // keeps those averages toward every direction).
 struct CloudsLightInputs {
-  float direct;                      // the direct beam's transmittance toward the light
+  float direct;                      // the direct beam's transmittance toward the light, through the
+                                     // cloud's body beyond the light steps (the diffusion terms')
+  float beam;                        // the same through the eroded field (the single scattering's;
+                                     // clouds_light_optical_depth)
   float diffuse;                     // the two-stream (diffuse) transmittance toward the light
   float sigma_t;                     // extinction at the sample (1/m)
   float depth_below_m;               // the cloud's depth under the sample (the light it reflects back up)
@@ -211,7 +214,7 @@ vec3 clouds_ambient(vec3 e_sky, vec3 e_light_on_ground, float tau_below, float t
 
 vec3 clouds_light_source(float mu, float phase_single, CloudsLightInputs s, vec3 l, vec3 up, vec3 e_light,
                          vec3 e_sky) {
-  float scattered = CLOUDS_SS_WEIGHT * phase_single * s.direct + clouds_multiple_scattering(mu, s, l, up);
+  float scattered = CLOUDS_SS_WEIGHT * phase_single * s.beam + clouds_multiple_scattering(mu, s, l, up);
   scattered *= clouds_powder(s.sigma_t);
   vec3 ambient = clouds_ambient(e_sky, e_light * max(dot(l, up), 0.0), s.sigma_t * s.depth_below_m,
                                 s.sigma_t * s.depth_above_m);
@@ -221,7 +224,8 @@ vec3 clouds_light_source(float mu, float phase_single, CloudsLightInputs s, vec3
 
 // The inputs from the optical depth toward the light.
 CloudsLightInputs clouds_light_inputs(float tau, float sigma_t, float depth_below_m, float depth_above_m) {
-  return CloudsLightInputs(clouds_direct_transmittance(tau), clouds_slab_diffuse(tau), sigma_t, depth_below_m,
+  float direct = clouds_direct_transmittance(tau);
+  return CloudsLightInputs(direct, direct, clouds_slab_diffuse(tau), sigma_t, depth_below_m,
                            depth_above_m, exp(-0.25 * tau), exp(-0.0625 * tau), sigma_t * depth_below_m,
                            sigma_t * depth_above_m, tau, 0.0, 1.0, 1e4, -2.0, -2.0, 0.0, 0.0);
 }

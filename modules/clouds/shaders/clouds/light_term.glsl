@@ -37,21 +37,23 @@ CloudsShadowPlace clouds_shadow_place(vec3 p, out float depth) {
   return CloudsShadowPlace(k, uv, chosen >= 0);
 }
 
-// The column at a place in a cascade's square; none (no optical depth) where no cascade holds it.
-CloudsShadowColumn clouds_shadow_read(CloudsShadowPlace at) {
+// The column at a place in a cascade's square, the cloud's body's (beam false) or the direct beam's
+// through the eroded field (beam true: shadow_map.comp); none (no optical depth) where no cascade
+// holds it.
+CloudsShadowColumn clouds_shadow_read(CloudsShadowPlace at, bool beam) {
   // Kept half a texel inside the cascade's square: its neighbours in the texture are another cascade
-  // and the other half of the column.
-  float half_texel = 1.0 / float(textureSize(cs_map, 0).y);
+  // and the other quarters of the column.
+  float half_texel = 2.0 / float(textureSize(cs_map, 0).y);
   vec2 uv = clamp(at.uv, vec2(half_texel), vec2(1.0 - half_texel));
   float u = (float(at.cascade) + uv.x) / float(max(cs.cascade_count, 1));
-  CloudsShadowColumn c =
-      CloudsShadowColumn(texture(cs_map, vec2(u, 0.5 * uv.y)), texture(cs_map, vec2(u, 0.5 + 0.5 * uv.y)));
+  float v = 0.25 * uv.y + (beam ? 0.5 : 0.0);
+  CloudsShadowColumn c = CloudsShadowColumn(texture(cs_map, vec2(u, v)), texture(cs_map, vec2(u, v + 0.25)));
   return at.found ? c : CloudsShadowColumn(vec4(0.0), vec4(0.0));
 }
 
-// The shadow map's column over p and p's depth along it.
+// The shadow map's column over p (the cloud's body) and p's depth along it.
 CloudsShadowColumn clouds_shadow_column(vec3 p, out float depth) {
-  return clouds_shadow_read(clouds_shadow_place(p, depth));
+  return clouds_shadow_read(clouds_shadow_place(p, depth), false);
 }
 
 // The sunlight that reaches the cloud around p but not p: the direct beam's mean transmittance at p's
@@ -67,9 +69,9 @@ float clouds_shadow_around(vec3 p, float radius_m) {
   for (int i = 0; i < 4; ++i) {
     CloudsShadowPlace q = at;
     q.uv += vec2(i == 0 ? step : (i == 1 ? -step : 0.0), i == 2 ? step : (i == 3 ? -step : 0.0));
-    sum += exp(-clouds_column_optical_depth(clouds_shadow_read(q), depth));
+    sum += exp(-clouds_column_optical_depth(clouds_shadow_read(q, false), depth));
   }
-  return max(0.25 * sum - exp(-clouds_column_optical_depth(clouds_shadow_read(at), depth)), 0.0);
+  return max(0.25 * sum - exp(-clouds_column_optical_depth(clouds_shadow_read(at, false), depth)), 0.0);
 }
 
 // Optical depth of the clouds between p and the sun.

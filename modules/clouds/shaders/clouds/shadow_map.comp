@@ -1,9 +1,9 @@
 // The shadow map, one cascade per dispatch: for each texel, a column from above the cloud shell toward
 // the ground along the sun's direction, through the layers that cast shadows. Stores where its optical
-// depth crosses a few values (clouds/shadow_column.glsl), and, apart, the optical depth of the decks
-// over them (layers that cast no shadow, above every one that does). The cascades lie side by side in
-// one texture; each texel's two halves (CloudsShadowColumn's near and far) lie in its top and bottom
-// halves.
+// depth crosses a few values (clouds/shadow_column.glsl), for the cloud's body and for the direct beam
+// through the eroded field, and, apart, the optical depth of the decks over them (layers that cast no
+// shadow, above every one that does). The cascades lie side by side in one texture; each texel's four
+// quarters (the body's near and far, the beam's near and far) lie one above the other.
 #include "clouds/density.glsl"
 #include "clouds/shadow_column.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -47,6 +47,33 @@ float clouds_deck_depth(vec3 start, vec3 dir) {
   return tau * (cl.scattering + cl.absorption);
 }
 
+// A column's knots as it is marched: where its optical depth crosses each of kCloudsShadowKnots,
+// its first cloud's front, its last cloud's back. No cloud: the front at the column's end and no
+// optical depth, so that filtering between a cloudy texel and a clear one blends their optical depths
+// instead of jumping at the texel's edge.
+struct CloudsColumnKnots {
+  float tau, front, back;
+  vec4 knot;
+  bool cloudy;
+};
+CloudsColumnKnots clouds_knots_start(float end) {
+  return CloudsColumnKnots(0.0, end, end, vec4(end), false);
+}
+// A sub-step `sub` long around t, of extinction d (taken as even across it).
+void clouds_knots_add(inout CloudsColumnKnots c, float t, float sub, float d) {
+  if (d <= 0.0) return;
+  if (!c.cloudy) c.front = t - 0.5 * sub, c.cloudy = true;
+  c.back = t + 0.5 * sub;
+  for (int q = 0; q < 4; ++q)
+    if (c.tau < kCloudsShadowKnots[q] && c.tau + d * sub >= kCloudsShadowKnots[q])
+      c.knot[q] = t - 0.5 * sub + (kCloudsShadowKnots[q] - c.tau) / d;
+  c.tau += d * sub;
+}
+CloudsShadowColumn clouds_knots_column(CloudsColumnKnots c) {
+  vec4 k = c.cloudy ? min(c.knot, vec4(c.back)) : c.knot;
+  return CloudsShadowColumn(vec4(c.front, k.xyz), vec4(k.w, c.back, c.tau, 0.0));
+}
+
 void main() {
   clouds_load();
   ivec2 id = ivec2(gl_GlobalInvocationID.xy);
@@ -57,17 +84,17 @@ void main() {
       u_centre + ((uv.x - 0.5) * u_axis_u + (uv.y - 0.5) * u_axis_v) * u_extent_m + u_light * u_start_m;
   vec3 dir = -u_light;
   vec2 column = clouds_column_between(start, dir, u_altitudes_m);
-  // No cloud: the front at the column's end and no optical depth, so that filtering between a cloudy
-  // texel and a clear one blends their optical depths instead of jumping at the texel's edge.
   // The column is the whole line through the texel along the light, its distances measured from
   // the start plane (negative: toward the sun). The plane is tilted with the sun (at 35 degrees up,
   // its far edges lie 25 km above and below the centre's start), so a texel's start may lie inside
   // or under the shell: a column cut at its start missed the cloud above it, and a deck was lit
   // beyond a straight seam across the map.
-  CloudsShadowColumn result = CloudsShadowColumn(vec4(0.0), vec4(0.0));
+  // Two curves a column: the cloud's body (the shape alone: the diffuse light goes round the detail's
+  // small gaps) and the direct beam's (the detail noise too: toward a low sun the beam grazes the
+  // eroded edges, which the shape alone fills in; CloudsShadowGpu's beam half).
+  CloudsShadowColumn result = CloudsShadowColumn(vec4(0.0), vec4(0.0)), beam_result = result;
   if (column.x <= column.y) {
     vec2 seg = column;
-    result = CloudsShadowColumn(vec4(seg.y), vec4(seg.y, seg.y, 0.0, 0.0));
     // The column is marched in u_steps stretches. Toward a low sun it crosses tens of kilometres of
     // shell (a kilometre a stretch at sunset), and one sample a stretch saw a cumulus with one or two
     // samples: the column's optical depth and front jumped from one texel row to the next as the
@@ -79,9 +106,7 @@ void main() {
     const float kSubStepM = 250.0;
     float step_m = (seg.y - seg.x) / float(u_steps);
     int subs = clamp(int(ceil(step_m / kSubStepM)), 1, 4);
-    float tau = 0.0, front = 0.0, back = 0.0;
-    float knot[4] = float[4](seg.y, seg.y, seg.y, seg.y);
-    bool cloudy = false;
+    CloudsColumnKnots body = clouds_knots_start(seg.y), beam = body;
     // columns are a few km long
     clouds_system_g = clouds_weather_system_at(start + dir * (0.5 * (seg.x + seg.y)));
     bool empty_end = false;
@@ -100,24 +125,19 @@ void main() {
       for (int j = 0; j < n; ++j) {
         float t = t0 + (float(j) + 0.5) * sub;
         float d = clouds_density(start + dir * t, false, true) * (cl.scattering + cl.absorption);
-        if (d > 0.0) {
-          if (!cloudy) front = t - 0.5 * sub, cloudy = true;
-          back = t + 0.5 * sub;
-          // Where within this sub-step the optical depth crosses each knot (the density is taken as
-          // even across it).
-          for (int q = 0; q < 4; ++q)
-            if (tau < kCloudsShadowKnots[q] && tau + d * sub >= kCloudsShadowKnots[q])
-              knot[q] = t - 0.5 * sub + (kCloudsShadowKnots[q] - tau) / d;
-          tau += d * sub;
-        }
+        if (d <= 0.0) continue;
+        clouds_knots_add(body, t, sub, d);
+        // The detail noise only erodes: where the shape alone is empty, so is the eroded field.
+        float eroded = clouds_density(start + dir * t, true, true) * (cl.scattering + cl.absorption);
+        clouds_knots_add(beam, t, sub, eroded);
       }
     }
-    if (cloudy) {
-      for (int q = 0; q < 4; ++q) knot[q] = min(knot[q], back);
-      result = CloudsShadowColumn(vec4(front, knot[0], knot[1], knot[2]), vec4(knot[3], back, tau, 0.0));
-    }
+    result = clouds_knots_column(body);
+    beam_result = clouds_knots_column(beam);
   }
   result.far.w = clouds_deck_depth(start, dir);
   imageStore(u_map, id + ivec2(u_region.x, 0), result.near);
   imageStore(u_map, id + ivec2(u_region.x, size.y), result.far);
+  imageStore(u_map, id + ivec2(u_region.x, 2 * size.y), beam_result.near);
+  imageStore(u_map, id + ivec2(u_region.x, 3 * size.y), beam_result.far);
 }

@@ -78,8 +78,8 @@ TEST(CloudsGpu, LayersThatCastNoShadowLeaveTheShadowMapAsItIs) {
        {{"genus", "stratus"}, {"base_altitude_m", 0}, {"thickness_m", 300}, {"casts_shadow", false}}}));
   ASSERT_EQ(alone.rgba.size(), beside.rgba.size());
   double total = 0.0, difference = 0.0;
-  // The columns' optical depths: the far half of each texel, the top half of the texture, read back
-  // bottom row first.
+  // The columns' optical depths: the far halves of each texel's two curves (the body's and the
+  // beam's), the top half of the texture, read back bottom row first.
   for (size_t i = 2; i < alone.rgba.size() / 2; i += 4)
     total += alone.rgba[i], difference += std::abs(beside.rgba[i] - alone.rgba[i]);
   EXPECT_GT(total, 0.0);
