@@ -186,18 +186,7 @@ double mean_radiance(const std::vector<clouds::reference::CloudRadianceEstimate>
   return m;
 }
 
-namespace {
-
-// The weights are fitted per group of qualities: `low` marches without the detail noise (a smoother,
-// denser field than the path tracer's), the others with it; light_model_fit.glsl keeps both
-// (CLOUDS_SHAPE_DETAIL chooses).
-bool reads_detail(clouds::Quality q) {
-  clouds::VolumetricClouds c;
-  c.quality = q;
-  return clouds::resolve_quality(c).shape_detail;
-}
-
-std::vector<size_t> candidate_terms(const CloudAccuracyOptions& o) {
+std::vector<size_t> fit_candidate_terms(const CloudAccuracyOptions& o) {
   std::vector<size_t> k;
   for (int t : o.fit_terms) {
     if (t < 0 || size_t(t) >= kTermCount)
@@ -209,6 +198,17 @@ std::vector<size_t> candidate_terms(const CloudAccuracyOptions& o) {
     for (size_t t = 0; t < kTermCount; ++t) k.push_back(t);
   std::sort(k.begin(), k.end());
   return k;
+}
+
+namespace {
+
+// The weights are fitted per group of qualities: `low` marches without the detail noise (a smoother,
+// denser field than the path tracer's), the others with it; light_model_fit.glsl keeps both
+// (CLOUDS_SHAPE_DETAIL chooses).
+bool reads_detail(clouds::Quality q) {
+  clouds::VolumetricClouds c;
+  c.quality = q;
+  return clouds::resolve_quality(c).shape_detail;
 }
 
 std::vector<double> solve(const LinearProblem& p) {
@@ -252,7 +252,7 @@ void write_weights(std::ostringstream& glsl, const std::vector<double>& w) {
 
 int fit_light_model(const CloudAccuracyOptions& o, std::vector<RaySet>& sets, const std::map<std::string, clouds::Quality>& names) {
   const auto started = std::chrono::steady_clock::now();
-  const std::vector<size_t> candidates = candidate_terms(o);
+  const std::vector<size_t> candidates = fit_candidate_terms(o);
   LinearProblem problem[2];  // [0]: qualities without the detail noise, [1]: with it
   std::map<std::pair<size_t, std::string>, std::vector<Row>> marched;  // every set's rows, by set and quality
   std::ostringstream csv;  // the problem itself, ray by ray: what the march gives with each term alone (weight 1)

@@ -31,6 +31,10 @@ struct RaySet {
   bool kept_back = false;  // marched and reported, not fitted (--fit-kept-back)
 };
 
+// The terms --fit-terms names (every term where it names none), sorted; one clear error for a number
+// that names no term.
+std::vector<size_t> fit_candidate_terms(const CloudAccuracyOptions& o);
+
 // Solves for the weights of the light model's multiple-scattering terms (light_model_fit.glsl) over
 // the sets of rays at the qualities given (each set's errors relative to its own mean reference), and
 // writes light_model_fit.glsl into o.out.

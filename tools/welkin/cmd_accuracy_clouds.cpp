@@ -320,20 +320,32 @@ int run_cloud_accuracy(const CloudAccuracyOptions& o) {
   clouds::reference::PathTraceSettings settings;
   settings.samples = o.quick ? 1024 : 8192;
   // The rays measured (--scene, --rays) and, for --fit, the further sets (--fit-also).
-  std::vector<RaySet> sets;
-  sets.push_back(measure_set(o.scene, o.rays, o, settings));
+  // The fit's options are checked before any ray is path traced (minutes a set).
+  struct FitSet {
+    std::string scene, rays;
+    bool kept_back;
+  };
+  std::vector<FitSet> fit_sets;
   if (o.fit) {
+    fit_candidate_terms(o);
     auto add_sets = [&](const std::vector<std::string>& pairs, const char* option, bool kept_back) {
       for (const std::string& also : pairs) {
         const size_t comma = also.find(',');
         if (comma == std::string::npos)
           throw Error(ErrorInfo{.path = option, .expected = "SCENE,RAYS (two files)", .found = "'" + also + "'"});
-        sets.push_back(measure_set(also.substr(0, comma), also.substr(comma + 1), o, settings));
-        sets.back().kept_back = kept_back;
+        fit_sets.push_back({also.substr(0, comma), also.substr(comma + 1), kept_back});
       }
     };
     add_sets(o.fit_also, "--fit-also", false);
     add_sets(o.fit_kept_back, "--fit-kept-back", true);
+  }
+  std::vector<RaySet> sets;
+  sets.push_back(measure_set(o.scene, o.rays, o, settings));
+  if (o.fit) {
+    for (const FitSet& f : fit_sets) {
+      sets.push_back(measure_set(f.scene, f.rays, o, settings));
+      sets.back().kept_back = f.kept_back;
+    }
     return fit_light_model(o, sets, names);
   }
   const MeasuredCase& measured = sets[0].measured;

@@ -112,6 +112,21 @@ TEST(CloudsCli, TheFitsSumIsTheMarchOfItsWeights) {
   EXPECT_GT(std::stod(r.out.substr(w5 + 3)) + std::stod(r.out.substr(w45 + 4)), 0.0) << r.out;
 }
 
+// The fit's options are one clear error before any ray is path traced (minutes a set of rays).
+TEST(CloudsCli, ABadFitOptionIsOneErrorBeforeAnyPathIsTraced) {
+  const fs::path out = scratch_path("clouds-cli", "fit-bad");
+  for (const std::string& option : {std::string("--fit-terms 52"), std::string("--fit-also nocomma.json")}) {
+    auto r = run_welkin("accuracy clouds --quick --fit " + option +
+                        " --scene modules/clouds/validation/holdout/stratocumulus-low-sun.json --rays "
+                        "modules/clouds/validation/holdout/stratocumulus-rays.json --qualities low --out " +
+                        out.string());
+    EXPECT_EQ(r.code, 3) << r.out;
+    EXPECT_NE(r.out.find(option.substr(0, option.find(' '))), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("reference 1/"), std::string::npos) << r.out;
+    EXPECT_FALSE(r.signaled);
+  }
+}
+
 // --image: the march beside the path tracer's image of the same rays, with the image-wide error.
 TEST(CloudsCli, ImageWritesThePanelsAndTheError) {
   const fs::path out = scratch_path("clouds-cli", "image");
